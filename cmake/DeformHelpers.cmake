@@ -1,0 +1,36 @@
+# dfm_module(NAME dir DEPS libs...): a static library from every .cpp in a folder.
+# Each folder of core/ is one module so a half-edited neighbour does not break your target.
+function(dfm_module name dir)
+  cmake_parse_arguments(M "" "" "DEPS" ${ARGN})
+  file(GLOB srcs CONFIGURE_DEPENDS ${dir}/*.cpp)
+  if(NOT srcs)  # a module still being written: headers only
+    add_library(${name} INTERFACE)
+    target_include_directories(${name} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${name} INTERFACE ${M_DEPS})
+    return()
+  endif()
+  add_library(${name} STATIC ${srcs})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${name} PUBLIC ${M_DEPS})
+endfunction()
+
+# dfm_test(NAME SOURCES files... LIBS libs... [GL] [TIMEOUT s]): one Catch2 executable = one ctest entry.
+# GL tests need a display (the test command runs ctest under xvfb-run).
+function(dfm_test name)
+  cmake_parse_arguments(T "GL" "TIMEOUT" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${T_SOURCES})
+  target_link_libraries(${name} PRIVATE dfm_test_main ${T_LIBS})
+  target_compile_definitions(${name} PRIVATE DFM_DATA_DIR="${DFM_DATA_DIR}")
+  add_test(NAME ${name} COMMAND ${name})
+  set(labels "")
+  if(T_GL)
+    list(APPEND labels gl)
+  else()
+    list(APPEND labels cpu)
+  endif()
+  if(NOT T_TIMEOUT)
+    set(T_TIMEOUT 300)
+  endif()
+  set_tests_properties(${name} PROPERTIES LABELS "${labels}" TIMEOUT ${T_TIMEOUT}
+    ENVIRONMENT "DFM_DATA_DIR=${DFM_DATA_DIR}")
+endfunction()

@@ -1,0 +1,17 @@
+# Run as: cmake -DOUT=file.cpp -DSRC_DIR=dir -P embed_shaders.cmake
+# Writes a C++ file mapping each shaders/*.glsl file name to its text, so programs run from any folder.
+file(GLOB files "${SRC_DIR}/*.glsl")
+list(SORT files)
+set(body "// Generated from shaders/*.glsl by cmake/embed_shaders.cmake. Do not edit.\n#include \"shaders/embedded_shaders.h\"\n#include <cstring>\n#include <stdexcept>\n#include <string>\nnamespace dfm {\nnamespace {\nstruct Entry { const char* name; const char* text; };\nconst Entry kShaders[] = {\n")
+foreach(f ${files})
+  get_filename_component(n "${f}" NAME)
+  file(READ "${f}" txt)
+  string(FIND "${txt}" ")glsl\"" bad)
+  if(NOT bad EQUAL -1)
+    message(FATAL_ERROR "${f} contains the raw-string terminator )glsl\"")
+  endif()
+  string(APPEND body "  {\"${n}\", R\"glsl(${txt})glsl\"},\n")
+endforeach()
+string(APPEND body "};\n}  // namespace\n\nconst char* shader_source(const std::string& name) {\n  for (const Entry& e : kShaders)\n    if (name == e.name) return e.text;\n  throw std::runtime_error(\"embedded shader not found: \" + name);\n}\n\nstd::vector<std::string> shader_names() {\n  std::vector<std::string> out;\n  for (const Entry& e : kShaders) out.push_back(e.name);\n  return out;\n}\n}  // namespace dfm\n")
+file(WRITE "${OUT}.tmp" "${body}")
+file(COPY_FILE "${OUT}.tmp" "${OUT}" ONLY_IF_DIFFERENT)

@@ -1,0 +1,53 @@
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <catch2/catch.hpp>
+
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+
+namespace fs = std::filesystem;
+
+static std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST_CASE("atomic write replaces the file only on success", "[util]") {
+  fs::path dir = fs::temp_directory_path() / "dfm_test_util";
+  fs::create_directories(dir);
+  fs::path f = dir / "a.txt";
+  dfm::write_file_atomic(f.string(), [](std::ostream& o) { o << "first"; });
+  REQUIRE(slurp(f) == "first");
+  // A writer that fails half-way leaves the previous content and no temp files.
+  REQUIRE_THROWS_AS(dfm::write_file_atomic(f.string(), [](std::ostream& o) {
+                      o << "partial";
+                      throw dfm::Error("boom");
+                    }),
+                    dfm::Error);
+  REQUIRE(slurp(f) == "first");
+  int files = 0;
+  for (auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  REQUIRE(files == 1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("atomic write into a missing folder names the file", "[util]") {
+  try {
+    dfm::write_file_atomic("/nonexistent-folder-xyz/out.obj", [](std::ostream& o) { o << "x"; });
+    FAIL("expected an error");
+  } catch (const dfm::Error& e) {
+    REQUIRE(std::string(e.what()).find("/nonexistent-folder-xyz/out.obj") != std::string::npos);
+  }
+}
+
+TEST_CASE("file_extension and require_readable_file", "[util]") {
+  REQUIRE(dfm::file_extension("a/b.OBJ") == "obj");
+  REQUIRE(dfm::file_extension("noext") == "");
+  REQUIRE_THROWS_WITH(dfm::require_readable_file("/no/such/file.obj"), Catch::Contains("no such file"));
+  REQUIRE_THROWS_WITH(dfm::require_readable_file(fs::temp_directory_path().string()),
+                      Catch::Contains("directory"));
+}
