@@ -1,0 +1,126 @@
+#pragma once
+// RAII wrappers for GL objects that passes own: buffers, vertex arrays, textures, queries.
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "render/gl.h"
+
+namespace dfm::gl {
+
+class Buffer {
+ public:
+  Buffer() { glGenBuffers(1, &id_); }
+  ~Buffer() {
+    if (id_) glDeleteBuffers(1, &id_);
+  }
+  Buffer(Buffer&& o) noexcept : id_(std::exchange(o.id_, 0)), bytes_(o.bytes_) {}
+  Buffer& operator=(Buffer&& o) noexcept {
+    if (this != &o) {
+      if (id_) glDeleteBuffers(1, &id_);
+      id_ = std::exchange(o.id_, 0);
+      bytes_ = o.bytes_;
+    }
+    return *this;
+  }
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+
+  GLuint id() const { return id_; }
+  size_t bytes() const { return bytes_; }
+
+  // (Re)allocates and fills; data may be null to only allocate.
+  void upload(GLenum target, const void* data, size_t bytes, GLenum usage = GL_STATIC_DRAW) {
+    glBindBuffer(target, id_);
+    glBufferData(target, static_cast<GLsizeiptr>(bytes), data, usage);
+    bytes_ = bytes;
+  }
+  template <class T>
+  void upload(GLenum target, const std::vector<T>& v, GLenum usage = GL_STATIC_DRAW) {
+    upload(target, v.data(), v.size() * sizeof(T), usage);
+  }
+  void update(GLenum target, const void* data, size_t bytes, size_t offset = 0) {
+    glBindBuffer(target, id_);
+    glBufferSubData(target, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
+  }
+  // Reads `count` elements of T back from the start of the buffer.
+  template <class T>
+  std::vector<T> read(size_t count) const {
+    std::vector<T> out(count);
+    glBindBuffer(GL_COPY_READ_BUFFER, id_);
+    glGetBufferSubData(GL_COPY_READ_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(T)), out.data());
+    return out;
+  }
+
+ private:
+  GLuint id_ = 0;
+  size_t bytes_ = 0;
+};
+
+class VertexArray {
+ public:
+  VertexArray() { glGenVertexArrays(1, &id_); }
+  ~VertexArray() {
+    if (id_) glDeleteVertexArrays(1, &id_);
+  }
+  VertexArray(VertexArray&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+  VertexArray& operator=(VertexArray&& o) noexcept {
+    if (this != &o) {
+      if (id_) glDeleteVertexArrays(1, &id_);
+      id_ = std::exchange(o.id_, 0);
+    }
+    return *this;
+  }
+  VertexArray(const VertexArray&) = delete;
+  VertexArray& operator=(const VertexArray&) = delete;
+  GLuint id() const { return id_; }
+  void bind() const { glBindVertexArray(id_); }
+
+ private:
+  GLuint id_ = 0;
+};
+
+class Texture {
+ public:
+  Texture() { glGenTextures(1, &id_); }
+  ~Texture() {
+    if (id_) glDeleteTextures(1, &id_);
+  }
+  Texture(Texture&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+  Texture& operator=(Texture&& o) noexcept {
+    if (this != &o) {
+      if (id_) glDeleteTextures(1, &id_);
+      id_ = std::exchange(o.id_, 0);
+    }
+    return *this;
+  }
+  Texture(const Texture&) = delete;
+  Texture& operator=(const Texture&) = delete;
+  GLuint id() const { return id_; }
+
+ private:
+  GLuint id_ = 0;
+};
+
+// Counts primitives written by a transform feedback pass.
+class PrimitivesQuery {
+ public:
+  PrimitivesQuery() { glGenQueries(1, &id_); }
+  ~PrimitivesQuery() {
+    if (id_) glDeleteQueries(1, &id_);
+  }
+  PrimitivesQuery(const PrimitivesQuery&) = delete;
+  PrimitivesQuery& operator=(const PrimitivesQuery&) = delete;
+  void begin() { glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, id_); }
+  void end() { glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN); }
+  GLuint result() const {
+    GLuint n = 0;
+    glGetQueryObjectuiv(id_, GL_QUERY_RESULT, &n);
+    return n;
+  }
+
+ private:
+  GLuint id_ = 0;
+};
+
+}  // namespace dfm::gl
