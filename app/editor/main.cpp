@@ -1,3 +1,75 @@
-// Placeholder entry until the editor lands (replaced by the editor module).
+// deform-editor [FILE] [--script S.txt] [--screenshot OUT.png] [--quit]
+// Opens the editor on FILE (a scene .json, a surface or tet mesh) or on the default scene.
 #include <cstdio>
-int main() { std::puts("deform-editor: not built yet"); return 1; }
+#include <cstring>
+#include <string>
+
+#include "app/editor/editor.h"
+#include "core/util/error.h"
+#include "render/gl_context.h"
+
+namespace {
+
+void usage(std::FILE* out) {
+  std::fprintf(out,
+               "usage: deform-editor [FILE] [--script S.txt] [--screenshot OUT.png] [--quit]\n"
+               "  FILE              a scene (.scene.json), a surface (.obj .off .ply .stl) or tet mesh (.mesh)\n"
+               "  --script S.txt    run editor commands (see README.md) after loading\n"
+               "  --screenshot F    write a PNG of the window after the script\n"
+               "  --quit            exit after the script / screenshot instead of staying open\n"
+               "  --size WxH        window size (default 1280x800)\n"
+               "Without a display, run it under a virtual X server:\n"
+               "  xvfb-run -a -s \"-screen 0 1280x1024x24\" deform-editor ...\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  dfm::editor::EditorOptions opts;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](const char* flag) -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "deform-editor: %s needs a value\n", flag);
+        usage(stderr);
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      usage(stdout);
+      return 0;
+    } else if (a == "--script") {
+      opts.script = value("--script");
+    } else if (a == "--screenshot") {
+      opts.screenshot = value("--screenshot");
+    } else if (a == "--quit") {
+      opts.quit = true;
+    } else if (a == "--size") {
+      const std::string v = value("--size");
+      if (std::sscanf(v.c_str(), "%dx%d", &opts.width, &opts.height) != 2 || opts.width < 320 || opts.height < 240) {
+        std::fprintf(stderr, "deform-editor: --size wants WxH (at least 320x240), got '%s'\n", v.c_str());
+        return 2;
+      }
+    } else if (!a.empty() && a[0] == '-') {
+      std::fprintf(stderr, "deform-editor: unknown option %s\n", a.c_str());
+      usage(stderr);
+      return 2;
+    } else if (opts.file.empty()) {
+      opts.file = a;
+    } else {
+      std::fprintf(stderr, "deform-editor: more than one file given (%s, %s)\n", opts.file.c_str(), a.c_str());
+      return 2;
+    }
+  }
+  try {
+    dfm::editor::Editor editor(opts);
+    return editor.run();
+  } catch (const dfm::Error& e) {
+    std::fprintf(stderr, "deform-editor: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "deform-editor: unexpected error: %s\n", e.what());
+    return 1;
+  }
+}

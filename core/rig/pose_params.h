@@ -15,6 +15,13 @@
 
 namespace dfm {
 
+// Stretchable, twistable bones (Jacobson 2013 ch. 6): per bone, a twist about its own axis that grows
+// from 0 at the first joint to `twist` at the second, and a length factor (1 = rest length).
+struct BoneTwistStretch {
+  double twist = 0.0;    // radians, right-handed about (b - a)
+  double stretch = 1.0;  // posed length / rest length
+};
+
 struct PoseParams {
   std::vector<Eigen::Quaterniond> bone_rotation;
   std::vector<Eigen::Vector3d> bone_translation;
@@ -22,6 +29,8 @@ struct PoseParams {
   std::vector<Eigen::Quaterniond> point_rotation;
   std::vector<Eigen::Vector3d> cage_translation;  // one per cage vertex, cages concatenated
   std::vector<Eigen::Affine3d> region_transform;
+  // Twist/stretch per bone: in the bone transforms (children follow); STBS spreads them along the bone.
+  std::vector<BoneTwistStretch> bone_twist_stretch;
 };
 
 // Sizes every vector to the rig, identity entries.

@@ -1,0 +1,360 @@
+#include "app/editor/editor.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/editor/camera_sync.h"
+#include "app/editor/theme.h"
+#include "core/mesh/io.h"
+#include "core/scene/script.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+#include "render/screenshot.h"
+
+namespace fs = std::filesystem;
+
+namespace dfm::editor {
+namespace {
+
+constexpr double kAutosaveSeconds = 180.0;
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The default scene ships in the source tree's assets/; look beside and above the executable so the
+// editor runs from any working directory (build tree or install).
+std::string find_default_scene() {
+  if (const char* env = std::getenv("DFM_ASSETS_DIR")) {
+    const fs::path p = fs::path(env) / "default.scene.json";
+    if (fs::exists(p)) return p.string();
+  }
+  std::error_code ec;
+  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  for (int up = 0; !ec && up < 5 && !dir.empty(); ++up) {
+    for (const char* rel : {"assets/default.scene.json", "share/deform/assets/default.scene.json"}) {
+      const fs::path p = dir / rel;
+      if (fs::exists(p)) return p.string();
+    }
+    if (dir == dir.parent_path()) break;
+    dir = dir.parent_path();
+  }
+  return "";
+}
+
+void drop_callback(GLFWwindow* w, int count, const char** paths) {
+  auto* ed = static_cast<Editor*>(glfwGetWindowUserPointer(w));
+  for (int i = 0; i < count; ++i) ed->open_any(paths[i]);
+}
+
+}  // namespace
+
+Editor::Editor(const EditorOptions& opts)
+    : opts_(opts),
+      ctx_(gl::ContextOptions{opts.width, opts.height, true, 4, "deform-editor"}) {
+  window_ = ctx_.window();
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetDropCallback(window_, drop_callback);
+  glfwSwapInterval(opts.quit ? 0 : 1);
+  init_imgui();
+  view_ = std::make_unique<SceneView>();
+  last_autosave_ = std::chrono::steady_clock::now();
+}
+
+Editor::~Editor() {
+  view_.reset();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+void Editor::init_imgui() {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // layout is fixed; nothing to litter the working folder with
+  float xscale = 1, yscale = 1;
+  glfwGetWindowContentScale(window_, &xscale, &yscale);
+  apply_theme(std::max(1.0f, xscale));
+  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+}
+
+void Editor::status(const std::string& msg, bool error) {
+  status_ = msg;
+  status_error_ = error;
+  if (error) std::fprintf(stderr, "deform-editor: %s\n", msg.c_str());
+}
+
+void Editor::open_any(const std::string& path) {
+  try {
+    const std::string ext = file_extension(path);
+    if (ends_with(path, ".json")) {
+      doc_.load_scene(path);
+      gl::Camera c = cam_;
+      from_document_camera(doc_.camera(), c);
+      cam_ = c;
+      view_->sync(doc_, {});
+      cam_.scene_radius = std::max(1e-6, 0.5 * view_->surface_bounds().diagonal().norm());
+    } else if (ext == "tgf") {
+      doc_.load_skeleton(path);
+    } else if (doc_.surface().num_vertices() > 0 && (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl") &&
+               ImGui::GetCurrentContext() && ImGui::GetIO().KeyAlt) {
+      doc_.load_cage(path);  // Alt+drop: a cage around the current surface
+    } else {
+      doc_.open_mesh(path);
+      view_->sync(doc_, {});
+      frame_all();
+    }
+    files_.add_recent(path);
+    status("opened " + path);
+  } catch (const std::exception& e) {
+    error_popup_ = e.what();
+    status(e.what(), true);
+  }
+}
+
+void Editor::load_initial() {
+  if (!opts_.file.empty()) {
+    // A bad file on the command line is fatal for batch use (--quit), a message otherwise.
+    if (opts_.quit) {
+      if (ends_with(opts_.file, ".json")) {
+        doc_.load_scene(opts_.file);
+        from_document_camera(doc_.camera(), cam_);
+        view_->sync(doc_, {});
+        cam_.scene_radius = std::max(1e-6, 0.5 * view_->surface_bounds().diagonal().norm());
+      } else {
+        doc_.open_mesh(opts_.file);
+        view_->sync(doc_, {});
+        frame_all();
+      }
+    } else {
+      open_any(opts_.file);
+    }
+    return;
+  }
+  const std::string def = find_default_scene();
+  if (def.empty()) {
+    status("no default scene found (assets/default.scene.json); open a mesh with File > Open");
+    return;
+  }
+  doc_.load_scene(def);
+  from_document_camera(doc_.camera(), cam_);
+  view_->sync(doc_, {});
+  cam_.scene_radius = std::max(1e-6, 0.5 * view_->surface_bounds().diagonal().norm());
+  // The default scene is a template: saving it should ask for a new name, not overwrite the asset.
+  status("default scene: " + def);
+}
+
+void Editor::frame_all() {
+  const Eigen::AlignedBox3d b = view_->surface_bounds();
+  if (b.isEmpty()) return;
+  cam_.scene_radius = std::max(1e-6, 0.5 * b.diagonal().norm());
+  gl::frame_box(cam_, b.min(), b.max());
+  sync_camera_to_doc();
+}
+
+void Editor::frame_selection() {
+  const auto& sel = doc_.selection().handles;
+  const Eigen::MatrixXd& P = view_->handle_positions();
+  if (sel.empty() || P.rows() == 0) return frame_all();
+  Eigen::AlignedBox3d b;
+  for (int h : sel)
+    if (h >= 0 && h < P.rows()) b.extend(Eigen::Vector3d(P.row(h)));
+  if (b.isEmpty()) return frame_all();
+  const double r = std::max(0.5 * b.diagonal().norm(), 0.12 * cam_.scene_radius);
+  gl::frame_sphere(cam_, b.center(), r);
+  sync_camera_to_doc();
+}
+
+void Editor::sync_camera_to_doc() { doc_.set_camera(to_document_camera(cam_)); }
+
+void Editor::select_handle(int handle, bool additive) {
+  Selection s = doc_.selection();
+  if (!additive) s.handles.clear();
+  auto it = std::find(s.handles.begin(), s.handles.end(), handle);
+  if (it != s.handles.end()) {
+    if (additive) s.handles.erase(it);
+  } else if (handle >= 0) {
+    s.handles.insert(s.handles.begin(), handle);  // first = active
+  }
+  doc_.set_selection(s);
+}
+
+void Editor::tick(double dt) {
+  // Collect a finished bind (one undo step), show what went wrong otherwise.
+  if (auto r = bind_.take_result()) {
+    if (r->ok) {
+      try {
+        doc_.set_weights(r->weights, r->stats);
+        status("bound " + std::to_string(doc_.num_handles()) + " handles in " +
+               std::to_string(r->stats.seconds).substr(0, 5) + " s");
+        doc_.autosave();
+        last_autosave_ = std::chrono::steady_clock::now();
+      } catch (const std::exception& e) {
+        error_popup_ = e.what();
+      }
+    } else if (r->cancelled) {
+      status("bind cancelled");
+    } else {
+      error_popup_ = "Bind failed:\n" + r->error;
+      status(r->error, true);
+    }
+  }
+  if (playing_ && doc_.keys().size() >= 2) {
+    const double t0 = doc_.keys().front().time, t1 = doc_.keys().back().time;
+    double t = doc_.time() + dt * play_speed_;
+    if (t > t1) t = loop_ ? t0 + std::fmod(t - t0, std::max(1e-9, t1 - t0)) : t1;
+    if (!loop_ && t >= t1) playing_ = false;
+    doc_.set_time(t);
+  }
+  autosave_if_due();
+}
+
+void Editor::autosave_if_due() {
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - last_autosave_).count() < kAutosaveSeconds) return;
+  last_autosave_ = now;
+  if (!doc_.dirty() || doc_.revision() == autosaved_revision_) return;
+  try {
+    const std::string f = doc_.autosave();
+    autosaved_revision_ = doc_.revision();
+    status("autosaved to " + f);
+  } catch (const std::exception& e) {
+    status(std::string("autosave failed: ") + e.what(), true);
+  }
+}
+
+void Editor::request_quit() {
+  if (doc_.dirty()) {
+    quit_prompt_ = true;
+    glfwSetWindowShouldClose(window_, GLFW_FALSE);
+  } else {
+    should_quit_ = true;
+  }
+}
+
+void Editor::render_frame() {
+  int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  draw_ui();  // lays out panels, sets viewport_
+  handle_shortcuts();
+  handle_viewport_input();
+
+  ViewSettings vs;
+  vs.wireframe = wireframe_;
+  vs.grid = show_grid_;
+  vs.handles = show_handles_;
+  vs.weight_view = static_cast<int>(weight_view_);
+  vs.sweep_axis = sweep_axis_;
+  vs.sweep_value = sweep_value_;
+  view_->sync(doc_, vs);
+  ImGui::Render();
+
+  // 3D viewport: the central rectangle left by the panels (window coords -> framebuffer pixels).
+  const double sx = win_w > 0 ? double(fb_w) / win_w : 1.0, sy = win_h > 0 ? double(fb_h) / win_h : 1.0;
+  glViewport(0, 0, fb_w, fb_h);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(0.085f, 0.09f, 0.10f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const int vx = int(viewport_.x * sx), vw = std::max(1, int(viewport_.w * sx));
+  const int vh = std::max(1, int(viewport_.h * sy)), vy = fb_h - int(viewport_.y * sy) - vh;
+  glViewport(vx, vy, vw, vh);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(vx, vy, vw, vh);
+  // Vertical gradient background: draw by clearing two halves would band; a subtle flat tone reads well.
+  glClearColor(0.145f, 0.15f, 0.165f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+  cam_.width = viewport_.w;
+  cam_.height = viewport_.h;
+  glEnable(GL_MULTISAMPLE);
+  view_->draw(doc_, cam_, vs);
+
+  glViewport(0, 0, fb_w, fb_h);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+void Editor::save_screenshot(const std::string& path) {
+  // Two frames first: ImGui sizes auto-fitting windows on the frame after they appear.
+  for (int i = 0; i < 2; ++i) {
+    render_frame();
+    glfwSwapBuffers(window_);
+    glfwPollEvents();
+  }
+  render_frame();
+  glFinish();
+  int fb_w = 0, fb_h = 0;
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  glReadBuffer(GL_BACK);
+  gl::write_png(path, gl::read_framebuffer(fb_w, fb_h));
+  glfwSwapBuffers(window_);
+  status("screenshot " + path);
+}
+
+int Editor::run() {
+  load_initial();
+  if (cam_.scene_radius <= 0 || view_->surface_bounds().isEmpty()) cam_.scene_radius = 1.0;
+
+  if (!opts_.script.empty()) {
+    const std::vector<ScriptLine> lines = read_script(opts_.script);  // checks every line first
+    ScriptHost host;
+    host.screenshot = [this](const std::string& png) { save_screenshot(png); };
+    host.bind = [this](Document& d) {
+      bind_.start(make_document_bind_job(d));
+      // Keep drawing (progress bar) while the worker runs, as in the interactive editor.
+      while (bind_.running()) {
+        render_frame();
+        glfwSwapBuffers(window_);
+        glfwPollEvents();
+      }
+      auto r = bind_.take_result();
+      if (!r || !r->ok) throw Error(r ? r->error : "bind produced no result");
+      d.set_weights(r->weights, r->stats);
+    };
+    host.after_command = [this](const ScriptLine& line) {
+      if (!line.words.empty() && (line.words[0] == "open" || line.words[0] == "load-scene")) {
+        view_->sync(doc_, {});
+        if (line.words[0] == "open") frame_all();
+      }
+      render_frame();
+      glfwSwapBuffers(window_);
+      glfwPollEvents();
+    };
+    const ScriptResult r = run_script(doc_, lines, opts_.script, host);
+    if (r.quit) should_quit_ = true;
+  }
+  if (!opts_.screenshot.empty()) save_screenshot(opts_.screenshot);
+  if (opts_.quit || should_quit_) return 0;
+
+  double last = glfwGetTime();
+  while (!should_quit_) {
+    glfwPollEvents();
+    if (glfwWindowShouldClose(window_)) request_quit();
+    const double now = glfwGetTime();
+    const double dt = now - last;
+    last = now;
+    frame_ms_.push_back(dt * 1000.0);
+    if (frame_ms_.size() > 60) frame_ms_.pop_front();
+    double sum = 0;
+    for (double m : frame_ms_) sum += m;
+    fps_ = sum > 0 ? 1000.0 * frame_ms_.size() / sum : 0;
+    tick(dt);
+    render_frame();
+    glfwSwapBuffers(window_);
+  }
+  return 0;
+}
+
+}  // namespace dfm::editor

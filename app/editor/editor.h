@@ -1,0 +1,159 @@
+#pragma once
+// The editor window: one Document (the single source of truth), the GPU state mirroring it, the
+// viewport tools and the ImGui panels. Every edit calls a Document member; panels only read it.
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "app/editor/bind_worker.h"
+#include "app/editor/file_panel.h"
+#include "app/editor/gizmo.h"
+#include "app/editor/scene_view.h"
+#include "core/scene/document.h"
+#include "render/camera.h"
+#include "render/gl_context.h"
+
+struct GLFWwindow;
+
+namespace dfm::editor {
+
+struct EditorOptions {
+  std::string file;        // scene or mesh to open ("" = default scene)
+  std::string script;      // --script
+  std::string screenshot;  // --screenshot (after the script)
+  bool quit = false;       // --quit
+  int width = 1280, height = 800;
+};
+
+enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
+enum class WeightView { Off, Selected, AllHandles, Mask };
+enum class PaintTarget { Mask, Region };
+
+struct Rect {
+  double x = 0, y = 0, w = 1, h = 1;
+  bool contains(double px, double py) const { return px >= x && py >= y && px < x + w && py < y + h; }
+};
+
+class Editor {
+ public:
+  explicit Editor(const EditorOptions& opts);
+  ~Editor();
+  // Runs the script / screenshot / interactive loop; returns the process exit code.
+  int run();
+
+  // Public for the script host and tests.
+  void render_frame();                       // one full frame (scene + UI), no swap
+  void save_screenshot(const std::string& path);
+  void open_any(const std::string& path);    // scene, mesh, tet mesh, skeleton or cage by extension
+  Document& document() { return doc_; }
+
+ private:
+  // editor.cpp
+  void init_imgui();
+  void load_initial();
+  void frame_all();
+  void frame_selection();
+  void sync_camera_to_doc();
+  void tick(double dt);
+  void status(const std::string& msg, bool error = false);
+  void request_quit();
+  void autosave_if_due();
+  // editor_input.cpp
+  void handle_shortcuts();
+  void handle_viewport_input();
+  void handle_camera_input();
+  void tool_select(bool clicked, bool released);
+  void tool_place_point(bool clicked);
+  void tool_draw_bone(bool clicked);
+  void tool_paint(bool down, bool clicked, bool released);
+  void tool_pose(bool clicked, bool released);
+  Eigen::Vector2d mouse_in_viewport() const;
+  // editor_panels.cpp
+  void draw_ui();
+  void draw_menu_bar();
+  void draw_left_panel();
+  void draw_outliner();
+  void draw_tools_panel();
+  void draw_right_panel();
+  void draw_view_section();
+  void draw_bind_section();
+  void draw_weights_section();
+  void draw_transform_section();
+  void draw_viewport_hud();
+  void draw_quit_prompt();
+  void draw_error_popup();
+  // editor_timeline.cpp
+  void draw_timeline();
+  // actions
+  void start_bind();
+  void save_scene_as(const std::string& path);
+  void save_posed(const std::string& path);
+  void save_frames(const std::string& pattern, int count);
+  void select_handle(int handle, bool additive);
+
+  EditorOptions opts_;
+  gl::Context ctx_;
+  GLFWwindow* window_ = nullptr;
+  Document doc_;
+  std::unique_ptr<SceneView> view_;
+  gl::Camera cam_;
+  BindWorker bind_;
+  FilePanel files_;
+
+  // UI state
+  Tool tool_ = Tool::Select;
+  WeightView weight_view_ = WeightView::Off;
+  PaintTarget paint_target_ = PaintTarget::Mask;
+  int paint_region_ = -1;
+  double brush_radius_ = 0.08;  // fraction of the surface's bounding-box diagonal
+  double brush_strength_ = 0.5;
+  double brush_falloff_ = 0.5;  // 0 = hard edge, 1 = smooth to the rim
+  bool place_inside_ = true;
+  bool gizmo_rotate_ = false;
+  bool wireframe_ = false;
+  bool show_grid_ = true;
+  bool show_handles_ = true;
+  bool playing_ = false;
+  bool loop_ = true;
+  double play_speed_ = 1.0;
+  int sweep_axis_ = -1;  // -1: time slices; 0..2: sweep view along x/y/z
+  double sweep_value_ = 0.5;  // fraction of the extent along the sweep axis
+  int picked_vertex_ = -1;    // vertex whose weights are listed
+  std::vector<Eigen::Vector3d> bone_chain_;  // joints clicked so far (DrawBone)
+  int bone_chain_parent_ = -1;
+  Rect viewport_;
+  bool viewport_hovered_ = false;
+
+  // gestures
+  enum class Drag { None, Orbit, Pan, Handle, Gizmo, Paint, Timeline, Key } drag_ = Drag::None;
+  Eigen::Vector2d drag_last_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d drag_start_ = Eigen::Vector2d::Zero();
+  GizmoPart gizmo_part_ = GizmoPart::None;
+  Eigen::Vector3d drag_point_ = Eigen::Vector3d::Zero();  // handle being dragged (world)
+  int drag_handle_ = -1;
+  int drag_joint_ = -1;
+  int drag_key_ = -1;
+  Eigen::Vector3d brush_center_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d brush_normal_ = Eigen::Vector3d::UnitY();
+  bool brush_visible_ = false;
+
+  // timing and messages
+  std::deque<double> frame_ms_;
+  double fps_ = 0;
+  std::string status_;
+  bool status_error_ = false;
+  std::string error_popup_;
+  bool quit_prompt_ = false;
+  bool should_quit_ = false;
+  std::chrono::steady_clock::time_point last_autosave_;
+  std::uint64_t autosaved_revision_ = 0;
+  std::vector<std::string> weight_rows_;  // the picked vertex's weights, formatted
+};
+
+}  // namespace dfm::editor

@@ -1,0 +1,522 @@
+// The ImGui panels: menu bar, tools + outliner (left), view / bind / weights / transform (right),
+// the viewport HUD and the popups. Panels read the Document and issue its commands.
+#include <imgui.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "app/editor/editor.h"
+#include "core/mesh/io.h"
+#include "core/scene/script.h"
+#include "core/util/error.h"
+
+namespace dfm::editor {
+namespace {
+
+constexpr float kLeftW = 250, kRightW = 300, kTimelineH = 118;
+
+void help_marker(const char* text) {
+  ImGui::SameLine();
+  ImGui::TextDisabled("(?)");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
+bool tool_button(const char* label, bool active, const char* tip, float w) {
+  if (active) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyle().Colors[ImGuiCol_HeaderActive]);
+  const bool pressed = ImGui::Button(label, ImVec2(w, 0));
+  if (active) ImGui::PopStyleColor();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
+  return pressed;
+}
+
+ImU32 to_u32(const Eigen::Vector3f& linear) {
+  return ImGui::GetColorU32(ImVec4(std::pow(linear.x(), 1 / 2.2f), std::pow(linear.y(), 1 / 2.2f),
+                                   std::pow(linear.z(), 1 / 2.2f), 1.0f));
+}
+
+}  // namespace
+
+void Editor::draw_ui() {
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  draw_menu_bar();
+  const float top = ImGui::GetFrameHeight();
+  const float W = vp->Size.x, H = vp->Size.y;
+  const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBringToFrontOnFocus;
+  ImGui::SetNextWindowPos(ImVec2(0, top));
+  ImGui::SetNextWindowSize(ImVec2(kLeftW, H - top));
+  ImGui::Begin("##left", nullptr, fixed);
+  draw_left_panel();
+  ImGui::End();
+
+  ImGui::SetNextWindowPos(ImVec2(W - kRightW, top));
+  ImGui::SetNextWindowSize(ImVec2(kRightW, H - top));
+  ImGui::Begin("##right", nullptr, fixed);
+  draw_right_panel();
+  ImGui::End();
+
+  ImGui::SetNextWindowPos(ImVec2(kLeftW, H - kTimelineH));
+  ImGui::SetNextWindowSize(ImVec2(W - kLeftW - kRightW, kTimelineH));
+  ImGui::Begin("##timeline", nullptr, fixed);
+  draw_timeline();
+  ImGui::End();
+
+  viewport_ = Rect{kLeftW, top, std::max(1.0f, W - kLeftW - kRightW), std::max(1.0f, H - top - kTimelineH)};
+  draw_viewport_hud();
+
+  if (files_.draw()) {
+    const std::string p = files_.path(), what = files_.purpose();
+    try {
+      if (what == "open") open_any(p);
+      else if (what == "save-scene") save_scene_as(p);
+      else if (what == "save-posed") save_posed(p);
+      else if (what == "save-frames") save_frames(p, 24);
+      else if (what == "screenshot") save_screenshot(p);
+      else if (what == "load-skeleton") doc_.load_skeleton(p), files_.add_recent(p);
+      else if (what == "load-cage") doc_.load_cage(p), files_.add_recent(p);
+    } catch (const std::exception& e) {
+      error_popup_ = e.what();
+    }
+  }
+  draw_quit_prompt();
+  draw_error_popup();
+}
+
+void Editor::draw_menu_bar() {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) files_.show(FilePanel::Mode::Open, "Open", "open");
+    if (ImGui::BeginMenu("Open recent", !files_.recent().empty())) {
+      for (const auto& r : files_.recent())
+        if (ImGui::MenuItem(r.c_str())) open_any(r);
+      ImGui::EndMenu();
+    }
+    if (ImGui::MenuItem("Load skeleton (.tgf)...")) files_.show(FilePanel::Mode::Open, "Load skeleton", "load-skeleton");
+    if (ImGui::MenuItem("Load cage...")) files_.show(FilePanel::Mode::Open, "Load cage", "load-cage");
+    ImGui::Separator();
+    if (ImGui::MenuItem("Save scene", "Ctrl+S")) {
+      if (doc_.path().empty()) files_.show(FilePanel::Mode::Save, "Save scene as", "save-scene", "scene.scene.json");
+      else save_scene_as(doc_.path());
+    }
+    if (ImGui::MenuItem("Save scene as...")) files_.show(FilePanel::Mode::Save, "Save scene as", "save-scene", "scene.scene.json");
+    if (ImGui::MenuItem("Save posed mesh...", nullptr, false, doc_.has_weights()))
+      files_.show(FilePanel::Mode::Save, "Save posed mesh", "save-posed", "posed.obj");
+    if (ImGui::MenuItem("Save all frames...", nullptr, false, doc_.has_weights() && doc_.keys().size() >= 2))
+      files_.show(FilePanel::Mode::Save, "Save frames (name_####.obj)", "save-frames", "frame.obj");
+    if (ImGui::MenuItem("Save screenshot...")) files_.show(FilePanel::Mode::Save, "Save screenshot", "screenshot", "screenshot.png");
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) request_quit();
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    const std::string u = "Undo " + doc_.undo_name(), r = "Redo " + doc_.redo_name();
+    if (ImGui::MenuItem(u.c_str(), "Ctrl+Z", false, doc_.can_undo())) doc_.undo();
+    if (ImGui::MenuItem(r.c_str(), "Ctrl+Shift+Z", false, doc_.can_redo())) doc_.redo();
+    ImGui::Separator();
+    if (ImGui::MenuItem("Delete selected", "Del", false, !doc_.selection().handles.empty()))
+      doc_.delete_handles(doc_.selection().handles);
+    if (ImGui::MenuItem("Reset pose")) doc_.reset_pose();
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Frame selection", "F")) frame_selection();
+    if (ImGui::MenuItem("Frame all", "Home")) frame_all();
+    ImGui::MenuItem("Orthographic", "5", &cam_.orthographic);
+    ImGui::MenuItem("Wireframe", "Z", &wireframe_);
+    ImGui::MenuItem("Grid", nullptr, &show_grid_);
+    ImGui::MenuItem("Handles", nullptr, &show_handles_);
+    ImGui::Separator();
+    for (auto p : {gl::ViewPreset::Front, gl::ViewPreset::Back, gl::ViewPreset::Left, gl::ViewPreset::Right,
+                   gl::ViewPreset::Top, gl::ViewPreset::Bottom, gl::ViewPreset::Iso})
+      if (ImGui::MenuItem(gl::view_preset_name(p))) gl::set_view_preset(cam_, p), sync_camera_to_doc();
+    ImGui::EndMenu();
+  }
+  // Document name and dirty flag on the right of the bar.
+  std::string title = doc_.path().empty() ? std::string("untitled") : doc_.path();
+  if (doc_.dirty()) title += "  *";
+  ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(title.c_str()).x - 16);
+  ImGui::TextDisabled("%s", title.c_str());
+  ImGui::EndMainMenuBar();
+}
+
+void Editor::draw_left_panel() {
+  draw_tools_panel();
+  ImGui::Spacing();
+  draw_outliner();
+}
+
+void Editor::draw_tools_panel() {
+  ImGui::TextDisabled("TOOLS");
+  const float w = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
+  if (tool_button("Select  Q", tool_ == Tool::Select, "Select handles; drag points, joints and cage vertices (rest pose)", w)) tool_ = Tool::Select;
+  ImGui::SameLine();
+  if (tool_button("Point  P", tool_ == Tool::PlacePoint, "Click the surface to place a point handle", w)) tool_ = Tool::PlacePoint;
+  if (tool_button("Bones  B", tool_ == Tool::DrawBone, "Click joints of a chain; right-click or Enter finishes; start on a joint to branch", w)) tool_ = Tool::DrawBone;
+  ImGui::SameLine();
+  if (tool_button("Paint  V", tool_ == Tool::Paint, "Paint the shape-preservation mask or a region; Ctrl/Shift erases", w)) tool_ = Tool::Paint;
+  if (tool_button("Move  G", tool_ == Tool::Pose && !gizmo_rotate_, "Pose: translate along axes / planes", w)) tool_ = Tool::Pose, gizmo_rotate_ = false;
+  ImGui::SameLine();
+  if (tool_button("Rotate  R", tool_ == Tool::Pose && gizmo_rotate_, "Pose: rotate with the ring (view axis) or the trackball inside it", w)) tool_ = Tool::Pose, gizmo_rotate_ = true;
+
+  ImGui::Separator();
+  switch (tool_) {
+    case Tool::PlacePoint:
+      ImGui::Checkbox("Inside the volume", &place_inside_);
+      help_marker("On: halfway between where the cursor ray enters and leaves the surface. Off: on the surface.");
+      break;
+    case Tool::DrawBone:
+      ImGui::TextWrapped("%d joint(s) in the chain. Right-click / Enter: finish, Esc: cancel.", int(bone_chain_.size()));
+      break;
+    case Tool::Paint: {
+      int target = static_cast<int>(paint_target_);
+      ImGui::RadioButton("Mask", &target, 0);
+      ImGui::SameLine();
+      ImGui::RadioButton("Region", &target, 1);
+      paint_target_ = static_cast<PaintTarget>(target);
+      float r = float(brush_radius_), s = float(brush_strength_), f = float(brush_falloff_);
+      ImGui::SliderFloat("Radius", &r, 0.005f, 0.4f, "%.3f");
+      ImGui::SliderFloat("Strength", &s, 0.0f, 1.0f);
+      ImGui::SliderFloat("Falloff", &f, 0.0f, 1.0f);
+      brush_radius_ = r, brush_strength_ = s, brush_falloff_ = f;
+      if (paint_target_ == PaintTarget::Region) {
+        if (ImGui::Button("New region")) paint_region_ = doc_.add_region();
+        ImGui::SameLine();
+        ImGui::TextDisabled("painting region %d", paint_region_);
+      }
+      if (weight_view_ != WeightView::Mask && ImGui::Button("Show mask")) weight_view_ = WeightView::Mask;
+      break;
+    }
+    case Tool::Pose:
+      ImGui::TextWrapped("Select a handle, then drag the gizmo. Method: %s", skin_method_name(doc_.method()));
+      if (ImGui::Button("Reset pose")) doc_.reset_pose();
+      break;
+    case Tool::Select:
+      ImGui::TextWrapped("Click to select (Shift: add). Drag handles before binding. Click the surface to list a vertex's weights.");
+      break;
+  }
+}
+
+void Editor::draw_outliner() {
+  ImGui::TextDisabled("OUTLINER");
+  const Rig& rig = doc_.rig();
+  const auto& sel = doc_.selection().handles;
+  ImGui::BeginChild("outliner", ImVec2(0, 0), true);
+  auto row = [&](int h) {
+    const bool is_sel = std::find(sel.begin(), sel.end(), h) != sel.end();
+    ImGui::PushID(h);
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float sz = ImGui::GetTextLineHeight();
+    ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(p.x + sz - 4, p.y + sz - 2),
+                                              to_u32(handle_color(h)), 2.0f);
+    ImGui::Dummy(ImVec2(sz - 2, sz));
+    ImGui::SameLine();
+    const std::string label = handle_name(rig, h);
+    if (ImGui::Selectable(label.c_str(), is_sel)) select_handle(h, ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl);
+    if (ImGui::BeginPopupContextItem("ctx")) {
+      static char buf[128];
+      if (ImGui::IsWindowAppearing()) std::snprintf(buf, sizeof buf, "%s", label.c_str());
+      ImGui::SetNextItemWidth(180);
+      if (ImGui::InputText("Name", buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue)) {
+        doc_.rename_handle(h, buf);
+        ImGui::CloseCurrentPopup();
+      }
+      if (ImGui::MenuItem("Delete")) doc_.delete_handles({h});
+      ImGui::EndPopup();
+    }
+    ImGui::PopID();
+  };
+  int h = 0;
+  const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
+  ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+  if (ImGui::TreeNode("points", "Points (%d)", np)) {
+    for (int i = 0; i < np; ++i) row(h + i);
+    ImGui::TreePop();
+  }
+  h += np;
+  ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+  if (ImGui::TreeNode("bones", "Bones (%d)", nb)) {
+    // Indent children under parents to show the hierarchy.
+    for (int i : bones_topological_order(rig.skeleton)) {
+      int depth = 0;
+      for (int p = rig.skeleton.bones[i].parent; p >= 0 && depth < 16; p = rig.skeleton.bones[p].parent) ++depth;
+      if (depth) ImGui::Indent(8.0f * depth);
+      row(h + i);
+      if (depth) ImGui::Unindent(8.0f * depth);
+    }
+    ImGui::TreePop();
+  }
+  h += nb;
+  if (ImGui::TreeNode("cages", "Cages (%d)", int(rig.cages.size()))) {
+    for (const Cage& c : rig.cages) {
+      if (ImGui::TreeNode(c.name.empty() ? "cage" : c.name.c_str())) {
+        for (int v = 0; v < c.mesh.num_vertices(); ++v) row(h + v);
+        ImGui::TreePop();
+      }
+      h += c.mesh.num_vertices();
+    }
+    ImGui::TreePop();
+  } else {
+    h += num_cage_vertices(rig);
+  }
+  if (ImGui::TreeNode("regions", "Regions (%d)", int(rig.regions.size()))) {
+    for (size_t r = 0; r < rig.regions.size(); ++r) row(h + int(r));
+    ImGui::TreePop();
+  }
+  if (!sel.empty()) {
+    ImGui::Separator();
+    if (ImGui::Button("Delete selected")) doc_.delete_handles(sel);
+    if (sel.size() == 2 && handle_ref(rig, sel[0]).kind == HandleKind::Point &&
+        handle_ref(rig, sel[1]).kind == HandleKind::Point) {
+      ImGui::SameLine();
+      if (ImGui::Button("Pseudo-edge")) doc_.add_pseudo_edge(sel[0], sel[1]);
+    }
+  }
+  ImGui::EndChild();
+}
+
+void Editor::draw_right_panel() {
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) draw_view_section();
+  if (ImGui::CollapsingHeader("Bind", ImGuiTreeNodeFlags_DefaultOpen)) draw_bind_section();
+  if (ImGui::CollapsingHeader("Weights", ImGuiTreeNodeFlags_DefaultOpen)) draw_weights_section();
+  if (ImGui::CollapsingHeader("Transform", ImGuiTreeNodeFlags_DefaultOpen)) draw_transform_section();
+}
+
+void Editor::draw_view_section() {
+  bool persp = !cam_.orthographic;
+  if (ImGui::RadioButton("Perspective", persp)) cam_.orthographic = false;
+  ImGui::SameLine();
+  if (ImGui::RadioButton("Ortho", !persp)) cam_.orthographic = true;
+  ImGui::Checkbox("Wireframe", &wireframe_);
+  ImGui::SameLine();
+  ImGui::Checkbox("Grid", &show_grid_);
+  ImGui::SameLine();
+  ImGui::Checkbox("Handles", &show_handles_);
+  const float bw = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4;
+  int i = 0;
+  for (auto p : {gl::ViewPreset::Front, gl::ViewPreset::Right, gl::ViewPreset::Top, gl::ViewPreset::Iso}) {
+    if (i++) ImGui::SameLine();
+    if (ImGui::Button(gl::view_preset_name(p), ImVec2(bw, 0))) gl::set_view_preset(cam_, p), sync_camera_to_doc();
+  }
+  if (ImGui::Button("Frame all", ImVec2(2 * bw + ImGui::GetStyle().ItemSpacing.x, 0))) frame_all();
+  ImGui::SameLine();
+  if (ImGui::Button("Frame selection", ImVec2(-1, 0))) frame_selection();
+}
+
+void Editor::draw_bind_section() {
+  if (bind_.running()) {
+    const BindProgress p = bind_.progress();
+    char overlay[96];
+    std::snprintf(overlay, sizeof overlay, "%s  %.0f%%", p.stage.c_str(), 100.0 * p.fraction);
+    ImGui::ProgressBar(float(p.fraction), ImVec2(-1, 0), overlay);
+    ImGui::TextDisabled("%.1f s", bind_.elapsed_seconds());
+    ImGui::SameLine();
+    if (ImGui::Button(bind_.cancel_requested() ? "Cancelling..." : "Cancel", ImVec2(-1, 0))) bind_.cancel();
+    return;
+  }
+  const bool can = doc_.surface().num_vertices() > 0 && doc_.num_handles() > 0;
+  if (!can) ImGui::BeginDisabled();
+  if (ImGui::Button(doc_.has_weights() ? "Rebind" : "Bind", ImVec2(-1, 28))) start_bind();
+  if (!can) ImGui::EndDisabled();
+  if (doc_.has_weights()) {
+    const BindStats& s = doc_.bind_stats();
+    ImGui::TextDisabled("%d handles, %d tets, %.2f s", doc_.num_handles(), s.tets, s.seconds);
+    for (const auto& n : s.notes) ImGui::TextWrapped("- %s", n.c_str());
+  } else {
+    ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.35f, 1), "%s", doc_.weights_note().c_str());
+  }
+  int m = static_cast<int>(doc_.method());
+  const char* methods[] = {"LBS", "DQS", "Stretch/twist bones"};
+  ImGui::SetNextItemWidth(-1);
+  if (ImGui::Combo("##method", &m, methods, 3)) doc_.set_method(static_cast<SkinMethod>(m));
+}
+
+void Editor::draw_weights_section() {
+  int v = static_cast<int>(weight_view_);
+  ImGui::RadioButton("Off", &v, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("Selected", &v, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("All", &v, 2);
+  ImGui::SameLine();
+  ImGui::RadioButton("Mask", &v, 3);
+  weight_view_ = static_cast<WeightView>(v);
+  if (weight_view_ == WeightView::Selected) {
+    // Colour bar legend for the turbo map.
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float w = ImGui::GetContentRegionAvail().x;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    for (int i = 0; i < 32; ++i) {
+      const float x0 = p.x + w * i / 32, x1 = p.x + w * (i + 1) / 32;
+      const float t = (i + 0.5f) / 32;
+      // Same polynomial as the shader (turbo), evaluated here for the legend.
+      const float r = 0.13572138f + t * (4.61539260f + t * (-42.66032258f + t * (132.13108234f + t * (-152.94239396f + t * 59.28637943f))));
+      const float g = 0.09140261f + t * (2.19418839f + t * (4.84296658f + t * (-14.18503333f + t * (4.27729857f + t * 2.82956604f))));
+      const float b = 0.10667330f + t * (12.64194608f + t * (-60.58204836f + t * (110.36276771f + t * (-89.90310912f + t * 27.34824973f))));
+      dl->AddRectFilled(ImVec2(x0, p.y), ImVec2(x1 + 1, p.y + 8), ImGui::GetColorU32(ImVec4(r, g, b, 1)));
+    }
+    ImGui::Dummy(ImVec2(w, 10));
+    ImGui::TextDisabled("0");
+    ImGui::SameLine(w - 8);
+    ImGui::TextDisabled("1");
+    if (doc_.selection().handles.empty()) ImGui::TextDisabled("select a handle to see its weights");
+  }
+  if (picked_vertex_ >= 0 && picked_vertex_ < doc_.surface().num_vertices()) {
+    ImGui::Text("Vertex %d", picked_vertex_);
+    if (!doc_.has_weights()) {
+      ImGui::TextDisabled("not bound");
+    } else {
+      const Eigen::MatrixXd& W = doc_.weights();
+      std::vector<std::pair<double, int>> w;
+      for (int j = 0; j < W.cols(); ++j) w.emplace_back(W(picked_vertex_, j), j);
+      std::sort(w.rbegin(), w.rend());
+      if (ImGui::BeginTable("vw", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+        for (size_t k = 0; k < std::min<size_t>(8, w.size()); ++k) {
+          if (w[k].first < 1e-4 && k > 0) break;
+          ImGui::TableNextRow();
+          ImGui::TableNextColumn();
+          ImGui::TextUnformatted(handle_name(doc_.rig(), w[k].second).c_str());
+          ImGui::TableNextColumn();
+          ImGui::Text("%.4f", w[k].first);
+        }
+        ImGui::EndTable();
+      }
+    }
+  }
+}
+
+void Editor::draw_transform_section() {
+  const auto& sel = doc_.selection().handles;
+  if (sel.empty()) {
+    ImGui::TextDisabled("no handle selected");
+    return;
+  }
+  const int h = sel.front();
+  const Rig& rig = doc_.rig();
+  const HandleRef r = handle_ref(rig, h);
+  ImGui::Text("%s  (%s)", handle_name(rig, h).c_str(), handle_kind_name(r.kind));
+  Pose pose = doc_.pose();
+  if (h < pose.size()) {
+    const Eigen::Affine3d& T = pose.transforms[h];
+    const Eigen::Vector3d pivot = doc_.handle_pivot(h);
+    // Typed values: world offset of the pivot and rotation (axis-angle) of this handle's transform.
+    const Eigen::Vector3d offset = T * pivot - pivot;
+    float t[3] = {float(offset.x()), float(offset.y()), float(offset.z())};
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::DragFloat3("##move", t, 0.002f * float(cam_.scene_radius), 0, 0, "%.3f")) {
+      if (ImGui::IsItemActivated()) doc_.begin_gesture();
+      doc_.translate_handle(h, Eigen::Vector3d(t[0], t[1], t[2]) - offset);
+    }
+    if (ImGui::IsItemDeactivated()) doc_.end_gesture();
+    ImGui::TextDisabled("translation (world)");
+    if (r.kind != HandleKind::CageVertex) {
+      Eigen::AngleAxisd aa(T.linear());
+      static float deg[3] = {0, 0, 0};
+      ImGui::SetNextItemWidth(-1);
+      ImGui::InputFloat3("##rot", deg, "%.1f");
+      ImGui::TextDisabled("rotation now: %.1f deg about (%.2f %.2f %.2f)", aa.angle() * 180 / M_PI, aa.axis().x(),
+                          aa.axis().y(), aa.axis().z());
+      if (ImGui::Button("Apply rotation (XYZ degrees)", ImVec2(-1, 0))) {
+        const Eigen::Quaterniond q = Eigen::AngleAxisd(deg[2] * M_PI / 180, Eigen::Vector3d::UnitZ()) *
+                                     Eigen::AngleAxisd(deg[1] * M_PI / 180, Eigen::Vector3d::UnitY()) *
+                                     Eigen::AngleAxisd(deg[0] * M_PI / 180, Eigen::Vector3d::UnitX());
+        doc_.rotate_handle(h, q);
+      }
+    }
+  }
+  if (ImGui::Button("Reset pose", ImVec2(-1, 0))) doc_.reset_pose();
+}
+
+void Editor::draw_viewport_hud() {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const ImVec2 o(float(viewport_.x) + 10, float(viewport_.y) + 8);
+  char buf[256];
+  const double ms = frame_ms_.empty() ? 0 : frame_ms_.back();
+  std::snprintf(buf, sizeof buf, "%.0f fps  %.1f ms   %d verts  %d faces   %s%s", fps_, ms,
+                view_->display_vertex_count(), view_->showing_slice() ? view_->display_vertex_count() / 3 : doc_.surface().num_faces(),
+                cam_.orthographic ? "ortho" : "persp", view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
+  dl->AddText(o, IM_COL32(200, 204, 212, 220), buf);
+  if (!status_.empty())
+    dl->AddText(ImVec2(o.x, float(viewport_.y + viewport_.h) - 24),
+                status_error_ ? IM_COL32(255, 120, 110, 255) : IM_COL32(170, 176, 186, 220), status_.c_str());
+  if (!view_->last_error().empty())
+    dl->AddText(ImVec2(o.x, o.y + 18), IM_COL32(255, 150, 110, 255), view_->last_error().c_str());
+}
+
+void Editor::draw_quit_prompt() {
+  if (quit_prompt_) ImGui::OpenPopup("Unsaved changes");
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("The scene has unsaved changes.");
+    if (ImGui::Button("Save and quit")) {
+      if (doc_.path().empty()) {
+        files_.show(FilePanel::Mode::Save, "Save scene as", "save-scene", "scene.scene.json");
+      } else {
+        save_scene_as(doc_.path());
+        should_quit_ = true;
+      }
+      quit_prompt_ = false;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Quit without saving")) should_quit_ = true, quit_prompt_ = false, ImGui::CloseCurrentPopup();
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) quit_prompt_ = false, ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+void Editor::draw_error_popup() {
+  if (!error_popup_.empty() && !ImGui::IsPopupOpen("Error")) ImGui::OpenPopup("Error");
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(320, 0), ImVec2(640, 400));
+  if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushTextWrapPos(600);
+    ImGui::TextUnformatted(error_popup_.c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::Button("OK", ImVec2(120, 0))) error_popup_.clear(), ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+void Editor::start_bind() {
+  try {
+    if (!bind_.start(make_document_bind_job(doc_))) status("a bind is already running");
+  } catch (const std::exception& e) {
+    error_popup_ = e.what();
+  }
+}
+
+void Editor::save_scene_as(const std::string& path) {
+  sync_camera_to_doc();
+  doc_.save_scene(path);
+  files_.add_recent(path);
+  status("saved " + path);
+}
+
+void Editor::save_posed(const std::string& path) {
+  write_surface(path, posed_surface(doc_));
+  status("saved posed mesh " + path);
+}
+
+void Editor::save_frames(const std::string& pattern, int count) {
+  // name.obj -> name_0000.obj ... over the keyed time range; the document's time is restored after.
+  const auto& keys = doc_.keys();
+  if (keys.size() < 2) throw Error("saving frames needs at least two keys");
+  const std::string ext_dot = pattern.substr(pattern.find_last_of('.'));
+  const std::string stem = pattern.substr(0, pattern.size() - ext_dot.size());
+  const double t0 = keys.front().time, t1 = keys.back().time, keep = doc_.time();
+  for (int i = 0; i < count; ++i) {
+    doc_.set_time(t0 + (t1 - t0) * i / std::max(1, count - 1));
+    char num[16];
+    std::snprintf(num, sizeof num, "_%04d", i);
+    write_surface(stem + num + ext_dot, posed_surface(doc_));
+  }
+  doc_.set_time(keep);
+  status("saved " + std::to_string(count) + " frames as " + stem + "_####" + ext_dot);
+}
+
+}  // namespace dfm::editor

@@ -1,0 +1,408 @@
+#include "app/editor/scene_view.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/anim/bake.h"
+#include "core/anim/keyframes.h"
+#include "core/anim/manifold.h"
+#include "core/anim/slice.h"
+#include "core/skin/skin.h"
+#include "core/skin/stbs.h"
+#include "render/skin_pass.h"
+#include "render/slice_pass.h"
+
+namespace dfm::editor {
+
+Eigen::Vector3f handle_color(int handle) {
+  // Golden-ratio hue steps give well separated colours for any count; fixed saturation and value.
+  const double h = std::fmod(0.08 + 0.618033988749895 * handle, 1.0) * 6.0;
+  const double s = 0.62, v = 0.92;
+  const int i = static_cast<int>(h) % 6;
+  const double f = h - std::floor(h);
+  const double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+  double r = 0, g = 0, b = 0;
+  switch (i) {
+    case 0: r = v, g = t, b = p; break;
+    case 1: r = q, g = v, b = p; break;
+    case 2: r = p, g = v, b = t; break;
+    case 3: r = p, g = q, b = v; break;
+    case 4: r = t, g = p, b = v; break;
+    default: r = v, g = p, b = q; break;
+  }
+  // sRGB-ish -> linear, since the surface shader applies display gamma.
+  return Eigen::Vector3f(std::pow(r, 2.2), std::pow(g, 2.2), std::pow(b, 2.2));
+}
+
+std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W) {
+  std::vector<Eigen::Vector3f> colors(W.cols());
+  for (int j = 0; j < W.cols(); ++j) colors[j] = handle_color(j);
+  std::vector<Eigen::Vector4f> out(W.rows(), Eigen::Vector4f(0, 0, 0, 1));
+  for (int i = 0; i < W.rows(); ++i) {
+    Eigen::Vector3f c = Eigen::Vector3f::Zero();
+    double sum = 0;
+    for (int j = 0; j < W.cols(); ++j) {
+      const double w = std::max(0.0, W(i, j));
+      c += static_cast<float>(w) * colors[j];
+      sum += w;
+    }
+    if (sum > 0) c /= static_cast<float>(sum);
+    out[i] << c, 1.0f;
+  }
+  return out;
+}
+
+// Posing and slicing on the GPU: the skin pass writes the posed surface (LBS/DQS/STBS in the vertex
+// shader) and, with two or more keys, the slice pass cuts the animation manifold at the current time.
+// The manifold is baked on the CPU exactly as the saved frames are (same track, inbetweens, method),
+// and rebuilt only when the keys, weights or method change.
+struct SceneView::Deformer {
+  // Skin binding identity: rebuilt when the weights, surface, rig size or influence count change.
+  const double* weights_data = nullptr;
+  Eigen::Index weights_rows = -1, weights_cols = -1;
+  const double* surface_data = nullptr;
+  int k = 0;
+  SkinBinding binding;
+  std::unique_ptr<gl::SkinPass> skin;
+  // Manifold identity: a hash of the key times and poses, the weights and the method.
+  std::uint64_t manifold_sig = 0;
+  std::unique_ptr<gl::SlicePass> slice;
+  AnimationManifold manifold;
+  bool has_manifold = false;
+  std::uint64_t pose_sig = 0;
+  bool prefer_pose = false;  // the pose was edited after the last time change: show it, not the slice
+  gl::Buffer indices;
+  int index_count = 0;
+  bool gpu_output_stale = true;  // display_V_ must be read back before CPU use
+};
+
+namespace {
+std::uint64_t mix_hash(std::uint64_t h, const void* p, size_t n) {
+  const unsigned char* b = static_cast<const unsigned char*>(p);
+  for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;  // FNV-1a
+  return h;
+}
+std::uint64_t pose_hash(std::uint64_t h, const Pose& p) {
+  for (const auto& T : p.transforms) h = mix_hash(h, T.matrix().data(), sizeof(double) * 16);
+  return h;
+}
+}  // namespace
+
+SceneView::SceneView() : deformer_(std::make_unique<Deformer>()) {}
+SceneView::~SceneView() = default;
+
+void SceneView::add_overlay_lines(const std::vector<gl::OverlayVertex>& pairs, float width) {
+  extra_lines_.insert(extra_lines_.end(), pairs.begin(), pairs.end());
+  extra_line_widths_.insert(extra_line_widths_.end(), pairs.size() / 2, width);
+}
+
+void SceneView::add_overlay_points(const std::vector<gl::OverlayVertex>& points, float size) {
+  extra_points_.insert(extra_points_.end(), points.begin(), points.end());
+  extra_point_size_ = size;
+}
+
+void SceneView::sync(const Document& doc, const ViewSettings& s) {
+  const bool content = doc.revision() != synced_revision_;
+  const bool time_changed = doc.time() != synced_time_;
+  const bool settings_changed = s.weight_view != synced_settings_.weight_view ||
+                                s.sweep_axis != synced_settings_.sweep_axis ||
+                                s.sweep_value != synced_settings_.sweep_value;
+  const bool sel_changed = doc.selection().handles != synced_selection_;
+  if (time_changed) deformer_->prefer_pose = false;
+  if (content || time_changed || settings_changed) update_surface(doc, s);
+  if (content || time_changed || settings_changed || sel_changed || !colors_valid_) update_colors(doc, s);
+  update_handles(doc, s);
+  synced_revision_ = doc.revision();
+  synced_time_ = doc.time();
+  synced_settings_ = s;
+  synced_selection_ = doc.selection().handles;
+}
+
+const Eigen::MatrixXd& SceneView::display_vertices() {
+  Deformer& d = *deformer_;
+  if (d.gpu_output_stale && !display_is_rest_) {
+    std::vector<gl::PosNormal> v;
+    if (showing_slice_ && d.slice) v = d.slice->read_back();
+    else if (d.skin) v = d.skin->read_back();
+    display_V_.resize(v.size(), 3);
+    for (size_t i = 0; i < v.size(); ++i) display_V_.row(i) << v[i].position[0], v[i].position[1], v[i].position[2];
+    if (showing_slice_) {
+      display_F_.resize(v.size() / 3, 3);
+      for (int f = 0; f < display_F_.rows(); ++f) display_F_.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
+    }
+  }
+  d.gpu_output_stale = false;
+  return display_V_;
+}
+
+const Eigen::MatrixXi& SceneView::display_faces() {
+  display_vertices();  // a slice's faces come with its vertices
+  return display_F_;
+}
+
+void SceneView::show_rest(const TriMesh& rest) {
+  display_V_ = rest.V;
+  display_F_ = rest.F;
+  display_is_rest_ = true;
+  showing_slice_ = false;
+  display_count_ = rest.num_vertices();
+  surface_.upload_mesh(rest);
+}
+
+void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Deformer& d = *deformer_;
+  const TriMesh& rest = doc.surface();
+  error_.clear();
+  if (rest.V.data() != d.surface_data || rest.V.rows() != bounds_rows_) {
+    bounds_.setEmpty();
+    for (int i = 0; i < rest.V.rows(); ++i) bounds_.extend(Eigen::Vector3d(rest.V.row(i)));
+    bounds_rows_ = rest.V.rows();
+  }
+  if (!doc.has_weights() || rest.num_vertices() == 0) {
+    d.skin.reset();
+    d.surface_data = rest.V.data();
+    d.weights_data = nullptr;
+    show_rest(rest);
+    colors_valid_ = false;
+    return;
+  }
+  try {
+    const Eigen::MatrixXd& W = doc.weights();
+    const int max_inf = doc.bind_settings().max_influences;
+    // The GPU takes at most 8 influences per vertex.
+    const int k = std::min(8, max_inf > 0 ? max_inf : static_cast<int>(W.cols()));
+    if (!d.skin || W.data() != d.weights_data || W.rows() != d.weights_rows || W.cols() != d.weights_cols ||
+        rest.V.data() != d.surface_data || k != d.k) {
+      d.binding = make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k);
+      d.skin = std::make_unique<gl::SkinPass>(d.binding);
+      d.weights_data = W.data();
+      d.weights_rows = W.rows();
+      d.weights_cols = W.cols();
+      d.surface_data = rest.V.data();
+      d.k = k;
+      std::vector<std::uint32_t> idx(rest.F.size());
+      for (int f = 0; f < rest.F.rows(); ++f)
+        for (int c = 0; c < 3; ++c) idx[3 * f + c] = static_cast<std::uint32_t>(rest.F(f, c));
+      d.indices.upload(GL_ARRAY_BUFFER, idx);
+      d.index_count = static_cast<int>(idx.size());
+      d.manifold_sig = 0;
+      d.has_manifold = false;
+    }
+    // Animation manifold (>= 2 keys), rebuilt when what it is made of changes.
+    const std::vector<Pose> key_poses = doc.keys().size() >= 2 ? doc.key_poses() : std::vector<Pose>{};
+    std::uint64_t msig = 1469598103934665603ull;
+    if (!key_poses.empty()) {
+      for (size_t i = 0; i < key_poses.size(); ++i) {
+        msig = mix_hash(msig, &doc.keys()[i].time, sizeof(double));
+        msig = pose_hash(msig, key_poses[i]);
+      }
+      const int m = static_cast<int>(doc.method()), ib = doc.inbetweens();
+      msig = mix_hash(msig, &m, sizeof m);
+      msig = mix_hash(msig, &ib, sizeof ib);
+      msig = mix_hash(msig, &d.weights_data, sizeof d.weights_data);
+    }
+    if (key_poses.empty()) {
+      d.has_manifold = false;
+    } else if (msig != d.manifold_sig) {
+      KeyTrack track;
+      for (size_t i = 0; i < key_poses.size(); ++i) track.set({doc.keys()[i].time, key_poses[i]});
+      const SkinBinding full = make_skin_binding(rest.V, Eigen::MatrixXd(), W, doc.rig(), max_inf);
+      const BakedLayers layers = bake_layers(track, doc.inbetweens(), [&](const Pose& p) {
+        return skin(doc.method(), full, p, {}).V;
+      });
+      d.manifold = build_manifold(layers, rest.F);
+      if (!d.slice) d.slice = std::make_unique<gl::SlicePass>();
+      d.slice->upload(d.manifold);
+      d.has_manifold = true;
+      d.manifold_sig = msig;
+    }
+    // Pose edits after the last scrub show the pose being edited; scrubbing shows the slice.
+    const Pose pose = doc.pose();
+    const std::uint64_t psig = pose_hash(1469598103934665603ull, pose);
+    if (psig != d.pose_sig) {
+      if (d.pose_sig != 0) d.prefer_pose = true;
+      d.pose_sig = psig;
+    }
+    const bool slice = d.has_manifold && (s.sweep_axis >= 0 || !d.prefer_pose);
+    if (slice) {
+      SliceAxis axis = SliceAxis::T;
+      double value = doc.time();
+      if (s.sweep_axis >= 0) {
+        axis = static_cast<SliceAxis>(s.sweep_axis);
+        const double lo = d.manifold.V.col(s.sweep_axis).minCoeff(), hi = d.manifold.V.col(s.sweep_axis).maxCoeff();
+        value = lo + s.sweep_value * (hi - lo);
+      }
+      const int tris = d.slice->slice(axis, value);
+      surface_.set_geometry(d.slice->output().id(), 3 * tris, 0, 0);
+      display_count_ = 3 * tris;
+      showing_slice_ = true;
+    } else {
+      d.skin->set_pose(pose, stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
+      d.skin->run(doc.method());
+      surface_.set_geometry(d.skin->output_buffer(), d.skin->num_vertices(), d.indices.id(), d.index_count);
+      display_count_ = d.skin->num_vertices();
+      showing_slice_ = false;
+      display_F_ = rest.F;
+    }
+    display_is_rest_ = false;
+    d.gpu_output_stale = true;
+  } catch (const std::exception& e) {
+    error_ = e.what();
+    show_rest(rest);
+  }
+  colors_valid_ = false;
+  deform_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
+  colors_valid_ = true;
+  const int nv = doc.surface().num_vertices();
+  const bool same_vertices = !showing_slice_;
+  std::vector<Eigen::Vector4f> data;
+  if (same_vertices && s.weight_view == 1 && doc.has_weights() && !doc.selection().handles.empty()) {
+    const int h = doc.selection().handles.front();
+    if (h >= 0 && h < doc.weights().cols()) {
+      data.resize(nv);
+      for (int i = 0; i < nv; ++i) data[i] = Eigen::Vector4f(float(doc.weights()(i, h)), 0, 0, 1);
+    }
+  } else if (same_vertices && s.weight_view == 2 && doc.has_weights()) {
+    data = blend_handle_colors(doc.weights());
+  } else if (same_vertices && s.weight_view == 3) {
+    data.assign(nv, Eigen::Vector4f(0, 0, 0, 1));
+    const Eigen::VectorXd& mask = doc.mask();
+    if (mask.size() == nv)
+      for (int i = 0; i < nv; ++i) data[i].x() = float(mask[i]);
+    // Region handles show as their own value bands on top of the mask.
+    for (size_t r = 0; r < doc.rig().regions.size(); ++r)
+      for (int v : doc.rig().regions[r].vertices)
+        if (v >= 0 && v < nv) data[v].x() = std::max(data[v].x(), 0.75f);
+  }
+  surface_.set_vertex_data(data);
+}
+
+void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
+  const Rig& rig = doc.rig();
+  const int n = num_handles(rig);
+  Pose pose;
+  try {
+    pose = doc.pose();
+  } catch (...) {
+  }
+  const bool posed = !display_is_rest_ && pose.size() == n;
+  auto X = [&](int h, const Eigen::Vector3d& p) -> Eigen::Vector3d {
+    return posed ? Eigen::Vector3d(pose.transforms[h] * p) : p;
+  };
+  handle_pos_.resize(n, 3);
+  int h = 0;
+  for (const PointHandle& p : rig.points) handle_pos_.row(h) = X(h, p.position), ++h;
+  joint_pos_ = rig.skeleton.joints;
+  for (const Bone& b : rig.skeleton.bones) {
+    const Eigen::Vector3d a = rig.skeleton.joints.row(b.a), c = rig.skeleton.joints.row(b.b);
+    handle_pos_.row(h) = X(h, a);
+    if (posed) {
+      joint_pos_.row(b.b) = X(h, c);
+      if (b.parent < 0) joint_pos_.row(b.a) = X(h, a);
+    }
+    ++h;
+  }
+  for (const Cage& c : rig.cages)
+    for (int v = 0; v < c.mesh.num_vertices(); ++v) handle_pos_.row(h) = X(h, c.mesh.V.row(v)), ++h;
+  for (const Region& r : rig.regions) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int cnt = 0;
+    for (int v : r.vertices)
+      if (v >= 0 && v < doc.surface().V.rows()) sum += doc.surface().V.row(v).transpose(), ++cnt;
+    handle_pos_.row(h) = cnt ? Eigen::Vector3d(sum / cnt) : Eigen::Vector3d::Zero();
+    ++h;
+  }
+}
+
+void SceneView::draw(const Document& doc, const gl::Camera& cam, const ViewSettings& s) {
+  gl::SurfaceStyle style;
+  style.wireframe = s.wireframe;
+  style.mode = s.weight_view == 2 ? gl::SurfaceColorMode::VertexColor
+               : s.weight_view == 0 ? gl::SurfaceColorMode::Shaded
+                                    : gl::SurfaceColorMode::Scalar;
+  style.isolines = s.weight_view == 1 ? 10.0f : 0.0f;
+  if (s.grid && !bounds_.isEmpty()) {
+    const double diag = bounds_.diagonal().norm();
+    const double spacing = gl::nice_spacing(2.5 * diag, 24);
+    const Eigen::Vector3d c = bounds_.center();
+    overlay_.draw_lines(cam, gl::grid_lines(c.x(), c.z(), bounds_.min().y(), 1.6 * diag, spacing), 1.0f, true);
+  }
+  surface_.draw(cam, style);
+  if (s.handles) draw_overlays(doc, cam, s);
+  // Per-frame extras, grouped by width.
+  for (size_t i = 0; i < extra_line_widths_.size();) {
+    size_t j = i;
+    while (j < extra_line_widths_.size() && extra_line_widths_[j] == extra_line_widths_[i]) ++j;
+    std::vector<gl::OverlayVertex> seg(extra_lines_.begin() + 2 * i, extra_lines_.begin() + 2 * j);
+    overlay_.draw_lines(cam, seg, extra_line_widths_[i], false);
+    i = j;
+  }
+  overlay_.draw_points(cam, extra_points_, extra_point_size_, false);
+  extra_lines_.clear();
+  extra_line_widths_.clear();
+  extra_points_.clear();
+}
+
+void SceneView::draw_overlays(const Document& doc, const gl::Camera& cam, const ViewSettings& s) {
+  const Rig& rig = doc.rig();
+  const auto& sel = doc.selection().handles;
+  auto selected = [&](int h) { return std::find(sel.begin(), sel.end(), h) != sel.end(); };
+  auto active = [&](int h) { return !sel.empty() && sel.front() == h; };
+  const Eigen::Vector4f sel_color(1.0f, 0.62f, 0.12f, 1.0f), act_color(1.0f, 0.85f, 0.30f, 1.0f);
+  auto color_of = [&](int h, float alpha) -> Eigen::Vector4f {
+    if (active(h)) return act_color;
+    if (selected(h)) return sel_color;
+    Eigen::Vector3f c = handle_color(h);
+    // Overlays are not gamma-corrected: lift the linear colour back for display.
+    return Eigen::Vector4f(std::pow(c.x(), 1 / 2.2f), std::pow(c.y(), 1 / 2.2f), std::pow(c.z(), 1 / 2.2f), alpha);
+  };
+  std::vector<gl::OverlayVertex> lines, thin, pts, small_pts;
+  const int np = num_point_handles(rig);
+  // Pseudo-edges between point handles.
+  for (const auto& [a, b] : rig.pseudo_edges)
+    if (a >= 0 && b >= 0 && a < np && b < np) {
+      thin.push_back(gl::overlay_vertex(handle_pos_.row(a), Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f)));
+      thin.push_back(gl::overlay_vertex(handle_pos_.row(b), Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f)));
+    }
+  // Bones: a thick line from parent joint to child joint, joints as small dots.
+  for (int i = 0; i < rig.skeleton.num_bones(); ++i) {
+    const Bone& b = rig.skeleton.bones[i];
+    const int h = np + i;
+    const Eigen::Vector4f c = color_of(h, 1.0f);
+    lines.push_back(gl::overlay_vertex(joint_pos_.row(b.a), c));
+    lines.push_back(gl::overlay_vertex(joint_pos_.row(b.b), Eigen::Vector4f(0.5f * c.head<3>().x(), 0.5f * c.y(), 0.5f * c.z(), 1.0f)));
+  }
+  for (int j = 0; j < joint_pos_.rows(); ++j)
+    small_pts.push_back(gl::overlay_vertex(joint_pos_.row(j), doc.selection().joint == j
+                                                                  ? act_color
+                                                                  : Eigen::Vector4f(0.92f, 0.92f, 0.95f, 1.0f)));
+  // Cages: wireframe through the (posed) cage vertices.
+  int h0 = np + rig.skeleton.num_bones();
+  for (const Cage& c : rig.cages) {
+    const Eigen::Vector4f wire(0.55f, 0.85f, 0.95f, 0.85f);
+    auto edge = [&](int a, int b) {
+      thin.push_back(gl::overlay_vertex(handle_pos_.row(h0 + a), wire));
+      thin.push_back(gl::overlay_vertex(handle_pos_.row(h0 + b), wire));
+    };
+    for (int f = 0; f < c.mesh.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) edge(c.mesh.F(f, k), c.mesh.F(f, (k + 1) % 3));
+    for (int e = 0; e < c.edges.rows(); ++e) edge(c.edges(e, 0), c.edges(e, 1));
+    for (int v = 0; v < c.mesh.num_vertices(); ++v)
+      small_pts.push_back(gl::overlay_vertex(handle_pos_.row(h0 + v), selected(h0 + v) ? sel_color : wire));
+    h0 += c.mesh.num_vertices();
+  }
+  for (int i = 0; i < np; ++i) pts.push_back(gl::overlay_vertex(handle_pos_.row(i), color_of(i, 1.0f)));
+  for (size_t r = 0; r < rig.regions.size(); ++r, ++h0)
+    if (!rig.regions[r].vertices.empty()) pts.push_back(gl::overlay_vertex(handle_pos_.row(h0), color_of(h0, 1.0f)));
+  overlay_.draw_lines(cam, thin, 1.5f, false);
+  overlay_.draw_lines(cam, lines, 5.0f, false);
+  overlay_.draw_points(cam, small_pts, 8.0f, false);
+  overlay_.draw_points(cam, pts, 14.0f, false);
+}
+
+}  // namespace dfm::editor

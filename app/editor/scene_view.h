@@ -1,0 +1,90 @@
+#pragma once
+// The GPU mirror of the document: the displayed surface (rest, posed, or the animation manifold's
+// slice at the current time), weight colours, and the overlays (grid, handles, bones, cages, brush).
+// sync() is cheap when nothing changed, so the editor calls it every frame.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "core/scene/document.h"
+#include "render/camera.h"
+#include "render/overlay_pass.h"
+#include "render/surface_pass.h"
+
+namespace dfm::editor {
+
+struct ViewSettings {
+  bool wireframe = false;
+  bool grid = true;
+  bool handles = true;
+  int weight_view = 0;        // 0 off, 1 selected handle, 2 all handles, 3 mask
+  int sweep_axis = -1;        // -1 time slice; 0..2 sweep along x/y/z
+  double sweep_value = 0.5;   // fraction of the extent along the sweep axis
+  bool posed = true;          // false: show the rest surface (rig editing)
+};
+
+// Per-handle display colour (distinct hues, golden-ratio spaced), linear RGB.
+Eigen::Vector3f handle_color(int handle);
+// Per-vertex blend of handle colours by weight (the "all handles" view).
+std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W);
+
+class SceneView {
+ public:
+  SceneView();
+  ~SceneView();
+  void sync(const Document& doc, const ViewSettings& s);
+  void draw(const Document& doc, const gl::Camera& cam, const ViewSettings& s);
+  // Extra overlay lines for this frame only (brush circle, gizmo, bone being drawn).
+  void add_overlay_lines(const std::vector<gl::OverlayVertex>& pairs, float width);
+  void add_overlay_points(const std::vector<gl::OverlayVertex>& points, float size);
+
+  // The displayed surface on the CPU (for picking and painting): rest or posed positions.
+  // Posed vertices are read back from the GPU on first use after a change.
+  const Eigen::MatrixXd& display_vertices();
+  const Eigen::MatrixXi& display_faces();
+  int display_vertex_count() const { return display_count_; }
+  bool showing_slice() const { return showing_slice_; }
+  bool display_is_rest() const { return display_is_rest_; }
+  Eigen::AlignedBox3d surface_bounds() const { return bounds_; }
+  // Handle glyph positions as displayed (posed when posing), rows in handle order; joints separately.
+  const Eigen::MatrixXd& handle_positions() const { return handle_pos_; }
+  const Eigen::MatrixXd& joint_positions() const { return joint_pos_; }
+  const std::string& last_error() const { return error_; }
+  double last_deform_ms() const { return deform_ms_; }
+
+ private:
+  void update_surface(const Document& doc, const ViewSettings& s);
+  void show_rest(const TriMesh& rest);
+  void update_colors(const Document& doc, const ViewSettings& s);
+  void update_handles(const Document& doc, const ViewSettings& s);
+  void draw_overlays(const Document& doc, const gl::Camera& cam, const ViewSettings& s);
+
+  gl::SurfacePass surface_;
+  gl::OverlayPass overlay_;
+  struct Deformer;  // posing and slicing state (skin binding, manifold cache)
+  std::unique_ptr<Deformer> deformer_;
+  Eigen::MatrixXd display_V_;
+  Eigen::MatrixXi display_F_;
+  bool display_is_rest_ = true;
+  bool showing_slice_ = false;
+  int display_count_ = 0;
+  Eigen::Index bounds_rows_ = -1;
+  Eigen::AlignedBox3d bounds_;
+  Eigen::MatrixXd handle_pos_, joint_pos_;
+  std::vector<gl::OverlayVertex> extra_lines_, extra_points_;
+  std::vector<float> extra_line_widths_;
+  float extra_point_size_ = 12.f;
+  std::uint64_t synced_revision_ = ~0ull;
+  double synced_time_ = -1e300;
+  ViewSettings synced_settings_;
+  std::vector<int> synced_selection_;
+  bool colors_valid_ = false;
+  std::string error_;
+  double deform_ms_ = 0;
+};
+
+}  // namespace dfm::editor

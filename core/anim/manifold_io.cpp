@@ -1,0 +1,173 @@
+#include "core/anim/manifold_io.h"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+
+namespace dfm {
+
+namespace {
+
+// Appends the shortest round-trip text of a number.
+template <class Num>
+void put(std::string& buf, Num x) {
+  char tmp[32];
+  auto r = std::to_chars(tmp, tmp + sizeof tmp, x);
+  buf.append(tmp, r.ptr);
+}
+
+// Line-by-line reader over the whole file held in memory (tet4 files can be hundreds of MB).
+class Lines {
+ public:
+  Lines(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {}
+  // Next non-empty, non-comment line split into tokens; false at end of file.
+  bool next(std::vector<std::string_view>& tok) {
+    while (pos_ < text_.size()) {
+      size_t end = text_.find('\n', pos_);
+      if (end == std::string::npos) end = text_.size();
+      std::string_view line(text_.data() + pos_, end - pos_);
+      pos_ = end + 1;
+      ++line_;
+      tok.clear();
+      size_t i = 0;
+      while (i < line.size()) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+        size_t j = i;
+        while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != '\r') ++j;
+        if (j > i) tok.push_back(line.substr(i, j - i));
+        i = j;
+      }
+      if (tok.empty() || tok[0][0] == '#') continue;
+      return true;
+    }
+    return false;
+  }
+  void expect(std::vector<std::string_view>& tok, const char* what) {
+    if (!next(tok)) throw error(std::string("unexpected end of file, expected ") + what);
+  }
+  template <class Num>
+  Num number(std::string_view s, const char* what) const {
+    Num x{};
+    auto r = std::from_chars(s.data(), s.data() + s.size(), x);
+    if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+      throw error(std::string("bad ") + what + " '" + std::string(s) + "'");
+    return x;
+  }
+  Error error(const std::string& msg) const { return file_error(path_, line_, msg); }
+
+ private:
+  std::string path_, text_;
+  size_t pos_ = 0;
+  long line_ = 0;
+};
+
+}  // namespace
+
+void write_manifold(const std::string& path, const AnimationManifold& M) {
+  validate_manifold(M, path);
+  write_file_atomic(path, [&](std::ostream& os) {
+    std::string buf;
+    buf.reserve(1 << 20);
+    auto flush = [&](bool force) {
+      if (force || buf.size() > (1u << 20)) {
+        os.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+        buf.clear();
+      }
+    };
+    buf += "tet4 1\n# animation manifold: 4D vertices (x y z t), oriented tetrahedra grouped in time slabs\n";
+    buf += "vertices ";
+    put(buf, M.num_vertices());
+    buf += "\ntets ";
+    put(buf, M.num_tets());
+    buf += "\nlayers ";
+    put(buf, M.num_layers());
+    buf += "\n";
+    for (int i = 0; i < M.num_layers(); ++i) {
+      buf += "layer ";
+      put(buf, M.times[i]);
+      buf += ' ';
+      put(buf, M.slab_offsets[i]);
+      buf += '\n';
+    }
+    for (int v = 0; v < M.num_vertices(); ++v) {
+      buf += 'v';
+      for (int d = 0; d < 4; ++d) {
+        buf += ' ';
+        put(buf, M.V(v, d));
+      }
+      buf += '\n';
+      flush(false);
+    }
+    for (int k = 0; k < M.num_tets(); ++k) {
+      buf += 't';
+      for (int d = 0; d < 4; ++d) {
+        buf += ' ';
+        put(buf, M.T(k, d));
+      }
+      buf += '\n';
+      flush(false);
+    }
+    flush(true);
+    if (!os) throw Error(path + ": write failed");
+  });
+}
+
+AnimationManifold read_manifold(const std::string& path) {
+  require_readable_file(path);
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (!in && !in.eof()) throw file_error(path, 0, "read failed");
+  Lines L(path, ss.str());
+  std::vector<std::string_view> tok;
+
+  L.expect(tok, "the header 'tet4 1'");
+  if (tok.size() != 2 || tok[0] != "tet4") throw L.error("not a tet4 file (expected the header 'tet4 1')");
+  if (L.number<int>(tok[1], "version") != 1) throw L.error("unsupported tet4 version " + std::string(tok[1]));
+  auto count = [&](const char* name) {
+    L.expect(tok, name);
+    if (tok.size() != 2 || tok[0] != name) throw L.error(std::string("expected '") + name + " <count>'");
+    const long long n = L.number<long long>(tok[1], "count");
+    if (n < 0 || n > 2000000000LL) throw L.error(std::string(name) + " count out of range");
+    return static_cast<int>(n);
+  };
+  const int nv = count("vertices");
+  const int nt = count("tets");
+  const int nl = count("layers");
+  if (nl < 2) throw L.error("an animation manifold needs at least 2 layers");
+
+  AnimationManifold M;
+  M.times.resize(nl);
+  M.slab_offsets.resize(nl);
+  for (int i = 0; i < nl; ++i) {
+    L.expect(tok, "a 'layer TIME FIRST_TET' line");
+    if (tok.size() != 3 || tok[0] != "layer") throw L.error("expected 'layer TIME FIRST_TET'");
+    M.times[i] = L.number<double>(tok[1], "layer time");
+    M.slab_offsets[i] = L.number<int>(tok[2], "first tetrahedron index");
+  }
+  M.V.resize(nv, 4);
+  for (int v = 0; v < nv; ++v) {
+    L.expect(tok, "a vertex line 'v X Y Z T'");
+    if (tok.size() != 5 || tok[0] != "v") throw L.error("expected a vertex line 'v X Y Z T'");
+    for (int d = 0; d < 4; ++d) M.V(v, d) = L.number<double>(tok[d + 1], "coordinate");
+  }
+  M.T.resize(nt, 4);
+  for (int k = 0; k < nt; ++k) {
+    L.expect(tok, "a tetrahedron line 't A B C D'");
+    if (tok.size() != 5 || tok[0] != "t") throw L.error("expected a tetrahedron line 't A B C D'");
+    for (int d = 0; d < 4; ++d) {
+      const int v = L.number<int>(tok[d + 1], "vertex index");
+      if (v < 0 || v >= nv) throw L.error("vertex index " + std::to_string(v) + " outside [0, " + std::to_string(nv) + ")");
+      M.T(k, d) = v;
+    }
+  }
+  if (L.next(tok)) throw L.error("unexpected content after the last tetrahedron");
+  validate_manifold(M, path);
+  return M;
+}
+
+}  // namespace dfm

@@ -1,0 +1,148 @@
+#include "core/anim/slice.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+
+#include "core/anim/slice_table.h"
+#include "core/util/error.h"
+
+namespace dfm {
+
+SliceAxis parse_slice_axis(const std::string& name) {
+  std::string n = name;
+  for (char& ch : n) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  if (n == "x") return SliceAxis::X;
+  if (n == "y") return SliceAxis::Y;
+  if (n == "z") return SliceAxis::Z;
+  if (n == "t") return SliceAxis::T;
+  throw Error("unknown slice axis '" + name + "' (expected t, x, y or z)");
+}
+
+const char* slice_axis_name(SliceAxis axis) {
+  static const char* names[] = {"x", "y", "z", "t"};
+  return names[static_cast<int>(axis)];
+}
+
+std::pair<int, int> slice_tet_range(const AnimationManifold& M, SliceAxis axis, double c) {
+  if (axis != SliceAxis::T || M.num_layers() < 2) return {0, M.num_tets()};
+  const auto& t = M.times;
+  const int slabs = M.num_slabs();
+  int lo = 0;
+  while (lo < slabs && t[lo + 1] < c) ++lo;  // first slab ending at or after c
+  int hi = slabs - 1;
+  while (hi >= 0 && t[hi] > c) --hi;  // last slab starting at or before c
+  if (lo > hi) return {0, 0};
+  return {M.slab_offsets[lo], M.slab_offsets[hi + 1]};
+}
+
+bool slice_on_plane_is_above(const AnimationManifold& M, SliceAxis axis, double c) {
+  const int k = static_cast<int>(axis);
+  double lowest;
+  if (axis == SliceAxis::T && !M.times.empty())
+    lowest = M.times.front();
+  else if (M.num_vertices() > 0)
+    lowest = M.V.col(k).minCoeff();
+  else
+    return true;
+  return c > lowest;
+}
+
+namespace {
+
+inline std::uint64_t key_of(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+}
+
+}  // namespace
+
+ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, double c) {
+  const int axis = static_cast<int>(axis_e);
+  if (axis < 0 || axis > 3) throw Error("slice axis out of range");
+  const bool on_plane_above = slice_on_plane_is_above(M, axis_e, c);
+  const auto [first, last] = slice_tet_range(M, axis_e, c);
+  const auto& table = slice_table();
+  const bool flip = slice_flips_winding(axis);
+  const double* V = M.V.data();
+  const int* T = M.T.data();
+
+  // Pass 1: per triangle, the weld keys of its 3 corners.
+  std::vector<std::uint64_t> corners;
+  for (int k = first; k < last; ++k) {
+    int g[4];
+    double s[4];
+    int mask = 0;
+    for (int i = 0; i < 4; ++i) {
+      g[i] = T[4 * k + i];
+      s[i] = V[4 * g[i] + axis] - c;
+      const bool above = on_plane_above ? s[i] >= 0.0 : s[i] > 0.0;
+      mask |= above << i;
+    }
+    if (mask == 0 || mask == 15) continue;
+    const SliceCase& sc = table[mask];
+    for (int tri = 0; tri < sc.num_triangles; ++tri) {
+      std::uint64_t key[3];
+      for (int j = 0; j < 3; ++j) {
+        const auto& e = kSliceEdges[sc.triangles[tri][j]];
+        const int a = e[0], b = e[1];
+        // A crossing point on a vertex is that vertex (so key time slices are the layer exactly).
+        key[j] = s[a] == 0.0 ? key_of(g[a], g[a]) : s[b] == 0.0 ? key_of(g[b], g[b]) : key_of(g[a], g[b]);
+      }
+      if (key[0] == key[1] || key[1] == key[2] || key[0] == key[2]) continue;  // collapsed by the weld
+      if (flip) std::swap(key[1], key[2]);
+      corners.insert(corners.end(), key, key + 3);
+    }
+  }
+
+  // Pass 2: weld. Sorted keys give a deterministic vertex order (a layer's own order at key times).
+  std::vector<std::uint64_t> keys = corners;
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+
+  ManifoldSlice out;
+  const int nv = static_cast<int>(keys.size());
+  out.mesh.V.resize(nv, 3);
+  out.edges.resize(nv);
+  int keep[3], nk = 0;
+  for (int d = 0; d < 4; ++d)
+    if (d != axis) keep[nk++] = d;
+  for (int v = 0; v < nv; ++v) {
+    const int a = static_cast<int>(keys[v] >> 32), b = static_cast<int>(keys[v] & 0xffffffffu);
+    out.edges[v] = {a, b};
+    if (a == b) {
+      for (int d = 0; d < 3; ++d) out.mesh.V(v, d) = V[4 * a + keep[d]];
+      continue;
+    }
+    // Interpolate from the above endpoint; the formula depends on the edge only, never on the tet.
+    int up = a, dn = b;
+    if (V[4 * a + axis] - c < 0.0) std::swap(up, dn);
+    const double su = V[4 * up + axis] - c, sd = V[4 * dn + axis] - c;
+    const double mu = su / (su - sd);
+    for (int d = 0; d < 3; ++d) {
+      const double pu = V[4 * up + keep[d]], pd = V[4 * dn + keep[d]];
+      out.mesh.V(v, d) = pu + mu * (pd - pu);
+    }
+  }
+  const int nf = static_cast<int>(corners.size() / 3);
+  out.mesh.F.resize(nf, 3);
+  for (int f = 0; f < nf; ++f)
+    for (int j = 0; j < 3; ++j)
+      out.mesh.F(f, j) = static_cast<int>(std::lower_bound(keys.begin(), keys.end(), corners[3 * f + j]) - keys.begin());
+
+  // Area-weighted vertex normals of the welded slice.
+  out.mesh.N = Eigen::MatrixXd::Zero(nv, 3);
+  for (int f = 0; f < nf; ++f) {
+    const Eigen::Vector3d p0 = out.mesh.V.row(out.mesh.F(f, 0)), p1 = out.mesh.V.row(out.mesh.F(f, 1)),
+                          p2 = out.mesh.V.row(out.mesh.F(f, 2));
+    const Eigen::RowVector3d n = (p1 - p0).cross(p2 - p0).transpose();
+    for (int j = 0; j < 3; ++j) out.mesh.N.row(out.mesh.F(f, j)) += n;
+  }
+  for (int v = 0; v < nv; ++v) {
+    const double len = out.mesh.N.row(v).norm();
+    if (len > 0) out.mesh.N.row(v) /= len;
+  }
+  return out;
+}
+
+}  // namespace dfm

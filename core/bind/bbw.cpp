@@ -1,0 +1,184 @@
+#include "core/bind/bbw.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/bind/bbw_exact.h"
+#include "core/bind/fem.h"
+#include "core/bind/qp.h"
+#include "core/util/error.h"
+
+namespace dfm {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void validate(const Eigen::MatrixXd& V, const Eigen::VectorXi& b, const Eigen::MatrixXd& bc) {
+  if (b.size() == 0) throw Error("bind: no constrained vertices (no handle touches the volume)");
+  if (bc.rows() != b.size())
+    throw Error("bind: " + std::to_string(bc.rows()) + " boundary-condition rows for " + std::to_string(b.size()) +
+                " constrained vertices");
+  if (bc.cols() == 0) throw Error("bind: no handles");
+  if (!bc.allFinite()) throw Error("bind: boundary conditions are not finite");
+  std::vector<char> seen(V.rows(), 0);
+  for (int k = 0; k < b.size(); ++k) {
+    if (b(k) < 0 || b(k) >= V.rows()) throw Error("bind: constrained vertex index " + std::to_string(b(k)) + " out of range");
+    if (seen[b(k)]++) throw Error("bind: vertex " + std::to_string(b(k)) + " constrained twice");
+  }
+  for (int j = 0; j < bc.cols(); ++j)
+    if (bc.col(j).maxCoeff() <= 0)
+      throw Error("bind: handle " + std::to_string(j) + " has no vertex in the volume (its weights would be all zero)");
+}
+
+}  // namespace
+
+Eigen::SparseMatrix<double> bbw_energy_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
+                                              const Eigen::VectorXd& shape_mask) {
+  const Eigen::SparseMatrix<double> K = cotangent_stiffness(V, T);
+  const Eigen::VectorXd m = lumped_mass(V, T);
+  const Eigen::VectorXd minv = m.cwiseInverse();
+  Eigen::SparseMatrix<double> Q = K * minv.asDiagonal() * K;
+  if (shape_mask.size()) {
+    const double qd = Q.diagonal().mean(), kd = K.diagonal().mean();
+    Q += (qd / kd) * masked_stiffness(V, T, shape_mask);
+  }
+  Q.makeCompressed();
+  return Q;
+}
+
+Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
+                            const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
+  validate(V, b, bc);
+  BbwStats stats;
+  auto progress = [&](const char* stage, double f) {
+    if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
+    if (opts.progress) opts.progress(stage, f);
+  };
+  const int n = static_cast<int>(V.rows()), m = static_cast<int>(bc.cols());
+
+  // ---- assembly
+  progress("assembly", 0.0);
+  auto t0 = std::chrono::steady_clock::now();
+  const Eigen::SparseMatrix<double> Q = bbw_energy_matrix(V, T, opts.shape_mask);
+  std::vector<int> fmap(n, 0);
+  for (int k = 0; k < b.size(); ++k) fmap[b(k)] = -1;
+  std::vector<int> free_list;
+  for (int i = 0; i < n; ++i)
+    if (fmap[i] == 0) fmap[i] = static_cast<int>(free_list.size()), free_list.push_back(i);
+  const Eigen::VectorXi f = Eigen::Map<Eigen::VectorXi>(free_list.data(), free_list.size());
+  const int nf = static_cast<int>(f.size());
+  const Eigen::SparseMatrix<double> Qff = principal_submatrix(Q, f);
+  // Linear term g_j = Q_fb bc_j for every handle at once.
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nf, m);
+  for (int k = 0; k < b.size(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(Q, b(k)); it; ++it)
+      if (fmap[it.row()] >= 0) G.row(fmap[it.row()]) += it.value() * bc.row(k);
+  stats.assembly_seconds = seconds_since(t0);
+
+  // ---- one factorization of Q_ff shared by every handle: the bound-free biharmonic solutions, the
+  // starting point of every bounded solve (often nearly feasible).
+  progress("factorization", 0.0);
+  t0 = std::chrono::steady_clock::now();
+  Eigen::MatrixXd X0;
+  {
+    SpdSolver chol;
+    chol.factorize(Qff);
+    stats.factor_nonzeros = chol.factor_nonzeros();
+    X0 = chol.solve(-G);
+  }
+  stats.factorization_seconds = seconds_since(t0);
+
+  // ---- bounded solves
+  progress("solve", 0.0);
+  t0 = std::chrono::steady_clock::now();
+  Eigen::MatrixXd X(nf, m);
+  if (opts.exact_partition_of_unity) {
+    ExactPouResult r = solve_exact_pou(Qff, G, X0, opts.tolerance, opts.cancel);
+    X = r.X;
+    stats.iterations_total = stats.iterations_max = r.iterations;
+    stats.fallback_iterations = r.fallback_iterations;
+    stats.kkt_residual = r.kkt_residual;
+    stats.converged = r.converged;
+  } else {
+    const Eigen::VectorXd lo = Eigen::VectorXd::Zero(nf), hi = Eigen::VectorXd::Ones(nf);
+    std::vector<BoxQPResult> results(m);
+    std::vector<std::string> errors;
+    std::mutex mu;
+    int next = 0, finished = 0;
+    BoxQPOptions qo;
+    if (const char* e = std::getenv("DFM_RINGS")) qo.release_rings = atoi(e);
+    qo.tolerance = opts.tolerance;
+    qo.cancel = opts.cancel;
+    auto worker = [&] {
+      for (;;) {
+        int j;
+        {
+          std::lock_guard<std::mutex> lock(mu);
+          if (next >= m || !errors.empty()) return;
+          j = next++;
+        }
+        try {
+          BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, X0.col(j), qo);
+          std::lock_guard<std::mutex> lock(mu);
+          results[j] = std::move(r);
+          ++finished;
+          if (opts.progress) opts.progress("solve", double(finished) / m);
+        } catch (const std::exception& e) {
+          std::lock_guard<std::mutex> lock(mu);
+          errors.push_back(e.what());
+        }
+      }
+    };
+    const int nthreads = std::max(1, std::min(opts.threads, m));
+    std::vector<std::thread> pool;
+    for (int t = 1; t < nthreads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& th : pool) th.join();
+    if (!errors.empty()) throw Error(errors.front() == "cancelled" ? "cancelled" : "bind: " + errors.front());
+    stats.converged = true;
+    for (int j = 0; j < m; ++j) {
+      X.col(j) = results[j].x;
+      stats.iterations_total += results[j].iterations;
+      stats.iterations_max = std::max(stats.iterations_max, results[j].iterations);
+      stats.fallback_iterations += results[j].fallback_iterations;
+      stats.kkt_residual = std::max(stats.kkt_residual, results[j].kkt_residual);
+      stats.converged = stats.converged && results[j].converged;
+    }
+  }
+  stats.solve_seconds = seconds_since(t0);
+  if (!stats.converged)
+    throw Error("bind: the weight solver did not converge (relative KKT residual " +
+                std::to_string(stats.kkt_residual) + ")");
+
+  Eigen::MatrixXd W(n, m);
+  for (int k = 0; k < nf; ++k) W.row(f(k)) = X.row(k);
+  for (int k = 0; k < b.size(); ++k) W.row(b(k)) = bc.row(k);
+  if (!opts.exact_partition_of_unity) {
+    // Default mode: normalize rows. A row of all zeros (every handle's weight hit the bound there) takes
+    // the clipped bound-free solution instead, which sums to 1 before clipping.
+    for (int k = 0; k < nf; ++k) {
+      const int i = f(k);
+      double s = W.row(i).sum();
+      if (s <= 1e-12) {
+        W.row(i) = X0.row(k).cwiseMax(0.0).cwiseMin(1.0);
+        s = W.row(i).sum();
+        ++stats.rows_renormalized_from_zero;
+        if (s <= 1e-12) W.row(i).setConstant(1.0 / m), s = 1.0;
+      }
+      W.row(i) /= s;
+    }
+  }
+  if (stats_out) *stats_out = stats;
+  progress("done", 1.0);
+  return W;
+}
+
+}  // namespace dfm

@@ -1,0 +1,51 @@
+#pragma once
+// Bounded biharmonic weights (Jacobson 2013, ch. 4) on a tet mesh with given boundary conditions.
+//
+//   min  sum_j 1/2 w_j^T Q w_j   s.t.  w_j(b) = bc_j,  0 <= w_j <= 1       (default: each handle alone,
+//   Q = K M^-1 K [+ G^T (R D) G]                                            then rows normalized)
+//   [+ sum_j w_ij = 1 for every vertex i, all handles jointly]             (exact partition of unity)
+// K: cotangent stiffness, M: lumped mass (fem.h); the optional per-tet mask rho (R) adds the
+// shape-preservation term of Eq. 4.7 with D the tet volumes.
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+
+namespace dfm {
+
+struct BbwOptions {
+  bool exact_partition_of_unity = false;
+  // Per-tet rho >= 0, or empty. Scaled so that rho = 1 weighs like the biharmonic term (the mask term is
+  // multiplied by mean diag(Q) / mean diag(K), making rho unitless); painted regions use rho >> 1.
+  Eigen::VectorXd shape_mask;
+  double tolerance = 1e-6;     // relative KKT residual (the issue asks for <= 1e-6)
+  int threads = 2;
+  std::function<void(const std::string& stage, double fraction)> progress;  // may be empty
+  const std::atomic<bool>* cancel = nullptr;  // throws dfm::Error("cancelled") when set
+};
+
+struct BbwStats {
+  double assembly_seconds = 0;       // K, M, Q
+  double factorization_seconds = 0;  // shared factorization + bound-free solve
+  double solve_seconds = 0;          // bounded QPs
+  int iterations_total = 0;          // free-set solves over all handles
+  int iterations_max = 0;            // the worst handle
+  int fallback_iterations = 0;       // monotone fallback steps (0 when PDAS converged alone)
+  double kkt_residual = 0;           // worst relative KKT residual of the QP(s) solved
+  bool converged = false;
+  long factor_nonzeros = 0;
+  int rows_renormalized_from_zero = 0;  // default mode: vertices where every weight was 0
+};
+
+// V, T: positively oriented tets. b: constrained vertex indices (distinct). bc: #b x #handles.
+// Returns #V x #handles weights. Throws dfm::Error on bad input or if the solver did not converge.
+Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
+                            const Eigen::MatrixXd& bc, const BbwOptions& opts = {}, BbwStats* stats = nullptr);
+
+// The biharmonic energy matrix Q = K M^-1 K (+ shape term) used above (#V x #V).
+Eigen::SparseMatrix<double> bbw_energy_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
+                                              const Eigen::VectorXd& shape_mask = {});
+
+}  // namespace dfm

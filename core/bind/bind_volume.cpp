@@ -1,0 +1,359 @@
+#include "core/bind/bind_volume.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "core/bind/handle_geometry.h"
+#include "core/bind/robust_volume.h"
+#include "core/bind/tetrahedralize.h"
+#include "core/bind/winding_bvh.h"
+#include "core/util/error.h"
+
+namespace dfm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double bbox_diagonal(const Eigen::MatrixXd& V) {
+  if (V.rows() == 0) return 0;
+  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+}
+
+void check_rig(const Rig& rig) {
+  for (int i = 0; i < num_point_handles(rig); ++i)
+    if (!rig.points[i].position.allFinite()) throw Error("point handle " + handle_name(rig, i) + " is not finite");
+  if (!rig.skeleton.joints.allFinite()) throw Error("skeleton joints are not finite");
+  for (const Cage& c : rig.cages)
+    if (!c.mesh.V.allFinite()) throw Error("cage " + c.name + " has non-finite vertices");
+}
+
+// Everything handle-related that both surface paths share: PLC points and where each sample went.
+struct HandlePlc {
+  PointWelder points;
+  std::vector<HandleSample> samples;
+  std::vector<int> sample_point;  // sample -> row of points
+  CageSoup cages;
+  Eigen::MatrixXi cage_F, cage_E;  // into points
+  explicit HandlePlc(double tol) : points(tol) {}
+};
+
+// The handle constraints on a finished (compacted) tet mesh. plc_to_tet maps PLC points to tet
+// vertices (-1: not in the volume). Throws naming the first handle that is not in the volume.
+void constrain(const Rig& rig, const HandlePlc& plc, const Eigen::VectorXi& plc_to_tet,
+               const Eigen::VectorXi& user_to_plc, double tol, BindVolume& vol) {
+  const int nh = num_handles(rig);
+  BoundaryRows rows;
+  std::vector<int> hits(nh, 0);
+  for (size_t s = 0; s < plc.samples.size(); ++s) {
+    const HandleSample& hs = plc.samples[s];
+    const int v = plc_to_tet(plc.sample_point[s]);
+    if (v < 0) {
+      if (hs.required)
+        throw Error(std::string(handle_kind_name(handle_ref(rig, hs.handle).kind)) + " handle \"" +
+                    handle_name(rig, hs.handle) + "\" lies outside the volume (the surface and closed cages)");
+      continue;
+    }
+    rows.add(v, hs.w);
+    ++hits[hs.handle];
+  }
+  for (int i = 0; i < static_cast<int>(rig.regions.size()); ++i) {
+    const int h = handle_index(rig, {HandleKind::Region, i});
+    for (int u : rig.regions[i].vertices) {
+      if (u < 0 || u >= user_to_plc.size())
+        throw Error("region \"" + handle_name(rig, h) + "\": vertex " + std::to_string(u) + " out of range");
+      const int v = plc_to_tet(user_to_plc(u));
+      if (v >= 0) rows.add(v, {{h, 1.0}}), ++hits[h];
+    }
+  }
+  for (int h = 0; h < nh; ++h)
+    if (!hits[h])
+      throw Error(std::string(handle_kind_name(handle_ref(rig, h).kind)) + " handle \"" + handle_name(rig, h) +
+                  "\" has no vertex inside the volume (it lies outside the surface and closed cages)");
+  add_cage_surface_rows(vol.tets.V, plc.cages, tol, rows);
+  rows.finish(nh, vol.b, vol.bc);
+}
+
+// Parts of the volume that no handle touches would have undetermined weights: attach each rigidly to the
+// nearest constrained vertex (its bc row), the way a separate eyeball follows the head.
+void attach_free_parts(BindVolume& vol) {
+  if (vol.b.size() == 0) return;
+  Eigen::VectorXi comp;
+  const int nc = tet_vertex_components(vol.tets, comp);
+  if (nc <= 1) return;
+  std::vector<char> has(nc, 0);
+  for (int i = 0; i < vol.b.size(); ++i) has[comp(vol.b(i))] = 1;
+  std::vector<int> extra_v;
+  std::vector<Eigen::RowVectorXd> extra_w;
+  int attached = 0;
+  for (int c = 0; c < nc; ++c) {
+    if (has[c]) continue;
+    Eigen::RowVector3d center = Eigen::RowVector3d::Zero();
+    int n = 0;
+    for (int v = 0; v < comp.size(); ++v)
+      if (comp(v) == c) center += vol.tets.V.row(v), ++n;
+    center /= n;
+    int best = 0;
+    double bd = 1e300;
+    for (int i = 0; i < vol.b.size(); ++i) {
+      const double d = (vol.tets.V.row(vol.b(i)) - center).squaredNorm();
+      if (d < bd) bd = d, best = i;
+    }
+    for (int v = 0; v < comp.size(); ++v)
+      if (comp(v) == c) extra_v.push_back(v), extra_w.push_back(vol.bc.row(best));
+    ++attached;
+  }
+  if (!attached) return;
+  // Merge into (b, bc), keeping b sorted.
+  std::vector<std::pair<int, Eigen::RowVectorXd>> all;
+  for (int i = 0; i < vol.b.size(); ++i) all.push_back({vol.b(i), vol.bc.row(i)});
+  for (size_t i = 0; i < extra_v.size(); ++i) all.push_back({extra_v[i], extra_w[i]});
+  std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  vol.b.resize(all.size());
+  vol.bc.resize(all.size(), vol.bc.cols());
+  for (size_t i = 0; i < all.size(); ++i) vol.b(i) = all[i].first, vol.bc.row(i) = all[i].second;
+  vol.notes.push_back(std::to_string(attached) + " of " + std::to_string(nc) +
+                      " separate parts of the volume touch no handle: each follows its nearest handle rigidly");
+}
+
+}  // namespace
+
+BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const VolumeOptions& opts) {
+  const auto t0 = Clock::now();
+  const int nu = surface.num_vertices();
+  if (nu == 0 || surface.num_faces() == 0) throw Error("bind: the surface has no faces");
+  if (surface.F.cols() != 3 || surface.V.cols() != 3) throw Error("bind: the surface must be a triangle mesh");
+  if (!surface.V.allFinite()) throw Error("bind: the surface has non-finite vertex coordinates");
+  if (surface.F.minCoeff() < 0 || surface.F.maxCoeff() >= nu) throw Error("bind: a face index is out of range");
+  check_rig(rig);
+  if (num_handles(rig) == 0) throw Error("bind: the rig has no handles");
+
+  BindVolume vol;
+  WeldedSurface ws = weld_surface(surface.V, surface.F);
+  if (ws.F.rows() == 0) throw Error("bind: every face of the surface is degenerate");
+  vol.notes.push_back("surface: " + ws.report.describe());
+
+  // Handle geometry joins the surface's vertices (first, unchanged) as PLC points.
+  CageSoup cages = stack_cages(rig);
+  Eigen::MatrixXd all(ws.V.rows() + cages.V.rows(), 3);
+  all << ws.V, cages.V;
+  const double diag = bbox_diagonal(all);
+  const double tol = 1e-7 * diag;
+  HandlePlc plc(tol);
+  for (int i = 0; i < ws.V.rows(); ++i) plc.points.insert(ws.V.row(i).transpose());
+  plc.samples = sample_handles(rig, mean_edge_length(ws.V, ws.F));
+  for (const HandleSample& s : plc.samples) plc.sample_point.push_back(plc.points.add(s.x));
+  plc.cages = cages;
+  std::vector<int> cage_point(cages.V.rows());
+  for (int i = 0; i < cages.V.rows(); ++i) cage_point[i] = plc.points.add(cages.V.row(i).transpose());
+  plc.cage_F.resize(cages.F.rows(), 3);
+  for (int f = 0; f < cages.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) plc.cage_F(f, k) = cage_point[cages.F(f, k)];
+  plc.cage_E.resize(cages.E.rows(), 2);
+  for (int e = 0; e < cages.E.rows(); ++e)
+    for (int k = 0; k < 2; ++k) plc.cage_E(e, k) = cage_point[cages.E(e, k)];
+  const Eigen::MatrixXd P = plc.points.matrix();
+
+  bool robust = opts.robust == VolumeOptions::Robust::Always;
+  if (opts.robust == VolumeOptions::Robust::Auto && !ws.report.watertight()) {
+    robust = true;
+    vol.notes.push_back("surface is not a closed manifold: robust (winding number) volume");
+  }
+
+  TetMesh raw;
+  Eigen::VectorXi input_to_raw;
+  if (!robust) {
+    Plc in;
+    in.V = P;
+    in.F.resize(ws.F.rows() + plc.cage_F.rows(), 3);
+    in.F << ws.F, plc.cage_F;
+    in.E = plc.cage_E;
+    try {
+      TetgenResult r = tetrahedralize(in, opts.tetgen_switches);
+      raw = std::move(r.mesh);
+      input_to_raw = r.input_to_tet;
+      vol.notes.push_back("TetGen -" + opts.tetgen_switches + ": " + std::to_string(raw.T.rows()) + " tets in " +
+                          std::to_string(r.seconds) + " s");
+    } catch (const Error& e) {
+      if (opts.robust == VolumeOptions::Robust::Never) throw;
+      vol.notes.push_back(std::string("TetGen failed on the surface (") + e.what() + "): robust (winding number) volume");
+      robust = true;
+    }
+  }
+  if (robust) {
+    // Points (surface vertices, handle geometry) and a padded box; cages stay constraint facets.
+    const Eigen::RowVector3d lo = P.colwise().minCoeff(), hi = P.colwise().maxCoeff();
+    const Eigen::RowVector3d pad = Eigen::RowVector3d::Constant(0.1 * std::max(diag, 1e-12));
+    Plc in;
+    in.V.resize(P.rows() + 8, 3);
+    in.V.topRows(P.rows()) = P;
+    const int o = static_cast<int>(P.rows());
+    for (int c = 0; c < 8; ++c)
+      for (int k = 0; k < 3; ++k) in.V(o + c, k) = ((c >> k) & 1) ? hi(k) + pad(k) : lo(k) - pad(k);
+    static const int box[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+    in.F.resize(12 + plc.cage_F.rows(), 3);
+    for (int f = 0; f < 12; ++f)
+      for (int k = 0; k < 3; ++k) in.F(f, k) = o + box[f][k];
+    in.F.bottomRows(plc.cage_F.rows()) = plc.cage_F;
+    in.E = plc.cage_E;
+    std::string sw = opts.tetgen_switches;
+    if (sw.find('p') == std::string::npos) sw = "p" + sw;
+    TetgenResult r = tetrahedralize(in, sw);
+    const auto tw = Clock::now();
+    // Inside = winding number of the surface > 1/2, or inside a closed cage.
+    const Eigen::MatrixXd C = tet_centroids(r.mesh);
+    Eigen::VectorXd w = winding_numbers(build_winding_tree(ws.V, ws.F), C);
+    for (const Cage& cage : rig.cages)
+      if (is_closed_surface(cage.mesh.F)) w = w.cwiseMax(winding_numbers(build_winding_tree(cage.mesh.V, cage.mesh.F), C).cwiseAbs());
+    std::vector<char> keep(r.mesh.T.rows(), 0);
+    for (int t = 0; t < r.mesh.T.rows(); ++t) keep[t] = w(t) > 0.5;
+    // Required handle points must be in the volume: a point right on the surface may have lost every
+    // incident tet to the threshold; give it back its most-inside tet.
+    std::vector<std::vector<int>> incident(r.mesh.V.rows());
+    for (int t = 0; t < r.mesh.T.rows(); ++t)
+      for (int k = 0; k < 4; ++k) incident[r.mesh.T(t, k)].push_back(t);
+    int rescued = 0;
+    for (size_t s = 0; s < plc.samples.size(); ++s) {
+      const int v = r.input_to_tet(plc.sample_point[s]);
+      if (v < 0) continue;
+      int best = -1;
+      for (int t : incident[v]) {
+        if (keep[t]) { best = -2; break; }
+        if (best < 0 || w(t) > w(best)) best = t;
+      }
+      if (best >= 0 && plc.samples[s].required && w(best) > 0.1) keep[best] = 1, ++rescued;
+    }
+    int nk = 0;
+    for (char k : keep) nk += k;
+    raw.V = r.mesh.V;
+    raw.T.resize(nk, 4);
+    for (int t = 0, j = 0; t < r.mesh.T.rows(); ++t)
+      if (keep[t]) raw.T.row(j++) = r.mesh.T.row(t);
+    input_to_raw = r.input_to_tet.head(P.rows());
+    vol.notes.push_back("robust volume: TetGen -" + sw + " on " + std::to_string(P.rows()) + " points + box: " +
+                        std::to_string(r.mesh.T.rows()) + " tets in " + std::to_string(r.seconds) + " s; kept " +
+                        std::to_string(nk) + " with winding number > 0.5 (" +
+                        std::to_string(std::chrono::duration<double>(Clock::now() - tw).count()) + " s)" +
+                        (rescued ? "; " + std::to_string(rescued) + " handle tets added back" : ""));
+    if (nk == 0) throw Error("bind: the surface encloses no volume (every winding number <= 0.5)");
+  }
+
+  // Compact (drop vertices no kept tet uses); order is preserved, so the surface's vertices stay first.
+  Eigen::VectorXi raw_to_tet;
+  vol.tets = compact_tet_mesh(raw, raw_to_tet);
+  Eigen::VectorXi plc_to_tet(P.rows());
+  for (int i = 0; i < P.rows(); ++i) plc_to_tet(i) = input_to_raw(i) >= 0 ? raw_to_tet(input_to_raw(i)) : -1;
+  vol.tets.F = tet_boundary_faces(vol.tets.T);
+
+  // User vertices -> tet vertices, or barycentric in the (nearest) tet when the volume lost them.
+  std::vector<Eigen::Triplet<double>> trip;
+  std::vector<int> missing;
+  for (int u = 0; u < nu; ++u) {
+    const int v = plc_to_tet(ws.user_to_welded(u));
+    if (v >= 0) trip.emplace_back(u, v, 1.0);
+    else missing.push_back(u);
+  }
+  if (!missing.empty()) {
+    Eigen::MatrixXd Q(missing.size(), 3);
+    for (size_t i = 0; i < missing.size(); ++i) Q.row(i) = surface.V.row(missing[i]);
+    const Eigen::SparseMatrix<double> B = tet_interpolation(vol.tets, Q);
+    for (int k = 0; k < B.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(B, k); it; ++it) trip.emplace_back(missing[it.row()], it.col(), it.value());
+    vol.notes.push_back(std::to_string(missing.size()) + " surface vertices are not tet vertices: interpolated in their tets");
+  }
+  vol.to_user.resize(nu, vol.tets.V.rows());
+  vol.to_user.setFromTriplets(trip.begin(), trip.end());
+
+  Eigen::VectorXi user_to_plc = ws.user_to_welded;  // the welded surface vertices are the first PLC points
+  constrain(rig, plc, plc_to_tet, user_to_plc, tol, vol);
+  attach_free_parts(vol);
+  vol.meshing_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return vol;
+}
+
+BindVolume bind_volume_from_tets(const TetMesh& input, const Rig& rig) {
+  const auto t0 = Clock::now();
+  const int nv = input.num_vertices();
+  if (nv == 0 || input.num_tets() == 0) throw Error("bind: the tet mesh has no tets");
+  if (input.T.cols() != 4) throw Error("bind: tets must have four vertices");
+  if (!input.V.allFinite()) throw Error("bind: the tet mesh has non-finite vertex coordinates");
+  if (input.T.minCoeff() < 0 || input.T.maxCoeff() >= nv) throw Error("bind: a tet index is out of range");
+  check_rig(rig);
+  if (num_handles(rig) == 0) throw Error("bind: the rig has no handles");
+
+  BindVolume vol;
+  vol.tets.V = input.V;
+  vol.tets.T = input.T;
+  int flipped = 0, flat = 0;
+  for (int t = 0; t < vol.tets.T.rows(); ++t) {
+    const Eigen::Vector3d a = vol.tets.V.row(vol.tets.T(t, 0));
+    const Eigen::Vector3d e1 = vol.tets.V.row(vol.tets.T(t, 1)).transpose() - a;
+    const Eigen::Vector3d e2 = vol.tets.V.row(vol.tets.T(t, 2)).transpose() - a;
+    const Eigen::Vector3d e3 = vol.tets.V.row(vol.tets.T(t, 3)).transpose() - a;
+    const double d = e1.dot(e2.cross(e3));
+    if (d < 0) std::swap(vol.tets.T(t, 1), vol.tets.T(t, 2)), ++flipped;
+    if (d == 0) ++flat;
+  }
+  if (flipped) vol.notes.push_back(std::to_string(flipped) + " negatively oriented tets flipped");
+  if (flat) vol.notes.push_back(std::to_string(flat) + " tets have zero volume");
+  vol.tets.F = tet_boundary_faces(vol.tets.T);
+
+  const double tol = 1e-5 * bbox_diagonal(vol.tets.V);
+  const int nh = num_handles(rig);
+  PointWelder grid(tol);  // a lookup structure over the tet vertices
+  for (int i = 0; i < nv; ++i) grid.insert(vol.tets.V.row(i).transpose());
+  std::unique_ptr<WindingTree> boundary;
+  auto missing = [&](int h, const Eigen::Vector3d& x) {
+    if (!boundary) boundary = std::make_unique<WindingTree>(build_winding_tree(vol.tets.V, vol.tets.F));
+    const bool inside = std::abs(winding_number(*boundary, x)) > 0.5;
+    return Error(std::string(handle_kind_name(handle_ref(rig, h).kind)) + " handle \"" + handle_name(rig, h) + "\" " +
+                 (inside ? "is not a vertex of the tet mesh: remesh it with the handle, or bind the surface"
+                         : "lies outside the tet mesh"));
+  };
+  BoundaryRows rows;
+  // Point handles and cage vertices: the tet vertex at that position.
+  for (const HandleSample& s : sample_handles(rig, 0)) {
+    if (handle_ref(rig, s.handle).kind == HandleKind::Bone) continue;
+    const int v = grid.find(s.x);
+    if (v < 0) throw missing(s.handle, s.x);
+    rows.add(v, s.w);
+  }
+  // Bones: every tet vertex on the segment (libigl's boundary_conditions does the same).
+  for (int i = 0; i < rig.skeleton.num_bones(); ++i) {
+    const Bone& bone = rig.skeleton.bones[i];
+    const int h = handle_index(rig, {HandleKind::Bone, i});
+    if (bone.a < 0 || bone.b < 0 || bone.a >= rig.skeleton.num_joints() || bone.b >= rig.skeleton.num_joints())
+      throw Error("bone " + handle_name(rig, h) + " refers to a missing joint");
+    const Eigen::Vector3d a = rig.skeleton.joints.row(bone.a), b = rig.skeleton.joints.row(bone.b);
+    const Eigen::Vector3d d = b - a;
+    const double l2 = d.squaredNorm();
+    int hits = 0;
+    for (int v = 0; v < nv; ++v) {
+      const Eigen::Vector3d p = vol.tets.V.row(v);
+      const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
+      if ((a + t * d - p).norm() <= tol) rows.add(v, {{h, 1.0}}), ++hits;
+    }
+    if (!hits) throw missing(h, 0.5 * (a + b));
+  }
+  for (int i = 0; i < static_cast<int>(rig.regions.size()); ++i) {
+    const int h = handle_index(rig, {HandleKind::Region, i});
+    if (rig.regions[i].vertices.empty()) throw Error("region \"" + handle_name(rig, h) + "\" has no vertices");
+    for (int u : rig.regions[i].vertices) {
+      if (u < 0 || u >= nv) throw Error("region \"" + handle_name(rig, h) + "\": vertex " + std::to_string(u) + " out of range");
+      rows.add(u, {{h, 1.0}});
+    }
+  }
+  add_cage_surface_rows(vol.tets.V, stack_cages(rig), tol, rows);
+  rows.finish(nh, vol.b, vol.bc);
+  vol.to_user.resize(nv, nv);
+  vol.to_user.setIdentity();
+  attach_free_parts(vol);
+  vol.notes.push_back("tet mesh used as given: " + std::to_string(nv) + " vertices, " + std::to_string(input.num_tets()) + " tets");
+  vol.meshing_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return vol;
+}
+
+}  // namespace dfm

@@ -1,0 +1,66 @@
+#pragma once
+// Box-constrained convex QP:  min 1/2 x^T H x + g^T x  subject to  lo <= x <= hi,
+// H sparse symmetric positive definite (both triangles stored).
+//
+// Solver: primal-dual active set (Hintermueller-Ito-Kunisch semismooth Newton). Each iteration fixes
+// the active variables at their bounds and solves exactly (sparse Cholesky, CHOLMOD) on the free set
+// only, so the cost follows the support of the solution, not the mesh size. PDAS can cycle when H is not
+// an M-matrix (H = L M^-1 L is not); on a repeated active set or the iteration cap it switches to a
+// monotone primal active-set method (strict objective decrease, so it cannot cycle). It stops only at
+// a KKT point: it never returns a fixed-few-iterations answer as converged.
+#include <atomic>
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+
+namespace dfm {
+
+struct BoxQPOptions {
+  double tolerance = 1e-6;     // relative KKT residual to stop at (see box_qp_kkt_residual)
+  int max_pdas_iterations = 60;
+  int max_iterations = 2000;
+  int release_rings = 1;       // PDAS: also release this many rings of H-neighbours of released variables   // PDAS + fallback together
+  const std::atomic<bool>* cancel = nullptr;  // polled once per iteration; throws dfm::Error("cancelled")
+};
+
+struct BoxQPResult {
+  Eigen::VectorXd x;
+  int iterations = 0;          // linear solves on a free set
+  int fallback_iterations = 0; // of which in the monotone fallback
+  double kkt_residual = 0;     // relative, see box_qp_kkt_residual
+  bool converged = false;
+  int num_free = 0;            // free variables at the solution
+};
+
+// Relative KKT residual of x (x must satisfy the bounds; violations count too): the largest of
+//   |grad_i| for free i, max(0, -grad_i) at a lower bound, max(0, grad_i) at an upper bound, where
+// grad = H x + g, divided by the gradient scale max_i (|g_i| + sum_k |H_ik x_k|) (1 if that is 0).
+// Bound violations are added in units of the bound range.
+double box_qp_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
+                           const Eigen::VectorXd& hi, const Eigen::VectorXd& x);
+
+// x0: starting guess (e.g. the bound-free minimizer); it need not be feasible. Empty = start at lo.
+BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
+                         const Eigen::VectorXd& hi, const Eigen::VectorXd& x0, const BoxQPOptions& opts = {});
+
+// Sparse SPD factorization (CHOLMOD, supernodal when it pays) reused for many right-hand sides.
+class SpdSolver {
+ public:
+  SpdSolver();
+  ~SpdSolver();
+  SpdSolver(const SpdSolver&) = delete;
+  SpdSolver& operator=(const SpdSolver&) = delete;
+  // Throws dfm::Error if A is not numerically positive definite.
+  void factorize(const Eigen::SparseMatrix<double>& A);
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  long factor_nonzeros() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+// Rows and columns `idx` of A (in that order).
+Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXi& idx);
+
+}  // namespace dfm

@@ -1,0 +1,463 @@
+#include "core/export/gltf_export.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include "core/export/prune.h"
+#include "core/export/trs.h"
+#include "core/skin/lbs.h"
+#include "core/skin/skin.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+
+namespace dfm {
+namespace {
+
+constexpr double kShearTolerance = 1e-6;
+
+// Appends typed arrays to one buffer, one bufferView per accessor (4-byte aligned, tightly packed).
+class BufferBuilder {
+ public:
+  explicit BufferBuilder(tinygltf::Model& model) : model_(model) {
+    if (model_.buffers.empty()) model_.buffers.emplace_back();
+  }
+
+  // Floats, `width` components per element; min/max written when asked (POSITION, animation input).
+  int add_floats(const std::vector<float>& data, int width, int type, int target, bool bounds,
+                 const std::string& name = "") {
+    const int view = add_view(data.data(), data.size() * sizeof(float), target);
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.count = data.size() / width;
+    a.type = type;
+    a.name = name;
+    if (bounds) {
+      a.minValues.assign(width, std::numeric_limits<double>::infinity());
+      a.maxValues.assign(width, -std::numeric_limits<double>::infinity());
+      for (size_t i = 0; i < data.size(); ++i) {
+        a.minValues[i % width] = std::min<double>(a.minValues[i % width], data[i]);
+        a.maxValues[i % width] = std::max<double>(a.maxValues[i % width], data[i]);
+      }
+    }
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+  template <class T>
+  int add_ints(const std::vector<T>& data, int width, int type, int component_type, int target) {
+    const int view = add_view(data.data(), data.size() * sizeof(T), target);
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = component_type;
+    a.count = data.size() / width;
+    a.type = type;
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+ private:
+  int add_view(const void* bytes, size_t size, int target) {
+    auto& buf = model_.buffers[0].data;
+    while (buf.size() % 4) buf.push_back(0);
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = buf.size();
+    v.byteLength = size;
+    v.target = target;  // 0 (unset) for animation and skin data
+    const auto* p = static_cast<const unsigned char*>(bytes);
+    buf.insert(buf.end(), p, p + size);
+    model_.bufferViews.push_back(v);
+    return static_cast<int>(model_.bufferViews.size()) - 1;
+  }
+  tinygltf::Model& model_;
+};
+
+std::vector<float> rows_to_floats(const Eigen::MatrixXd& M) {
+  std::vector<float> out(M.size());
+  for (int i = 0; i < M.rows(); ++i)
+    for (int j = 0; j < M.cols(); ++j) out[i * M.cols() + j] = static_cast<float>(M(i, j));
+  return out;
+}
+
+// Rest position of each handle's joint node (its rest global transform is a pure translation).
+std::vector<Eigen::Vector3d> handle_rest_positions(const Rig& rig, const Eigen::MatrixXd& surface_V) {
+  std::vector<Eigen::Vector3d> pos;
+  for (const auto& p : rig.points) pos.push_back(p.position);
+  for (const auto& b : rig.skeleton.bones) pos.push_back(rig.skeleton.joints.row(b.a).transpose());
+  for (const auto& c : rig.cages)
+    for (int i = 0; i < c.mesh.V.rows(); ++i) pos.push_back(c.mesh.V.row(i).transpose());
+  for (const auto& r : rig.regions) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (int v : r.vertices) {
+      if (v < 0 || v >= surface_V.rows()) throw Error("region '" + r.name + "' names a vertex outside the surface");
+      c += surface_V.row(v).transpose();
+    }
+    if (!r.vertices.empty()) c /= static_cast<double>(r.vertices.size());
+    pos.push_back(c);
+  }
+  return pos;
+}
+
+struct JointLayout {
+  std::vector<Eigen::Vector3d> rest;  // per handle
+  std::vector<int> parent;            // per handle: parent handle, -1 = the "rig" node
+};
+
+JointLayout joint_layout(const Rig& rig, const Eigen::MatrixXd& surface_V) {
+  JointLayout L;
+  L.rest = handle_rest_positions(rig, surface_V);
+  L.parent.assign(L.rest.size(), -1);
+  const int first_bone = num_point_handles(rig);
+  for (int b = 0; b < rig.skeleton.num_bones(); ++b) {
+    const int p = rig.skeleton.bones[b].parent;
+    if (p >= rig.skeleton.num_bones()) throw Error("bone " + std::to_string(b) + " has an invalid parent");
+    if (p >= 0) L.parent[first_bone + b] = first_bone + p;
+  }
+  return L;
+}
+
+// Local TRS of every joint node for a pose: global_h = T_h * Translation(rest_h), local = global_parent^-1 * global_h.
+std::vector<TrsFit> local_transforms(const JointLayout& L, const Pose& pose) {
+  const int n = static_cast<int>(L.rest.size());
+  std::vector<Eigen::Affine3d> global(n);
+  for (int h = 0; h < n; ++h) global[h] = pose.transforms[h] * Eigen::Translation3d(L.rest[h]);
+  std::vector<TrsFit> out(n);
+  for (int h = 0; h < n; ++h) {
+    const Eigen::Affine3d local = L.parent[h] < 0 ? global[h] : global[L.parent[h]].inverse() * global[h];
+    out[h] = decompose_trs(local);
+  }
+  return out;
+}
+
+void check_pose(const Pose& pose, int handles, const std::string& what) {
+  if (pose.size() != handles)
+    throw Error(what + " has " + std::to_string(pose.size()) + " transforms, the rig has " + std::to_string(handles) +
+                " handles");
+  for (const auto& T : pose.transforms)
+    if (!T.matrix().allFinite()) throw Error(what + " has a non-finite transform");
+}
+
+// Float weights whose float sum is as close to 1 as float allows (the validator sums the stored floats).
+std::vector<float> float_weights_row(const Eigen::RowVectorXd& w) {
+  std::vector<float> f(w.size());
+  for (int j = 0; j < w.size(); ++j) f[j] = static_cast<float>(w[j]);
+  const int big = static_cast<int>(std::max_element(f.begin(), f.end()) - f.begin());
+  for (int it = 0; it < 3; ++it) {
+    double s = 0;
+    for (float x : f) s += x;
+    f[big] = static_cast<float>(f[big] + (1.0 - s));
+  }
+  return f;
+}
+
+struct NodeTrsSink {
+  double max_shear = 0;
+  int sheared = 0;
+  std::vector<std::string> names;
+  void add(const TrsFit& fit, const std::string& node) {
+    max_shear = std::max(max_shear, fit.shear);
+    if (fit.shear > kShearTolerance) {
+      ++sheared;
+      if (names.size() < 5 && std::find(names.begin(), names.end(), node) == names.end()) names.push_back(node);
+    }
+  }
+};
+
+void set_node_trs(tinygltf::Node& node, const Trs& t) {
+  node.translation = {t.translation.x(), t.translation.y(), t.translation.z()};
+  const Eigen::Quaterniond q = t.rotation.normalized();
+  node.rotation = {q.x(), q.y(), q.z(), q.w()};
+  node.scale = {t.scale.x(), t.scale.y(), t.scale.z()};
+}
+
+void write_model(const std::string& path, tinygltf::Model& model) {
+  const std::string ext = file_extension(path);
+  tinygltf::TinyGLTF writer;
+  if (ext == "glb") {
+    write_file_atomic(
+        path,
+        [&](std::ostream& os) {
+          if (!writer.WriteGltfSceneToStream(&model, os, false, true)) throw Error(path + ": glTF serialization failed");
+        },
+        true);
+    return;
+  }
+  // .gltf + <stem>.bin: tinygltf's stream writer embeds buffers as data URIs, so write the bin file
+  // ourselves (atomically) and point the buffer at it.
+  const std::filesystem::path p(path);
+  const std::string bin_name = p.stem().string() + ".bin";
+  const std::string bin_path = (p.parent_path() / bin_name).string();
+  const std::vector<unsigned char> bin = model.buffers.at(0).data;
+  write_file_atomic(bin_path, [&](std::ostream& os) { os.write(reinterpret_cast<const char*>(bin.data()), bin.size()); },
+                    true);
+  std::ostringstream json_text;
+  if (!writer.WriteGltfSceneToStream(&model, json_text, true, false)) throw Error(path + ": glTF serialization failed");
+  nlohmann::json j = nlohmann::json::parse(json_text.str());
+  j["buffers"][0] = nlohmann::json{{"byteLength", bin.size()}, {"uri", bin_name}};
+  write_file_atomic(path, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+}
+
+}  // namespace
+
+GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in, const GltfExportOptions& options) {
+  const std::string ext = file_extension(path);
+  if (ext != "glb" && ext != "gltf") throw Error(path + ": glTF export needs a .glb or .gltf file name");
+  if (options.influences != 4 && options.influences != 8)
+    throw Error("glTF export: influences must be 4 or 8, got " + std::to_string(options.influences));
+  const TriMesh& S = in.surface;
+  const int nv = S.num_vertices(), nh = num_handles(in.rig);
+  if (nv == 0 || S.num_faces() == 0) throw Error("glTF export: the surface has no triangles");
+  if (S.V.cols() != 3 || S.F.cols() != 3) throw Error("glTF export: the surface must be #V x 3 and #F x 3");
+  if (S.F.minCoeff() < 0 || S.F.maxCoeff() >= nv) throw Error("glTF export: a face index is out of range");
+  if (nh == 0) throw Error("glTF export: the rig has no handles");
+  if (nh > 65535) throw Error("glTF export: more than 65535 handles");
+  if (in.weights.rows() != nv || in.weights.cols() != nh)
+    throw Error("glTF export: weights are " + std::to_string(in.weights.rows()) + " x " +
+                std::to_string(in.weights.cols()) + ", expected " + std::to_string(nv) + " x " + std::to_string(nh) +
+                " (surface vertices x handles)");
+  const Pose current = in.current.size() ? in.current : identity_pose(nh);
+  check_pose(current, nh, "the current pose");
+  for (size_t k = 0; k < in.keys.size(); ++k) {
+    check_pose(in.keys[k].pose, nh, "key " + std::to_string(k));
+    if (!std::isfinite(in.keys[k].time) || in.keys[k].time < 0 || (k > 0 && in.keys[k].time <= in.keys[k - 1].time))
+      throw Error("glTF export: key times must be finite, >= 0 and strictly increasing (key " + std::to_string(k) + ")");
+  }
+  if (in.morph_frames.size() != in.morph_times.size())
+    throw Error("glTF export: morph frames and morph times differ in count");
+  for (size_t i = 0; i < in.morph_frames.size(); ++i) {
+    if (in.morph_frames[i].rows() != nv || in.morph_frames[i].cols() != 3)
+      throw Error("glTF export: morph frame " + std::to_string(i) + " is not #V x 3");
+    if (!std::isfinite(in.morph_times[i]) || in.morph_times[i] < 0 || (i > 0 && in.morph_times[i] <= in.morph_times[i - 1]))
+      throw Error("glTF export: morph times must be finite, >= 0 and strictly increasing");
+  }
+
+  GltfExportReport report;
+  report.vertices = nv;
+  report.triangles = S.num_faces();
+  report.joints = nh;
+  report.influences = options.influences;
+  report.keys = static_cast<int>(in.keys.size());
+  report.morph_targets = static_cast<int>(in.morph_frames.size());
+  report.bbox_diagonal = (S.V.colwise().maxCoeff() - S.V.colwise().minCoeff()).norm();
+
+  // Pruning and its cost over every pose that will be shown.
+  const Influences inf = prune_for_export(in.weights, options.influences);
+  const Eigen::MatrixXd Wp = influences_to_dense(inf, nh);
+  auto prune_error = [&](const Pose& pose) {
+    return (lbs(S.V, in.weights, pose) - lbs(S.V, Wp, pose)).rowwise().norm().maxCoeff();
+  };
+  report.max_prune_error = prune_error(current);
+  for (size_t k = 0; k < in.keys.size(); ++k) {
+    const double e = prune_error(in.keys[k].pose);
+    if (e > report.max_prune_error) report.max_prune_error = e, report.max_prune_error_key = static_cast<int>(k);
+  }
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "deform (dfm glTF exporter, tinygltf)";
+  BufferBuilder bb(model);
+
+  // Mesh: positions, normals, joints/weights, indices.
+  const Eigen::MatrixXd N = S.N.rows() == nv && S.N.cols() == 3 ? S.N : vertex_normals(S.V, S.F);
+  Eigen::MatrixXd Nu = N;
+  for (int v = 0; v < nv; ++v) {
+    const double len = Nu.row(v).norm();
+    if (len > 0 && std::isfinite(len)) Nu.row(v) /= len;
+    else Nu.row(v) << 0, 0, 1;
+  }
+  const int pos_acc = bb.add_floats(rows_to_floats(S.V), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  const int nrm_acc = bb.add_floats(rows_to_floats(Nu), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  std::vector<uint32_t> idx(S.F.size());
+  for (int f = 0; f < S.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) idx[3 * f + k] = static_cast<uint32_t>(S.F(f, k));
+  const int idx_acc = bb.add_ints(idx, 1, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                  TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.indices = idx_acc;
+  prim.attributes["POSITION"] = pos_acc;
+  prim.attributes["NORMAL"] = nrm_acc;
+  const int sets = options.influences / 4;
+  std::vector<std::vector<float>> wsets(sets, std::vector<float>(4 * nv));
+  for (int v = 0; v < nv; ++v) {
+    const std::vector<float> row = float_weights_row(inf.weight.row(v));
+    for (int j = 0; j < options.influences; ++j) wsets[j / 4][4 * v + j % 4] = row[j];
+  }
+  for (int s = 0; s < sets; ++s) {
+    int jacc;
+    if (nh <= 256) {
+      std::vector<uint8_t> j(4 * nv);
+      for (int v = 0; v < nv; ++v)
+        for (int c = 0; c < 4; ++c) j[4 * v + c] = static_cast<uint8_t>(inf.index(v, 4 * s + c));
+      jacc = bb.add_ints(j, 4, TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TARGET_ARRAY_BUFFER);
+    } else {
+      std::vector<uint16_t> j(4 * nv);
+      for (int v = 0; v < nv; ++v)
+        for (int c = 0; c < 4; ++c) j[4 * v + c] = static_cast<uint16_t>(inf.index(v, 4 * s + c));
+      jacc = bb.add_ints(j, 4, TINYGLTF_TYPE_VEC4, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TARGET_ARRAY_BUFFER);
+    }
+    prim.attributes["JOINTS_" + std::to_string(s)] = jacc;
+    prim.attributes["WEIGHTS_" + std::to_string(s)] =
+        bb.add_floats(wsets[s], 4, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  }
+  tinygltf::Mesh mesh;
+  mesh.name = in.name;
+  mesh.primitives.push_back(prim);
+  model.meshes.push_back(mesh);
+
+  // Nodes: 0 = skinned mesh, 1 = "rig", 2 + h = handle h's joint.
+  const JointLayout layout = joint_layout(in.rig, S.V);
+  tinygltf::Node mesh_node;
+  mesh_node.name = in.name;
+  mesh_node.mesh = 0;
+  mesh_node.skin = 0;
+  model.nodes.push_back(mesh_node);
+  tinygltf::Node rig_node;
+  rig_node.name = "rig";
+  model.nodes.push_back(rig_node);
+  NodeTrsSink shear;
+  const std::vector<TrsFit> cur = local_transforms(layout, current);
+  std::vector<std::string> names(nh);
+  for (int h = 0; h < nh; ++h) {
+    tinygltf::Node n;
+    names[h] = std::to_string(h) + ":" + handle_name(in.rig, h);
+    n.name = names[h];
+    set_node_trs(n, cur[h].trs);
+    shear.add(cur[h], names[h]);
+    model.nodes.push_back(n);
+  }
+  for (int h = 0; h < nh; ++h) {
+    const int parent_node = layout.parent[h] < 0 ? 1 : 2 + layout.parent[h];
+    model.nodes[parent_node].children.push_back(2 + h);
+  }
+
+  tinygltf::Skin skin;
+  skin.name = in.name + "-skin";
+  skin.skeleton = 1;
+  std::vector<float> ibm(16 * nh);
+  for (int h = 0; h < nh; ++h) {
+    skin.joints.push_back(2 + h);
+    const Eigen::Matrix4d M = Eigen::Affine3d(Eigen::Translation3d(-layout.rest[h])).matrix();
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) ibm[16 * h + 4 * c + r] = static_cast<float>(M(r, c));  // column-major
+  }
+  skin.inverseBindMatrices = bb.add_floats(ibm, 16, TINYGLTF_TYPE_MAT4, 0, false);
+  model.skins.push_back(skin);
+
+  tinygltf::Scene scene;
+  scene.name = "skinned";
+  scene.nodes = {0, 1};
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  tinygltf::Animation anim;
+  anim.name = "keys";
+  auto add_channel = [&](int node, const std::string& path, int input, const std::vector<float>& values, int type,
+                         int width) {
+    tinygltf::AnimationSampler s;
+    s.input = input;
+    s.output = bb.add_floats(values, width, type, 0, false);
+    s.interpolation = "LINEAR";
+    anim.samplers.push_back(s);
+    tinygltf::AnimationChannel c;
+    c.sampler = static_cast<int>(anim.samplers.size()) - 1;
+    c.target_node = node;
+    c.target_path = path;
+    anim.channels.push_back(c);
+  };
+
+  if (!in.keys.empty()) {
+    std::vector<float> times;
+    for (const auto& k : in.keys) times.push_back(static_cast<float>(k.time));
+    for (size_t k = 1; k < times.size(); ++k)
+      if (!(times[k] > times[k - 1])) throw Error("glTF export: key times collide in single precision");
+    const int input = bb.add_floats(times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
+    const int nk = static_cast<int>(in.keys.size());
+    std::vector<std::vector<TrsFit>> locals(nk);
+    for (int k = 0; k < nk; ++k) {
+      locals[k] = local_transforms(layout, in.keys[k].pose);
+      for (int h = 0; h < nh; ++h) shear.add(locals[k][h], names[h]);
+    }
+    for (int h = 0; h < nh; ++h) {
+      std::vector<float> t, r, s;
+      Eigen::Quaterniond prev = Eigen::Quaterniond::Identity();
+      for (int k = 0; k < nk; ++k) {
+        const Trs& x = locals[k][h].trs;
+        for (int c = 0; c < 3; ++c) t.push_back(static_cast<float>(x.translation[c]));
+        for (int c = 0; c < 3; ++c) s.push_back(static_cast<float>(x.scale[c]));
+        // q and -q are the same rotation; pick the one nearer the previous key so slerp takes the short way.
+        Eigen::Quaterniond q = x.rotation.normalized();
+        if (k > 0 && q.dot(prev) < 0) q.coeffs() = -q.coeffs();
+        prev = q;
+        for (double c : {q.x(), q.y(), q.z(), q.w()}) r.push_back(static_cast<float>(c));
+      }
+      add_channel(2 + h, "translation", input, t, TINYGLTF_TYPE_VEC3, 3);
+      add_channel(2 + h, "rotation", input, r, TINYGLTF_TYPE_VEC4, 4);
+      add_channel(2 + h, "scale", input, s, TINYGLTF_TYPE_VEC3, 3);
+    }
+  }
+
+  if (!in.morph_frames.empty()) {
+    // Baked frames: an unskinned copy of the mesh in its own scene, one morph target per frame.
+    const int nf = static_cast<int>(in.morph_frames.size());
+    tinygltf::Primitive bp;
+    bp.mode = TINYGLTF_MODE_TRIANGLES;
+    bp.indices = idx_acc;
+    bp.attributes["POSITION"] = pos_acc;
+    bp.attributes["NORMAL"] = nrm_acc;
+    for (int i = 0; i < nf; ++i) {
+      const Eigen::MatrixXd dV = in.morph_frames[i] - S.V;
+      const Eigen::MatrixXd dN = vertex_normals(in.morph_frames[i], S.F) - Nu;
+      std::map<std::string, int> target;
+      target["POSITION"] = bb.add_floats(rows_to_floats(dV), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+      target["NORMAL"] = bb.add_floats(rows_to_floats(dN), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+      bp.targets.push_back(target);
+    }
+    tinygltf::Mesh bm;
+    bm.name = in.name + "-baked";
+    bm.primitives.push_back(bp);
+    bm.weights.assign(nf, 0.0);
+    model.meshes.push_back(bm);
+    tinygltf::Node bn;
+    bn.name = in.name + "-baked";
+    bn.mesh = static_cast<int>(model.meshes.size()) - 1;
+    model.nodes.push_back(bn);
+    tinygltf::Scene bs;
+    bs.name = "baked";
+    bs.nodes = {static_cast<int>(model.nodes.size()) - 1};
+    model.scenes.push_back(bs);
+
+    std::vector<float> times, w(nf * nf, 0.0f);
+    for (int i = 0; i < nf; ++i) times.push_back(static_cast<float>(in.morph_times[i]));
+    for (size_t k = 1; k < times.size(); ++k)
+      if (!(times[k] > times[k - 1])) throw Error("glTF export: morph times collide in single precision");
+    for (int i = 0; i < nf; ++i) w[i * nf + i] = 1.0f;  // at frame i's time, only target i
+    const int input = bb.add_floats(times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
+    add_channel(bs.nodes[0], "weights", input, w, TINYGLTF_TYPE_SCALAR, 1);
+  }
+  if (!anim.channels.empty()) model.animations.push_back(anim);
+
+  report.max_shear = shear.max_shear;
+  report.sheared_transforms = shear.sheared;
+  if (shear.sheared > 0) {
+    std::string list;
+    for (const auto& n : shear.names) list += (list.empty() ? "" : ", ") + n;
+    report.notes.push_back(std::to_string(shear.sheared) +
+                           " joint transform(s) have shear a glTF TRS cannot express (max relative residual " +
+                           std::to_string(shear.max_shear) + "), e.g. " + list);
+  }
+  write_model(path, model);
+  return report;
+}
+
+}  // namespace dfm

@@ -1,0 +1,67 @@
+#pragma once
+// glTF 2.0 export of a bound, posed and keyed surface (.glb, or .gltf + .bin beside it).
+//
+// Layout of the written file:
+//   scene 0: node "<name>" (mesh + skin, at the scene root as glTF asks of skinned meshes) and node
+//            "rig" (identity), whose children are one joint node per handle in rig.h order:
+//            bones nested as the skeleton (a bone's node sits at its first joint, under its parent
+//            bone's node), point handles, cage vertices and regions directly under "rig".
+//   skin 0:  joints = those nodes in handle order, so JOINTS_n values are weight-column indices;
+//            inverse bind matrices = inverse of each joint node's rest (bind) global transform.
+//   nodes' TRS = the current pose; animation 0 = one T/R/S channel per joint (LINEAR) over the keys.
+//   scene 1 (only with morph frames): node "<name>-baked", an unskinned mesh whose morph targets are
+//            the baked frames, with a "weights" channel in animation 0 that shows frame i at its time.
+// A handle transform T_h (pose.h, world space) becomes the joint's global transform T_h * G_h with
+// G_h its rest global, so glTF's jointMatrix = global * inverseBind reproduces T_h exactly, up to
+// float rounding and to the shear a TRS cannot hold (reported).
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/mesh/mesh.h"
+#include "core/rig/pose.h"
+#include "core/rig/rig.h"
+
+namespace dfm {
+
+struct GltfKey {
+  double time = 0.0;  // seconds, strictly increasing across keys
+  Pose pose;          // one affine per handle
+};
+
+struct GltfExportInput {
+  std::string name = "mesh";
+  TriMesh surface;          // rest pose; normals computed when N is empty
+  Eigen::MatrixXd weights;  // #surface.V x num_handles(rig)
+  Rig rig;
+  Pose current;                  // the nodes' default transforms; empty = rest
+  std::vector<GltfKey> keys;     // empty = no skeletal animation
+  std::vector<Eigen::MatrixXd> morph_frames;  // optional baked positions, each #V x 3
+  std::vector<double> morph_times;            // one per frame (strictly increasing)
+};
+
+struct GltfExportOptions {
+  int influences = 4;  // 4 (JOINTS_0/WEIGHTS_0) or 8 (adds JOINTS_1/WEIGHTS_1)
+};
+
+struct GltfExportReport {
+  int vertices = 0, triangles = 0, joints = 0, influences = 0, keys = 0, morph_targets = 0;
+  double bbox_diagonal = 0.0;
+  // Largest vertex distance between LBS with all weights and with the pruned weights, over the
+  // current pose and every key; max_prune_error_key is the key (-1: the current pose).
+  double max_prune_error = 0.0;
+  int max_prune_error_key = -1;
+  // Largest relative TRS residual over every exported node transform (see trs.h); transforms
+  // above 1e-6 are counted in sheared_transforms and their node names listed (first few) in notes.
+  double max_shear = 0.0;
+  int sheared_transforms = 0;
+  std::vector<std::string> notes;
+};
+
+// Writes `path` (.glb, or .gltf with <stem>.bin beside it) atomically. Throws dfm::Error naming the
+// problem for inconsistent input (weight rows/columns, pose sizes, key times) or an unwritable path.
+GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
+                             const GltfExportOptions& options = {});
+
+}  // namespace dfm

@@ -1,0 +1,215 @@
+#include "core/mesh/mesh_info.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+namespace dfm {
+namespace {
+
+// Directed half-edges keyed by their undirected edge, sorted so equal edges are adjacent.
+struct HalfEdge {
+  int lo, hi;
+  bool forward;  // lo -> hi
+  bool operator<(const HalfEdge& o) const { return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : forward < o.forward; }
+};
+
+std::vector<HalfEdge> sorted_half_edges(const Eigen::MatrixXi& F) {
+  std::vector<HalfEdge> h;
+  h.reserve(3 * F.rows());
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      int a = F(f, c), b = F(f, (c + 1) % 3);
+      if (a == b) continue;  // a collapsed edge of a degenerate face is no edge
+      h.push_back({std::min(a, b), std::max(a, b), a < b});
+    }
+  std::sort(h.begin(), h.end());
+  return h;
+}
+
+// Calls visit(first, count) for each run of half-edges on one undirected edge.
+template <class Visit>
+void for_each_edge(const std::vector<HalfEdge>& h, Visit visit) {
+  for (size_t i = 0; i < h.size();) {
+    size_t j = i;
+    while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+    visit(i, j - i);
+    i = j;
+  }
+}
+
+int find(std::vector<int>& p, int x) {
+  while (p[x] != x) x = p[x] = p[p[x]];
+  return x;
+}
+
+}  // namespace
+
+BoundingBox bounding_box(const Eigen::MatrixXd& V) {
+  BoundingBox b;
+  if (V.rows() == 0) return b;
+  b.min = V.colwise().minCoeff().transpose();
+  b.max = V.colwise().maxCoeff().transpose();
+  return b;
+}
+
+Eigen::VectorXi face_components(const Eigen::MatrixXi& F) {
+  const int nv = F.size() ? F.maxCoeff() + 1 : 0;
+  std::vector<int> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int c = 1; c < 3; ++c) parent[find(parent, F(f, c))] = find(parent, F(f, 0));
+  std::unordered_map<int, int> id;
+  Eigen::VectorXi comp(F.rows());
+  for (int f = 0; f < F.rows(); ++f) comp(f) = id.emplace(find(parent, F(f, 0)), static_cast<int>(id.size())).first->second;
+  return comp;
+}
+
+int connected_component_count(const Eigen::MatrixXi& F) {
+  Eigen::VectorXi c = face_components(F);
+  return c.size() ? c.maxCoeff() + 1 : 0;
+}
+
+int unreferenced_vertex_count(int num_vertices, const Eigen::MatrixXi& F) {
+  std::vector<char> used(num_vertices, 0);
+  for (int i = 0; i < F.size(); ++i)
+    if (F.data()[i] >= 0 && F.data()[i] < num_vertices) used[F.data()[i]] = 1;
+  return static_cast<int>(std::count(used.begin(), used.end(), 0));
+}
+
+int boundary_edge_count(const Eigen::MatrixXi& F) {
+  int n = 0;
+  for_each_edge(sorted_half_edges(F), [&](size_t, size_t k) { n += k == 1; });
+  return n;
+}
+
+int non_manifold_edge_count(const Eigen::MatrixXi& F) {
+  int n = 0;
+  for_each_edge(sorted_half_edges(F), [&](size_t, size_t k) { n += k > 2; });
+  return n;
+}
+
+int inconsistent_edge_count(const Eigen::MatrixXi& F) {
+  auto h = sorted_half_edges(F);
+  int n = 0;
+  for_each_edge(h, [&](size_t i, size_t k) { n += k == 2 && h[i].forward == h[i + 1].forward; });
+  return n;
+}
+
+bool is_closed(const Eigen::MatrixXi& F) {
+  if (F.rows() == 0) return false;
+  auto h = sorted_half_edges(F);
+  bool ok = true;
+  for_each_edge(h, [&](size_t i, size_t k) { ok = ok && k == 2 && h[i].forward != h[i + 1].forward; });
+  return ok;
+}
+
+int duplicate_vertex_count(const Eigen::MatrixXd& V, double tol) {
+  // Hash grid with cells of size tol (exact coordinates when tol == 0); a vertex is a duplicate when a
+  // vertex before it lies within tol, searched in the 27 neighbouring cells.
+  struct H {
+    size_t operator()(const std::array<long long, 3>& k) const {
+      return std::hash<long long>()(k[0] * 73856093LL ^ k[1] * 19349663LL ^ k[2] * 83492791LL);
+    }
+  };
+  struct HD {
+    size_t operator()(const std::array<double, 3>& k) const {
+      return std::hash<double>()(k[0]) ^ (std::hash<double>()(k[1]) << 1) ^ (std::hash<double>()(k[2]) << 2);
+    }
+  };
+  int dups = 0;
+  if (tol <= 0) {
+    std::unordered_map<std::array<double, 3>, int, HD> seen;
+    for (int i = 0; i < V.rows(); ++i) dups += !seen.emplace(std::array<double, 3>{V(i, 0) + 0.0, V(i, 1) + 0.0, V(i, 2) + 0.0}, i).second;
+    return dups;
+  }
+  std::unordered_map<std::array<long long, 3>, std::vector<int>, H> grid;
+  for (int i = 0; i < V.rows(); ++i) {
+    std::array<long long, 3> k;
+    for (int c = 0; c < 3; ++c) k[c] = static_cast<long long>(std::floor(V(i, c) / tol));
+    bool dup = false;
+    for (int dx = -1; dx <= 1 && !dup; ++dx)
+      for (int dy = -1; dy <= 1 && !dup; ++dy)
+        for (int dz = -1; dz <= 1 && !dup; ++dz) {
+          auto it = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == grid.end()) continue;
+          for (int j : it->second)
+            if ((V.row(i) - V.row(j)).norm() <= tol) dup = true;
+        }
+    dups += dup;
+    grid[k].push_back(i);
+  }
+  return dups;
+}
+
+int degenerate_face_count(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, double rel_eps) {
+  const double d = bounding_box(V).diagonal().norm();
+  int n = 0;
+  for (int f = 0; f < F.rows(); ++f) {
+    const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
+    if (a == b || b == c || a == c) {
+      ++n;
+      continue;
+    }
+    Eigen::Vector3d e1 = V.row(b) - V.row(a), e2 = V.row(c) - V.row(a);
+    n += 0.5 * e1.cross(e2).norm() <= rel_eps * d * d;
+  }
+  return n;
+}
+
+double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  double vol = 0;
+  for (int f = 0; f < F.rows(); ++f) {
+    Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    vol += a.dot(b.cross(c));
+  }
+  return vol / 6.0;
+}
+
+Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T) {
+  // Faces of a positively oriented tet (0,1,2,3), each counter-clockwise seen from outside.
+  static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::vector<std::pair<std::array<int, 3>, std::array<int, 3>>> all;  // sorted key, oriented face
+  all.reserve(4 * T.rows());
+  for (int t = 0; t < T.rows(); ++t)
+    for (auto& fc : face) {
+      std::array<int, 3> f = {T(t, fc[0]), T(t, fc[1]), T(t, fc[2])}, k = f;
+      std::sort(k.begin(), k.end());
+      all.push_back({k, f});
+    }
+  std::sort(all.begin(), all.end(), [](auto& x, auto& y) { return x.first < y.first; });
+  std::vector<std::array<int, 3>> out;
+  for (size_t i = 0; i < all.size();) {
+    size_t j = i;
+    while (j < all.size() && all[j].first == all[i].first) ++j;
+    if (j - i == 1) out.push_back(all[i].second);
+    i = j;
+  }
+  Eigen::MatrixXi B(out.size(), 3);
+  for (size_t i = 0; i < out.size(); ++i) B.row(i) << out[i][0], out[i][1], out[i][2];
+  return B;
+}
+
+static double tet_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, int t) {
+  Eigen::Vector3d a = V.row(T(t, 0)), b = V.row(T(t, 1)), c = V.row(T(t, 2)), d = V.row(T(t, 3));
+  return (b - a).cross(c - a).dot(d - a) / 6.0;
+}
+
+int non_positive_tet_count(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T) {
+  int n = 0;
+  for (int t = 0; t < T.rows(); ++t) n += tet_volume(V, T, t) <= 0;
+  return n;
+}
+
+double tet_mesh_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T) {
+  double v = 0;
+  for (int t = 0; t < T.rows(); ++t) v += tet_volume(V, T, t);
+  return v;
+}
+
+}  // namespace dfm

@@ -1,0 +1,242 @@
+#pragma once
+// The editor's document: the single source of truth for one scene.
+//
+// Every edit goes through a Document member that records one undo step (a command that swaps the
+// parts of the scene it touched with a saved copy, so undo/redo are cheap and exact). Queries are const.
+// The UI and the script runner call the same members, so a script reproduces what a user does.
+//
+// Undo granularity: a drag or a brush stroke is one step. Wrap it in begin_gesture()/end_gesture();
+// successive edits of the same kind on the same target inside one gesture merge into one step.
+//
+// View state (camera, current time, selection) is saved with the scene but is NOT undoable and does
+// not mark the document dirty, as in Blender/Maya: scrubbing or orbiting never fills the undo stack.
+//
+// Rig edits after a bind (adding, moving or deleting any handle, painting a region) clear the weights,
+// because they no longer match the rig; the step's undo restores them. weights_note() says why.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "core/bind/bind_volume.h"
+#include "core/mesh/mesh.h"
+#include "core/rig/pose.h"
+#include "core/rig/pose_params.h"
+#include "core/rig/rig.h"
+#include "core/skin/skin.h"  // SkinMethod
+
+namespace dfm {
+
+struct Camera {
+  Eigen::Vector3d position{0, 0, 3};
+  Eigen::Vector3d target{0, 0, 0};
+  Eigen::Vector3d up{0, 1, 0};
+  double fov_deg = 45;     // vertical field of view (perspective)
+  bool ortho = false;
+  bool operator==(const Camera& o) const;
+};
+
+// Options the bind is run with (the UI converts these to the bind module's options).
+struct BindSettings {
+  VolumeOptions volume;
+  int max_influences = 0;  // 0 = keep all; else keep the k largest weights per vertex (skin pruning)
+  bool operator==(const BindSettings& o) const;
+};
+
+// What the last bind reported (shown in the UI, saved with the weights).
+struct BindStats {
+  double seconds = 0;
+  int tet_vertices = 0;
+  int tets = 0;
+  std::vector<std::string> notes;
+  bool operator==(const BindStats& o) const;
+};
+
+// A key: the artist's pose parameters at a time (evaluate_pose() turns it into a Pose per handle).
+struct SceneKey {
+  double time = 0;
+  PoseParams params;
+};
+
+struct Selection {
+  std::vector<int> handles;  // global handle indices (rig.h order), first = active
+  int joint = -1;            // a selected skeleton joint (joint editing before bind), -1 none
+  bool operator==(const Selection& o) const { return handles == o.handles && joint == o.joint; }
+};
+
+// Everything a scene file holds. Plain data; Document owns one and guards its invariants:
+//   pose / every key's params are sized to the rig; mask has #surface V entries (or is empty);
+//   weights are empty or #surface V x num_handles(rig); keys are sorted by time, times distinct.
+struct SceneData {
+  TriMesh surface;
+  std::string surface_path;  // where the surface came from (informational; the data is in the scene)
+  TetMesh tets;              // optional tet-mesh input (empty when the surface was given)
+  // For tet input: the tet vertex each surface vertex is (surface = compacted boundary of tets).
+  Eigen::VectorXi surface_to_tet;
+  Rig rig;
+  PoseParams pose;
+  SkinMethod method = SkinMethod::LBS;
+  BindSettings bind_settings;
+  int inbetweens = 4;       // animation manifold: baked layers strictly inside each key interval
+  Eigen::MatrixXd weights;  // #V x #handles, or empty (not bound / invalidated)
+  BindStats bind_stats;
+  std::vector<SceneKey> keys;
+  Eigen::VectorXd mask;     // shape-preservation mask per surface vertex in [0,1] (painted)
+  Camera camera;
+  double time = 0;
+  Selection selection;
+};
+
+// Pose params with every vector sized to `rig` (existing entries kept, missing ones identity).
+PoseParams fit_pose_params(const Rig& rig, PoseParams p);
+// The tet mesh's boundary triangles (outward), compacted to their vertices; `to_tet` maps back.
+TriMesh tet_boundary_surface(const TetMesh& tets, Eigen::VectorXi* to_tet);
+
+class Document {
+ public:
+  Document();
+  ~Document();
+  Document(const Document&) = delete;
+  Document& operator=(const Document&) = delete;
+
+  // ---- queries ---------------------------------------------------------------------------------
+  const SceneData& data() const { return s_; }
+  const TriMesh& surface() const { return s_.surface; }
+  const std::string& surface_path() const { return s_.surface_path; }
+  bool has_tets() const { return s_.tets.num_tets() > 0; }
+  const TetMesh& tets() const { return s_.tets; }
+  const Rig& rig() const { return s_.rig; }
+  int num_handles() const;
+  const PoseParams& pose_params() const { return s_.pose; }
+  Pose pose() const;  // evaluate_pose(rig, pose_params)
+  SkinMethod method() const { return s_.method; }
+  int inbetweens() const { return s_.inbetweens; }
+  const BindSettings& bind_settings() const { return s_.bind_settings; }
+  bool has_weights() const;  // weights present and matching the surface and rig
+  const Eigen::MatrixXd& weights() const { return s_.weights; }
+  const BindStats& bind_stats() const { return s_.bind_stats; }
+  // Why the weights are absent ("not bound yet", "rig changed after bind: ..."); "" when bound.
+  const std::string& weights_note() const { return weights_note_; }
+  const std::vector<SceneKey>& keys() const { return s_.keys; }
+  // Index of the key at time t (|dt| <= 1e-9), or -1.
+  int key_at(double t) const;
+  // Every key's params evaluated to a Pose (for the animation manifold), in time order.
+  std::vector<Pose> key_poses() const;
+  std::vector<double> key_times() const;
+  const Eigen::VectorXd& mask() const { return s_.mask; }
+  const Camera& camera() const { return s_.camera; }
+  double time() const { return s_.time; }
+  const Selection& selection() const { return s_.selection; }
+  // Rest-state position of a handle's pivot: point position, bone's first joint, cage vertex,
+  // region centroid. Throws dfm::Error for a bad index.
+  Eigen::Vector3d handle_pivot(int handle) const;
+
+  // ---- documents and files -----------------------------------------------------------------------
+  const std::string& path() const { return path_; }  // "" until saved or loaded
+  bool dirty() const;
+  // Replace everything with a scene file (clears undo). Throws dfm::Error; the document is unchanged then.
+  void load_scene(const std::string& path);
+  // Atomic save (sidecar first, then JSON); sets path() and clears dirty.
+  void save_scene(const std::string& path);
+  // Writes autosave_path(path()) (or autosave_path("untitled.scene.json") in the working directory if
+  // never saved); does not touch path() or dirty. Returns the file written.
+  std::string autosave() const;
+  // Start over: empty scene, empty undo.
+  void clear();
+
+  // ---- undo ----------------------------------------------------------------------------------------
+  bool can_undo() const;
+  bool can_redo() const;
+  std::string undo_name() const;  // name of the step undo() would revert ("" if none)
+  std::string redo_name() const;
+  void undo();  // no-op when nothing to undo
+  void redo();
+  int undo_depth() const;
+  // A drag or brush stroke: while open, edits with the same merge target fold into one undo step.
+  void begin_gesture();
+  void end_gesture();
+
+  // ---- edits (each is one undo step; all throw dfm::Error on bad input, leaving the doc unchanged) ---
+  // Surface from a file (.obj .off .ply .stl) or a tet mesh (.mesh .node .ele). Clears weights, mask
+  // and regions (their vertex indices belong to the old surface); keeps the rig, pose and keys.
+  void open_mesh(const std::string& path);
+  void set_surface(const TriMesh& surface, const std::string& source_name);
+  // Adds a .tgf's bones (joint chains) and point handles to the rig.
+  void load_skeleton(const std::string& path);
+  // Adds a cage (any surface file; open or partial cages allowed).
+  void load_cage(const std::string& path);
+  void add_cage(const Cage& cage);
+
+  int add_point(const Eigen::Vector3d& p, const std::string& name = "");  // returns its point index
+  void move_point(int point, const Eigen::Vector3d& p);                   // merges within a gesture
+  // Adds a chain of bones through `joints` (k joints -> k-1 bones). parent_joint >= 0 reuses an existing
+  // joint as the chain's first joint (so the chain hangs off that joint). Returns the first new bone index.
+  int add_bone_chain(const std::vector<Eigen::Vector3d>& joints, int parent_joint = -1);
+  void move_joint(int joint, const Eigen::Vector3d& p);  // merges within a gesture
+  void move_cage_vertex(int cage, int vertex, const Eigen::Vector3d& p);  // merges within a gesture
+  // Deletes handles by global index (points, bones -- and joints no other bone uses --, whole cages
+  // when any of their vertices is given, regions). Pseudo-edges and selection are updated.
+  void delete_handles(std::vector<int> handles);
+  void rename_handle(int handle, const std::string& name);  // cage vertex -> renames its cage
+  void add_pseudo_edge(int point_a, int point_b);
+  void remove_pseudo_edge(int point_a, int point_b);
+
+  // Brush: sets mask[v] = values[i] for each vertex (values clamped to [0,1]). Merges within a gesture.
+  void paint_mask(const std::vector<int>& vertices, const std::vector<double>& values);
+  int add_region(const std::string& name = "");  // an empty region handle; returns its region index
+  // Adds (erase=false) or removes vertices of a region. Merges within a gesture.
+  void paint_region(int region, const std::vector<int>& vertices, bool erase);
+
+  // The result of a bind (run elsewhere): #V x num_handles, rows should sum to 1.
+  void set_weights(const Eigen::MatrixXd& W, const BindStats& stats);
+  void set_bind_settings(const BindSettings& s);
+  void set_method(SkinMethod m);
+  void set_inbetweens(int n);  // 0..1000
+
+  // Posing (no effect on weights). Translate/rotate act on the pose of one handle:
+  //   point: translation / explicit rotation about the point; bone: translation / rotation about its
+  //   first joint relative to the parent; cage vertex: translation (rotation: error); region: affine
+  //   about its centroid. Both merge within a gesture.
+  void set_pose_params(const PoseParams& p);
+  void translate_handle(int handle, const Eigen::Vector3d& delta);
+  void rotate_handle(int handle, const Eigen::Quaterniond& q);
+  void reset_pose();
+
+  // Keys: set_key stores the current pose params at time t (replacing a key at the same time).
+  void set_key(double t);
+  void delete_key(int index);
+  void move_key(int index, double new_time);  // throws if another key sits at new_time
+  // Applies the key's params as the current pose (a pose edit).
+  void go_to_key(int index);
+
+  // ---- view state (saved, not undoable, does not mark dirty) ---------------------------------------
+  void set_time(double t);
+  void set_camera(const Camera& c);
+  void set_selection(const Selection& s);  // handles out of range -> dfm::Error
+
+  // Bumped on every change of scene content (edits, undo, redo, load): lets the UI re-upload buffers.
+  std::uint64_t revision() const { return revision_; }
+
+ private:
+  struct Step;
+  enum Part : unsigned;
+  void execute(const std::string& name, unsigned parts, const std::string& merge_target,
+               const std::function<void(SceneData&)>& edit);
+  void rig_edit(const std::string& name, const std::string& merge_target,
+                const std::function<void(SceneData&)>& edit);
+  void after_change();
+
+  SceneData s_;
+  std::string path_;
+  std::string weights_note_ = "not bound yet";
+  std::vector<std::unique_ptr<Step>> undo_, redo_;
+  std::uint64_t next_serial_ = 1, saved_serial_ = 0, revision_ = 0;
+  bool gesture_open_ = false;
+  bool gesture_merge_ok_ = false;  // the top step was made inside the current gesture
+};
+
+}  // namespace dfm

@@ -1,0 +1,305 @@
+#include "core/scene/script.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/anim/bake.h"
+#include "core/anim/keyframes.h"
+#include "core/anim/manifold.h"
+#include "core/anim/slice.h"
+#include "core/bind/bbw.h"
+#include "core/bind/bind_volume.h"
+#include "core/mesh/io.h"
+#include "core/skin/skin.h"
+#include "core/util/atomic_file.h"
+#include "core/util/error.h"
+
+namespace dfm {
+
+namespace {
+
+// Argument shapes: a fixed count, or a range; `numbers` = how many leading arguments are numbers
+// (-1: all of them).
+struct Spec {
+  int min_args, max_args;
+  int numbers;
+  const char* usage;
+};
+
+const std::map<std::string, Spec>& specs() {
+  static const std::map<std::string, Spec> s = {
+      {"open", {1, 1, 0, "open FILE"}},
+      {"add-point", {3, 3, -1, "add-point X Y Z"}},
+      {"add-bone", {6, 3000, -1, "add-bone X0 Y0 Z0 X1 Y1 Z1 [X2 Y2 Z2 ...]"}},
+      {"load-skeleton", {1, 1, 0, "load-skeleton FILE.tgf"}},
+      {"load-cage", {1, 1, 0, "load-cage FILE"}},
+      {"pseudo-edge", {2, 2, -1, "pseudo-edge POINT_A POINT_B"}},
+      {"bind", {0, 0, 0, "bind"}},
+      {"select", {1, 1000, -1, "select HANDLE [HANDLE ...]"}},
+      {"translate", {3, 3, -1, "translate DX DY DZ"}},
+      {"rotate", {4, 4, -1, "rotate DEGREES AX AY AZ"}},
+      {"set-method", {1, 1, 0, "set-method lbs|dqs|stbs"}},
+      {"set-key", {0, 1, -1, "set-key [TIME]"}},
+      {"delete-key", {0, 1, -1, "delete-key [TIME]"}},
+      {"set-time", {1, 1, -1, "set-time T"}},
+      {"reset-pose", {0, 0, 0, "reset-pose"}},
+      {"undo", {0, 0, 0, "undo"}},
+      {"redo", {0, 0, 0, "redo"}},
+      {"save-posed", {1, 1, 0, "save-posed OUT.obj|ply|off|stl"}},
+      {"save-frames", {1, 2, 0, "save-frames PREFIX [COUNT]"}},
+      {"save-scene", {1, 1, 0, "save-scene FILE.scene.json"}},
+      {"screenshot", {1, 1, 0, "screenshot OUT.png"}},
+      {"quit", {0, 0, 0, "quit"}},
+  };
+  return s;
+}
+
+bool parse_number(const std::string& w, double& out) {
+  const char* b = w.c_str();
+  char* e = nullptr;
+  out = std::strtod(b, &e);
+  return e != b && *e == '\0' && std::isfinite(out);
+}
+
+double num(const ScriptLine& l, int i) {
+  double x = 0;
+  parse_number(l.words[i], x);  // checked by parse_script
+  return x;
+}
+
+int integer_arg(const ScriptLine& l, int i) {
+  const double x = num(l, i);
+  if (x != std::floor(x) || std::abs(x) > 1e9) throw Error("'" + l.words[i] + "' is not an integer");
+  return static_cast<int>(x);
+}
+
+bool ends_with(const std::string& s, const std::string& suf) {
+  return s.size() >= suf.size() && s.compare(s.size() - suf.size(), suf.size(), suf) == 0;
+}
+
+std::vector<int> selected_or_fail(const Document& doc) {
+  if (doc.selection().handles.empty()) throw Error("no handle selected (use: select HANDLE)");
+  return doc.selection().handles;
+}
+
+TriMesh skinned(const Document& doc, const SkinBinding& binding, const Pose& pose,
+                const std::vector<StbsHandle>& stbs) {
+  TriMesh out;
+  SkinResult r = skin(doc.method(), binding, pose, stbs);
+  out.V = std::move(r.V);
+  out.F = doc.surface().F;
+  out.N = std::move(r.N);
+  return out;
+}
+
+SkinBinding binding_of(const Document& doc) {
+  if (!doc.has_weights()) throw Error("the scene has no weights: " + doc.weights_note() + " (run: bind)");
+  return make_skin_binding(doc.surface().V, vertex_normals(doc.surface().V, doc.surface().F), doc.weights(),
+                           doc.rig(), doc.bind_settings().max_influences);
+}
+
+AnimationManifold manifold_of(const Document& doc, const SkinBinding& binding) {
+  KeyTrack track;
+  const std::vector<Pose> poses = doc.key_poses();
+  for (size_t i = 0; i < poses.size(); ++i) track.set({doc.keys()[i].time, poses[i]});
+  // Twist/stretch is per key and not part of a Pose, so the animation skins without it.
+  const BakedLayers layers =
+      bake_layers(track, doc.inbetweens(), [&](const Pose& p) { return skin(doc.method(), binding, p, {}).V; });
+  return build_manifold(layers, doc.surface().F);
+}
+
+TriMesh frame_at(const Document& doc, const SkinBinding& binding, const AnimationManifold* m, double t) {
+  if (m) return slice_manifold(*m, SliceAxis::T, t).mesh;
+  if (doc.keys().size() == 1) return skinned(doc, binding, doc.key_poses()[0], {});
+  return skinned(doc, binding, doc.pose(), stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
+}
+
+}  // namespace
+
+std::vector<ScriptLine> parse_script(const std::string& text, const std::string& name) {
+  std::vector<ScriptLine> out;
+  std::istringstream in(text);
+  std::string raw;
+  int line = 0;
+  while (std::getline(in, raw)) {
+    ++line;
+    if (!raw.empty() && raw.back() == '\r') raw.pop_back();
+    const size_t hash = raw.find('#');
+    if (hash != std::string::npos) raw.erase(hash);
+    ScriptLine l;
+    l.line = line;
+    std::istringstream ws(raw);
+    for (std::string w; ws >> w;) l.words.push_back(w);
+    if (l.words.empty()) continue;
+    const auto it = specs().find(l.words[0]);
+    if (it == specs().end()) throw file_error(name, line, "unknown command '" + l.words[0] + "' (see SCRIPT.md)");
+    const Spec& s = it->second;
+    const int nargs = static_cast<int>(l.words.size()) - 1;
+    if (nargs < s.min_args || nargs > s.max_args)
+      throw file_error(name, line, "'" + l.words[0] + "' takes " +
+                                       (s.min_args == s.max_args ? std::to_string(s.min_args)
+                                                                 : std::to_string(s.min_args) + ".." + std::to_string(s.max_args)) +
+                                       " argument(s), got " + std::to_string(nargs) + "; usage: " + s.usage);
+    const int numbers = s.numbers < 0 ? nargs : s.numbers;
+    for (int i = 1; i <= numbers; ++i) {
+      double x;
+      if (!parse_number(l.words[i], x))
+        throw file_error(name, line, "'" + l.words[i] + "' is not a finite number; usage: " + s.usage);
+    }
+    if (l.words[0] == "add-bone" && nargs % 3 != 0)
+      throw file_error(name, line, "add-bone needs joint positions in threes (x y z), got " + std::to_string(nargs) + " numbers");
+    if (l.words[0] == "save-frames" && nargs == 2) {
+      double c;
+      if (!parse_number(l.words[2], c) || c < 2 || c != std::floor(c) || c > 100000)
+        throw file_error(name, line, "frame count '" + l.words[2] + "' must be an integer >= 2");
+    }
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
+std::vector<ScriptLine> read_script(const std::string& path) {
+  require_readable_file(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw file_error(path, 0, "cannot open");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_script(ss.str(), path);
+}
+
+void run_bind_blocking(Document& doc) {
+  if (doc.surface().num_vertices() == 0) throw Error("bind: no surface (open a mesh first)");
+  if (doc.num_handles() == 0) throw Error("bind: the rig has no handles");
+  const auto t0 = std::chrono::steady_clock::now();
+  BindVolume vol;
+  if (doc.has_tets()) {
+    vol = bind_volume_from_tets(doc.tets(), doc.rig());
+  } else {
+    vol = build_bind_volume(doc.surface(), doc.rig(), doc.bind_settings().volume);
+  }
+  BbwOptions opt;
+  const Eigen::MatrixXd Wt = bbw_weights(vol.tets.V, vol.tets.T, vol.b, vol.bc, opt);
+  Eigen::MatrixXd W;
+  if (doc.has_tets()) {
+    // to_user maps to the tet mesh's own vertices; the surface is a subset of them.
+    const Eigen::MatrixXd Wu = vol.to_user * Wt;
+    W.resize(doc.surface().num_vertices(), Wt.cols());
+    for (int i = 0; i < W.rows(); ++i) W.row(i) = Wu.row(doc.data().surface_to_tet[i]);
+  } else {
+    W = vol.to_user * Wt;
+  }
+  BindStats st;
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  st.tet_vertices = vol.tets.num_vertices();
+  st.tets = vol.tets.num_tets();
+  st.notes = vol.notes;
+  doc.set_weights(W, st);
+}
+
+TriMesh posed_surface(const Document& doc) {
+  const SkinBinding binding = binding_of(doc);
+  if (doc.keys().size() >= 2) {
+    const AnimationManifold m = manifold_of(doc, binding);
+    return frame_at(doc, binding, &m, doc.time());
+  }
+  return frame_at(doc, binding, nullptr, doc.time());
+}
+
+ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, const std::string& name,
+                        const ScriptHost& host) {
+  ScriptResult res;
+  for (const ScriptLine& l : lines) {
+    const std::string& cmd = l.words[0];
+    try {
+      if (cmd == "open") {
+        const std::string& f = l.words[1];
+        if (ends_with(f, ".json")) doc.load_scene(f);
+        else doc.open_mesh(f);
+      } else if (cmd == "add-point") {
+        doc.add_point({num(l, 1), num(l, 2), num(l, 3)});
+      } else if (cmd == "add-bone") {
+        std::vector<Eigen::Vector3d> joints;
+        for (size_t i = 1; i + 2 < l.words.size(); i += 3) joints.push_back({num(l, i), num(l, i + 1), num(l, i + 2)});
+        doc.add_bone_chain(joints);
+      } else if (cmd == "load-skeleton") {
+        doc.load_skeleton(l.words[1]);
+      } else if (cmd == "load-cage") {
+        doc.load_cage(l.words[1]);
+      } else if (cmd == "pseudo-edge") {
+        doc.add_pseudo_edge(integer_arg(l, 1), integer_arg(l, 2));
+      } else if (cmd == "bind") {
+        if (host.bind) host.bind(doc);
+        else run_bind_blocking(doc);
+      } else if (cmd == "select") {
+        Selection s;
+        for (size_t i = 1; i < l.words.size(); ++i) s.handles.push_back(integer_arg(l, i));
+        doc.set_selection(s);
+      } else if (cmd == "translate") {
+        const Eigen::Vector3d d(num(l, 1), num(l, 2), num(l, 3));
+        for (int h : selected_or_fail(doc)) doc.translate_handle(h, d);
+      } else if (cmd == "rotate") {
+        const Eigen::Vector3d axis(num(l, 2), num(l, 3), num(l, 4));
+        if (axis.norm() < 1e-12) throw Error("rotation axis is zero");
+        const Eigen::Quaterniond q(Eigen::AngleAxisd(num(l, 1) * M_PI / 180.0, axis.normalized()));
+        for (int h : selected_or_fail(doc)) doc.rotate_handle(h, q);
+      } else if (cmd == "set-method") {
+        doc.set_method(parse_skin_method(l.words[1]));
+      } else if (cmd == "set-key") {
+        doc.set_key(l.words.size() > 1 ? num(l, 1) : doc.time());
+      } else if (cmd == "delete-key") {
+        const double t = l.words.size() > 1 ? num(l, 1) : doc.time();
+        const int k = doc.key_at(t);
+        if (k < 0) throw Error("no key at time " + (l.words.size() > 1 ? l.words[1] : std::to_string(t)));
+        doc.delete_key(k);
+      } else if (cmd == "set-time") {
+        doc.set_time(num(l, 1));
+      } else if (cmd == "reset-pose") {
+        doc.reset_pose();
+      } else if (cmd == "undo") {
+        doc.undo();
+      } else if (cmd == "redo") {
+        doc.redo();
+      } else if (cmd == "save-posed") {
+        write_surface(l.words[1], posed_surface(doc));
+      } else if (cmd == "save-frames") {
+        const int count = l.words.size() > 2 ? integer_arg(l, 2) : 30;
+        if (doc.keys().size() < 2) throw Error("save-frames needs at least two keys");
+        const SkinBinding binding = binding_of(doc);
+        const AnimationManifold m = manifold_of(doc, binding);
+        const double t0 = doc.keys().front().time, t1 = doc.keys().back().time;
+        std::string prefix = l.words[1], ext = ".obj";
+        for (const char* e : {".obj", ".ply", ".off", ".stl"})
+          if (ends_with(prefix, e)) {
+            ext = e;
+            prefix.erase(prefix.size() - 4);
+          }
+        for (int i = 0; i < count; ++i) {
+          char num_buf[16];
+          std::snprintf(num_buf, sizeof num_buf, "%04d", i);
+          const double t = t0 + (t1 - t0) * i / (count - 1);
+          write_surface(prefix + num_buf + ext, frame_at(doc, binding, &m, t));
+        }
+      } else if (cmd == "save-scene") {
+        doc.save_scene(l.words[1]);
+      } else if (cmd == "screenshot") {
+        if (!host.screenshot) throw Error("screenshots need the editor (no renderer here)");
+        host.screenshot(l.words[1]);
+      } else if (cmd == "quit") {
+        res.quit = true;
+      }
+    } catch (const Error& e) {
+      throw file_error(name, l.line, cmd + ": " + e.what());
+    }
+    ++res.commands_run;
+    if (host.after_command) host.after_command(l);
+    if (res.quit) break;
+  }
+  return res;
+}
+
+}  // namespace dfm

@@ -1,0 +1,87 @@
+#include "core/skin/skin.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+
+#include "core/util/error.h"
+
+namespace dfm {
+
+const char* skin_method_name(SkinMethod m) {
+  switch (m) {
+    case SkinMethod::LBS: return "lbs";
+    case SkinMethod::DQS: return "dqs";
+    case SkinMethod::STBS: return "stbs";
+  }
+  return "?";
+}
+
+SkinMethod parse_skin_method(const std::string& name) {
+  std::string s = name;
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (s == "lbs") return SkinMethod::LBS;
+  if (s == "dqs") return SkinMethod::DQS;
+  if (s == "stbs") return SkinMethod::STBS;
+  throw Error("unknown skinning method '" + name + "' (expected lbs, dqs or stbs)");
+}
+
+SkinBinding make_skin_binding(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Eigen::MatrixXd& W,
+                              const Rig& rig, int k) {
+  const int nh = num_handles(rig);
+  if (W.rows() != V.rows())
+    throw Error("weights have " + std::to_string(W.rows()) + " rows but the mesh has " + std::to_string(V.rows()) +
+                " vertices");
+  if (W.cols() != nh)
+    throw Error("weights have " + std::to_string(W.cols()) + " columns but the rig has " + std::to_string(nh) +
+                " handles");
+  if (N.size() && (N.rows() != V.rows() || N.cols() != 3)) throw Error("normals must be #V x 3");
+  SkinBinding b;
+  b.V = V;
+  b.N = N;
+  b.num_handles = nh;
+  b.influences = k <= 0 ? all_influences(W) : top_influences(W, k, true);
+  b.endpoints = gather_by_influence(b.influences, bone_endpoint_weights(V, rig));
+  return b;
+}
+
+SkinResult skin(SkinMethod method, const SkinBinding& b, const Pose& pose, const std::vector<StbsHandle>& stbs) {
+  SkinResult r;
+  Eigen::MatrixXd* NU = b.N.size() ? &r.N : nullptr;
+  switch (method) {
+    case SkinMethod::LBS: lbs(b.V, b.N, b.influences, pose, r.V, NU); break;
+    case SkinMethod::DQS: dqs(b.V, b.N, b.influences, pose, r.V, NU); break;
+    case SkinMethod::STBS: {
+      std::vector<StbsHandle> none;
+      if (stbs.empty()) none.resize(pose.size());
+      dfm::stbs(b.V, b.N, b.influences, b.endpoints, pose, stbs.empty() ? none : stbs, r.V, NU);
+      break;
+    }
+  }
+  return r;
+}
+
+double truncation_error(SkinMethod method, const SkinBinding& reference, const SkinBinding& truncated,
+                        const Pose& pose, const std::vector<StbsHandle>& stbs) {
+  SkinBinding a = reference, t = truncated;
+  a.N.resize(0, 0);
+  t.N.resize(0, 0);
+  const Eigen::MatrixXd d = skin(method, a, pose, stbs).V - skin(method, t, pose, stbs).V;
+  return d.size() ? d.rowwise().norm().maxCoeff() : 0.0;
+}
+
+Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::RowVector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Eigen::RowVector3d n = (b - a).cross(c - a);  // length = twice the area: area weighting
+    for (int j = 0; j < 3; ++j) N.row(F(f, j)) += n;
+  }
+  for (int i = 0; i < N.rows(); ++i) {
+    const double len = N.row(i).norm();
+    if (len > 0) N.row(i) /= len;
+  }
+  return N;
+}
+
+}  // namespace dfm

@@ -1,0 +1,56 @@
+#pragma once
+// Skinning front door: pick a method, bind once (influences, endpoint weights), skin every pose.
+// The GPU pass (render/skin_pass.h) takes the same SkinBinding and the same per-pose inputs, and its
+// result must equal skin() within float precision.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/rig/pose.h"
+#include "core/rig/rig.h"
+#include "core/skin/dqs.h"
+#include "core/skin/influences.h"
+#include "core/skin/lbs.h"
+#include "core/skin/stbs.h"
+
+namespace dfm {
+
+enum class SkinMethod { LBS, DQS, STBS };
+
+const char* skin_method_name(SkinMethod m);  // "lbs", "dqs", "stbs"
+// Accepts those names (any case); throws dfm::Error otherwise.
+SkinMethod parse_skin_method(const std::string& name);
+
+// Everything about a mesh that does not change with the pose.
+struct SkinBinding {
+  Eigen::MatrixXd V;          // #V x 3 rest positions
+  Eigen::MatrixXd N;          // #V x 3 rest normals, or empty
+  Influences influences;      // #V x k
+  Eigen::MatrixXd endpoints;  // #V x k bone endpoint weights e (STBS), in influence order
+  int num_handles = 0;
+};
+
+// k <= 0 keeps every weight unchanged (the exact reference); else the k largest, renormalized.
+// W: #V x num_handles(rig). Throws dfm::Error on size mismatches.
+SkinBinding make_skin_binding(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Eigen::MatrixXd& W,
+                              const Rig& rig, int k);
+
+struct SkinResult {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXd N;  // empty when the binding has no normals
+};
+
+// stbs: per-handle twist/stretch records (stbs_handles); only STBS reads them, empty = none active.
+SkinResult skin(SkinMethod method, const SkinBinding& binding, const Pose& pose,
+                const std::vector<StbsHandle>& stbs = {});
+
+// Largest vertex distance between skinning with `reference` (usually all weights) and `truncated`
+// (k influences) on this pose: what the k-influence truncation costs.
+double truncation_error(SkinMethod method, const SkinBinding& reference, const SkinBinding& truncated,
+                        const Pose& pose, const std::vector<StbsHandle>& stbs = {});
+
+// Per-vertex normals of a triangle mesh: area-weighted face normals, normalized.
+Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+}  // namespace dfm

@@ -1,0 +1,157 @@
+#include "render/skin_pass.h"
+
+#include <string>
+
+#include "core/util/error.h"
+
+namespace dfm::gl {
+
+namespace {
+constexpr int kHandleTexels = 12;  // must match HANDLE_TEXELS in shaders/skin.vert.glsl
+
+void put_row(float* dst, const Eigen::Vector4d& v) {
+  for (int c = 0; c < 4; ++c) dst[c] = static_cast<float>(v[c]);
+}
+}  // namespace
+
+SkinPass::SkinPass(const SkinBinding& b) {
+  const Influences& inf = b.influences;
+  num_vertices_ = static_cast<int>(b.V.rows());
+  if (b.V.cols() != 3 || inf.num_vertices() != num_vertices_)
+    throw Error("GPU skinning: positions and influences disagree on the vertex count");
+  if (inf.k() > 8) throw Error("GPU skinning keeps at most 8 influences per vertex, got " + std::to_string(inf.k()));
+  if (b.N.size() && (b.N.rows() != num_vertices_ || b.N.cols() != 3)) throw Error("GPU skinning: normals must be #V x 3");
+  if (b.endpoints.size() && (b.endpoints.rows() != num_vertices_ || b.endpoints.cols() != inf.k()))
+    throw Error("GPU skinning: endpoint weights must be #V x k");
+  k_ = inf.k() <= 4 ? 4 : 8;
+  num_handles_ = b.num_handles;
+  max_handle_ = inf.index.size() ? inf.index.maxCoeff() : -1;
+  if (inf.index.size() && inf.index.minCoeff() < 0) throw Error("GPU skinning: negative handle index");
+
+  std::vector<PosNormal> rest(num_vertices_);
+  std::vector<GLint> idx(static_cast<size_t>(num_vertices_) * k_, 0);
+  std::vector<float> w(idx.size(), 0.0f), e(idx.size(), 0.0f);
+  for (int i = 0; i < num_vertices_; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      rest[i].position[c] = static_cast<float>(b.V(i, c));
+      rest[i].normal[c] = b.N.size() ? static_cast<float>(b.N(i, c)) : 0.0f;
+    }
+    for (int j = 0; j < inf.k(); ++j) {
+      idx[static_cast<size_t>(i) * k_ + j] = inf.index(i, j);
+      w[static_cast<size_t>(i) * k_ + j] = static_cast<float>(inf.weight(i, j));
+      e[static_cast<size_t>(i) * k_ + j] = b.endpoints.size() ? static_cast<float>(b.endpoints(i, j)) : 0.0f;
+    }
+  }
+  vao_.bind();
+  rest_.upload(GL_ARRAY_BUFFER, rest);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(PosNormal), reinterpret_cast<void*>(0));
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(PosNormal), reinterpret_cast<void*>(3 * sizeof(float)));
+  const GLsizei stride = k_ * 4;
+  handle_index_.upload(GL_ARRAY_BUFFER, idx);
+  for (int half = 0; half < k_ / 4; ++half) {
+    glEnableVertexAttribArray(2 + 3 * half);
+    glVertexAttribIPointer(2 + 3 * half, 4, GL_INT, stride, reinterpret_cast<void*>(static_cast<size_t>(half) * 16));
+  }
+  weight_.upload(GL_ARRAY_BUFFER, w);
+  for (int half = 0; half < k_ / 4; ++half) {
+    glEnableVertexAttribArray(3 + 3 * half);
+    glVertexAttribPointer(3 + 3 * half, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(static_cast<size_t>(half) * 16));
+  }
+  endpoint_.upload(GL_ARRAY_BUFFER, e);
+  for (int half = 0; half < k_ / 4; ++half) {
+    glEnableVertexAttribArray(4 + 3 * half);
+    glVertexAttribPointer(4 + 3 * half, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(static_cast<size_t>(half) * 16));
+  }
+  glBindVertexArray(0);
+  output_.upload(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, sizeof(PosNormal) * static_cast<size_t>(num_vertices_),
+                 GL_DYNAMIC_COPY);
+  check_error("SkinPass upload");
+}
+
+void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
+  const int nh = pose.size();
+  if (max_handle_ >= nh)
+    throw Error("GPU skinning: the weights name handle " + std::to_string(max_handle_) + " but the pose has " +
+                std::to_string(nh) + " transforms");
+  if (!stbs.empty() && static_cast<int>(stbs.size()) != nh)
+    throw Error("GPU skinning: " + std::to_string(stbs.size()) + " twist/stretch records for " + std::to_string(nh) +
+                " handles");
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (static_cast<long long>(nh) * kHandleTexels > max_texels)
+    throw Error("GPU skinning: " + std::to_string(nh) + " handles exceed this driver's texture buffer (" +
+                std::to_string(max_texels / kHandleTexels) + " handles)");
+  const std::vector<DqsHandle> dq = dqs_handles(pose);
+  std::vector<float> data(static_cast<size_t>(std::max(nh, 1)) * kHandleTexels * 4, 0.0f);
+  for (int h = 0; h < nh; ++h) {
+    float* d = &data[static_cast<size_t>(h) * kHandleTexels * 4];
+    const bool active = !stbs.empty() && stbs[h].active;
+    const Eigen::Affine3d T = active ? pose.transforms[h] * stbs[h].unstretched : pose.transforms[h];
+    for (int r = 0; r < 3; ++r) put_row(d + 4 * r, T.matrix().row(r).transpose());
+    put_row(d + 12, dq[h].real);
+    put_row(d + 16, dq[h].dual);
+    for (int r = 0; r < 3; ++r) put_row(d + 20 + 4 * r, Eigen::Vector4d(dq[h].stretch(r, 0), dq[h].stretch(r, 1), dq[h].stretch(r, 2), 0));
+    if (active) {
+      const StbsHandle& s = stbs[h];
+      put_row(d + 32, Eigen::Vector4d(s.origin.x(), s.origin.y(), s.origin.z(), s.twist));
+      put_row(d + 36, Eigen::Vector4d(s.axis.x(), s.axis.y(), s.axis.z(), 1.0));
+      put_row(d + 40, Eigen::Vector4d(s.stretch.x(), s.stretch.y(), s.stretch.z(), 0.0));
+    }
+  }
+  handle_data_.upload(GL_TEXTURE_BUFFER, data, GL_STREAM_DRAW);
+  glBindTexture(GL_TEXTURE_BUFFER, handle_texture_.id());
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, handle_data_.id());
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  num_handles_ = nh;
+  check_error("SkinPass::set_pose");
+}
+
+const Program& SkinPass::program(SkinMethod m) {
+  auto it = programs_.find(m);
+  if (it != programs_.end()) return it->second;
+  const char* define = m == SkinMethod::LBS ? "METHOD_LBS" : m == SkinMethod::DQS ? "METHOD_DQS" : "METHOD_STBS";
+  ProgramDesc desc;
+  desc.vertex = "skin.vert.glsl";
+  desc.defines = {define, "K " + std::to_string(k_)};
+  desc.feedback_varyings = {"out_position", "out_normal"};
+  return programs_.emplace(m, Program(desc)).first->second;
+}
+
+void SkinPass::run(SkinMethod method) {
+  if (handle_data_.bytes() == 0) throw Error("GPU skinning: set_pose() before run()");
+  const Program& prog = program(method);
+  prog.use();
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_BUFFER, handle_texture_.id());
+  glUniform1i(prog.uniform("handles"), 0);
+  vao_.bind();
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, output_.id());
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, num_vertices_);
+  glEndTransformFeedback();
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glDisable(GL_RASTERIZER_DISCARD);
+  glBindVertexArray(0);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  check_error("SkinPass::run");
+}
+
+std::vector<PosNormal> SkinPass::read_back() const { return output_.read<PosNormal>(num_vertices_); }
+
+SkinResult SkinPass::read_back_result() const {
+  const std::vector<PosNormal> out = read_back();
+  SkinResult r;
+  r.V.resize(num_vertices_, 3);
+  r.N.resize(num_vertices_, 3);
+  for (int i = 0; i < num_vertices_; ++i)
+    for (int c = 0; c < 3; ++c) {
+      r.V(i, c) = out[i].position[c];
+      r.N(i, c) = out[i].normal[c];
+    }
+  return r;
+}
+
+}  // namespace dfm::gl

@@ -1,0 +1,121 @@
+#include "render/slice_pass.h"
+
+#include <algorithm>
+
+#include "core/anim/slice_table.h"
+#include "core/util/error.h"
+
+namespace dfm::gl {
+
+namespace {
+
+// Counts every primitive the geometry stage generates, including those that overflow the buffer.
+class GeneratedQuery {
+ public:
+  GeneratedQuery() { glGenQueries(1, &id_); }
+  ~GeneratedQuery() { glDeleteQueries(1, &id_); }
+  GeneratedQuery(const GeneratedQuery&) = delete;
+  GeneratedQuery& operator=(const GeneratedQuery&) = delete;
+  void begin() { glBeginQuery(GL_PRIMITIVES_GENERATED, id_); }
+  void end() { glEndQuery(GL_PRIMITIVES_GENERATED); }
+  GLuint result() const {
+    GLuint n = 0;
+    glGetQueryObjectuiv(id_, GL_QUERY_RESULT, &n);
+    return n;
+  }
+
+ private:
+  GLuint id_ = 0;
+};
+
+}  // namespace
+
+SlicePass::SlicePass()
+    : program_(ProgramDesc{"slice.vert.glsl", "slice.geom.glsl", "", {}, {"out_position", "out_normal"}}) {
+  // The derived case table, packed: count in bits 0-1, then 3 bits per corner's edge index.
+  const auto& table = slice_table();
+  GLint cases[16];
+  for (int m = 0; m < 16; ++m) {
+    int code = table[m].num_triangles;
+    for (int t = 0; t < table[m].num_triangles; ++t)
+      for (int j = 0; j < 3; ++j) code |= table[m].triangles[t][j] << (2 + 3 * (3 * t + j));
+    cases[m] = code;
+  }
+  GLint edges[12];
+  for (int e = 0; e < 6; ++e) {
+    edges[2 * e] = kSliceEdges[e][0];
+    edges[2 * e + 1] = kSliceEdges[e][1];
+  }
+  program_.use();
+  glUniform1iv(program_.uniform("u_cases"), 16, cases);
+  glUniform2iv(program_.uniform("u_edges"), 6, edges);
+  check_error("slice pass setup");
+}
+
+void SlicePass::upload(const AnimationManifold& m) {
+  validate_manifold(m, "GPU slice manifold");
+  std::vector<float> pos(m.V.size());
+  for (Eigen::Index i = 0; i < m.V.size(); ++i) pos[i] = static_cast<float>(m.V.data()[i]);  // row-major x y z t
+  vao_.bind();
+  positions_.upload(GL_ARRAY_BUFFER, pos);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+  // T is row-major int32: exactly the index layout lines_adjacency wants (4 per primitive).
+  indices_.upload(GL_ELEMENT_ARRAY_BUFFER, m.T.data(), static_cast<size_t>(m.T.size()) * sizeof(int));
+  glBindVertexArray(0);
+  meta_ = AnimationManifold{};
+  meta_.times = m.times;
+  meta_.slab_offsets = m.slab_offsets;
+  num_tets_ = m.num_tets();
+  for (int d = 0; d < 4; ++d) lowest_[d] = m.num_vertices() ? m.V.col(d).minCoeff() : 0.0;
+  lowest_[3] = m.times.front();
+  triangles_ = 0;
+  check_error("slice pass upload");
+}
+
+int SlicePass::slice(SliceAxis axis, double value) {
+  const int a = static_cast<int>(axis);
+  std::pair<int, int> range = axis == SliceAxis::T ? slice_tet_range(meta_, axis, value) : std::pair<int, int>{0, num_tets_};
+  last_tets_ = range.second - range.first;
+  triangles_ = 0;
+  if (range.second <= range.first) return 0;
+
+  program_.use();
+  glUniform1i(program_.uniform("u_axis"), a);
+  glUniform1f(program_.uniform("u_value"), static_cast<float>(value));
+  glUniform1i(program_.uniform("u_on_plane_above"), value > lowest_[a]);
+  glUniform1i(program_.uniform("u_flip"), slice_flips_winding(a));
+  vao_.bind();
+  if (capacity_ == 0) {
+    capacity_ = 1 << 16;
+    out_.upload(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, capacity_ * 3 * sizeof(PosNormal), GL_DYNAMIC_COPY);
+  }
+  glEnable(GL_RASTERIZER_DISCARD);
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out_.id());
+    GeneratedQuery generated;
+    generated.begin();
+    glBeginTransformFeedback(GL_TRIANGLES);
+    glDrawElements(GL_LINES_ADJACENCY, 4 * (range.second - range.first), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(static_cast<size_t>(range.first) * 4 * sizeof(GLuint)));
+    glEndTransformFeedback();
+    generated.end();
+    const size_t n = generated.result();
+    if (n <= capacity_) {
+      triangles_ = static_cast<int>(n);
+      break;
+    }
+    // Overflow: grow with headroom and slice again (rare after the first frames).
+    capacity_ = n + n / 4;
+    out_.upload(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, capacity_ * 3 * sizeof(PosNormal), GL_DYNAMIC_COPY);
+  }
+  glDisable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glBindVertexArray(0);
+  check_error("slice pass draw");
+  return triangles_;
+}
+
+std::vector<PosNormal> SlicePass::read_back() const { return out_.read<PosNormal>(static_cast<size_t>(triangles_) * 3); }
+
+}  // namespace dfm::gl

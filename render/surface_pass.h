@@ -1,0 +1,63 @@
+#pragma once
+// Draws a PosNormal vertex buffer (indexed or a triangle soup) lit with two camera lights, back faces
+// of open meshes in their own colour, an optional wireframe overlay, and either a scalar colour map
+// with isolines (weights, masks) or per-vertex colours (the all-handles weight blend).
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/mesh/mesh.h"
+#include "render/camera.h"
+#include "render/gl_buffer.h"
+#include "render/gl_program.h"
+#include "render/vertex_format.h"
+
+namespace dfm::gl {
+
+enum class SurfaceColorMode { Shaded = 0, Scalar = 1, VertexColor = 2 };
+
+struct SurfaceStyle {
+  Eigen::Vector3f base_color{0.72f, 0.66f, 0.60f};  // linear RGB
+  Eigen::Vector3f back_color{0.55f, 0.12f, 0.10f};
+  Eigen::Vector3f wire_color{0.08f, 0.08f, 0.09f};
+  bool wireframe = false;
+  bool flat = false;
+  SurfaceColorMode mode = SurfaceColorMode::Shaded;
+  float isolines = 10.0f;  // intervals over [0,1] for the scalar map; 0 = none
+};
+
+// Area-weighted vertex normals for display (zero-area faces ignored; isolated vertices get +z).
+Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+// Interleaves positions and normals (N empty -> vertex_normals(V, F)).
+std::vector<PosNormal> interleave_pos_normal(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                             const Eigen::MatrixXd& N = {});
+
+class SurfacePass {
+ public:
+  SurfacePass();
+  // Where the vertices come from: a PosNormal buffer (owned elsewhere: skin or slice output, or
+  // upload_mesh below) and an optional index buffer of uint32 triangles (0 -> draw as a soup).
+  void set_geometry(GLuint pos_normal_buffer, int vertex_count, GLuint index_buffer, int index_count);
+  // Per-vertex data for the colour modes (one vec4 per vertex, same order as the geometry). An empty
+  // vector clears it.
+  void set_vertex_data(const std::vector<Eigen::Vector4f>& data);
+  // Convenience: uploads a static mesh into the pass's own buffers and uses them.
+  void upload_mesh(const TriMesh& mesh);
+  void draw(const Camera& cam, const SurfaceStyle& style);
+
+  int vertex_count() const { return vertex_count_; }
+  int index_count() const { return index_count_; }
+
+ private:
+  Program program_;
+  VertexArray vao_;
+  Buffer own_vertices_, own_indices_, data_;
+  int vertex_count_ = 0, index_count_ = 0, data_count_ = 0;
+  bool indexed_ = false;
+};
+
+// Column-major float copy for glUniformMatrix4fv.
+void to_gl(const Eigen::Matrix4d& m, float out[16]);
+
+}  // namespace dfm::gl

@@ -1,0 +1,125 @@
+// Skinning by transform feedback: rest position + normal -> posed position + normal (PosNormal).
+// One method per compiled program: METHOD_LBS, METHOD_DQS or METHOD_STBS; K = 4 or 8 influences.
+// Mirrors core/skin/{lbs,dqs,stbs}.cpp term by term (those are the double-precision references).
+// Handle data: a texture buffer (RGBA32F), HANDLE_TEXELS texels per handle:
+//   0-2  rows of [A | t] (STBS: of T' = T W^-1 for active bones)
+//   3    dual quaternion real part (x y z w)      4  dual part
+//   5-7  rows of the DQS stretch S = R^T A
+//   8    STBS: bone origin a (xyz), twist angle (w)
+//   9    STBS: unit bone axis (xyz), 1 if the bone is active (w)
+//   10   STBS: stretch offset (sigma - 1)(b - a) (xyz)
+#define HANDLE_TEXELS 12
+
+layout(location = 0) in vec3 rest_position;
+layout(location = 1) in vec3 rest_normal;
+layout(location = 2) in ivec4 handle0;
+layout(location = 3) in vec4 weight0;
+layout(location = 4) in vec4 endpoint0;
+#if K == 8
+layout(location = 5) in ivec4 handle1;
+layout(location = 6) in vec4 weight1;
+layout(location = 7) in vec4 endpoint1;
+#endif
+
+uniform samplerBuffer handles;
+
+out vec3 out_position;
+out vec3 out_normal;
+
+vec4 texel(int h, int i) { return texelFetch(handles, h * HANDLE_TEXELS + i); }
+
+mat3 rows3(int h, int first) {
+  return transpose(mat3(texel(h, first).xyz, texel(h, first + 1).xyz, texel(h, first + 2).xyz));
+}
+
+// cof(M) n, normalized: how normals transform under a linear map.
+vec3 transform_normal(mat3 M, vec3 n) {
+  mat3 C = mat3(cross(M[1], M[2]), cross(M[2], M[0]), cross(M[0], M[1]));
+  vec3 r = C * n;
+  float len = length(r);
+  return len > 0.0 ? r / len : r;
+}
+
+vec3 dq_transform(vec4 r, vec4 d, vec3 p) {
+  return p + 2.0 * cross(r.xyz, cross(r.xyz, p) + r.w * p) + 2.0 * (r.w * d.xyz - d.w * r.xyz + cross(r.xyz, d.xyz));
+}
+
+mat3 axis_rotation(vec3 u, float angle) {
+  float c = cos(angle), s = sin(angle);
+  mat3 cross_u = mat3(0.0, u.z, -u.y, -u.z, 0.0, u.x, u.y, -u.x, 0.0);  // columns: cross_u * v = u x v
+  return c * mat3(1.0) + s * cross_u + (1.0 - c) * outerProduct(u, u);
+}
+
+void main() {
+  int hs[K];
+  float ws[K];
+  float es[K];
+  for (int j = 0; j < 4; ++j) {
+    hs[j] = handle0[j];
+    ws[j] = weight0[j];
+    es[j] = endpoint0[j];
+#if K == 8
+    hs[j + 4] = handle1[j];
+    ws[j + 4] = weight1[j];
+    es[j + 4] = endpoint1[j];
+#endif
+  }
+  vec3 p = rest_position;
+  vec3 n = rest_normal;
+
+#if defined(METHOD_LBS) || defined(METHOD_STBS)
+  vec3 q = vec3(0.0);
+  mat3 A = mat3(0.0);
+  for (int j = 0; j < K; ++j) {
+    float w = ws[j];
+    if (w == 0.0) continue;
+    int h = hs[j];
+    vec4 r0 = texel(h, 0), r1 = texel(h, 1), r2 = texel(h, 2);
+    mat3 L = transpose(mat3(r0.xyz, r1.xyz, r2.xyz));
+    vec3 t = vec3(r0.w, r1.w, r2.w);
+#ifdef METHOD_STBS
+    vec4 axis = texel(h, 9);
+    if (axis.w > 0.5) {
+      vec4 origin = texel(h, 8);
+      float angle = es[j] * origin.w;
+      mat3 R = axis_rotation(axis.xyz, angle);
+      vec3 rel = p - origin.xyz;
+      vec3 pp = p + (R * rel - rel) + es[j] * texel(h, 10).xyz;
+      q += w * (L * pp + t);
+      A += w * (L * R);
+      continue;
+    }
+#endif
+    q += w * (L * p + t);
+    A += w * L;
+  }
+  out_position = q;
+  out_normal = transform_normal(A, n);
+#endif
+
+#ifdef METHOD_DQS
+  vec4 pivot = texel(hs[0], 3);
+  vec4 br = vec4(0.0), bd = vec4(0.0);
+  mat3 S = mat3(1.0);
+  for (int j = 0; j < K; ++j) {
+    float w = ws[j];
+    if (w == 0.0) continue;
+    int h = hs[j];
+    vec4 r = texel(h, 3);
+    float sw = dot(r, pivot) < 0.0 ? -w : w;
+    br += sw * r;
+    bd += sw * texel(h, 4);
+    S += w * (rows3(h, 5) - mat3(1.0));
+  }
+  float len = length(br);
+  if (len == 0.0) {
+    out_position = p;
+    out_normal = n;
+  } else {
+    br /= len;
+    bd /= len;
+    out_position = dq_transform(br, bd, S * p);
+    out_normal = dq_transform(br, vec4(0.0), transform_normal(S, n));
+  }
+#endif
+}

@@ -1,0 +1,74 @@
+// Surface shading: a key and a fill light in view space plus a sky/ground ambient; back faces of open
+// meshes in their own colour; optional weight colour map with isolines, vertex colours, wireframe.
+in vec3 g_pos_view;
+in vec3 g_normal_view;
+in vec4 g_data;
+noperspective in vec3 g_edge_dist;
+
+uniform vec3 u_base_color;
+uniform vec3 u_back_color;
+uniform int u_color_mode;      // 0 shaded, 1 scalar colour map (data.x) + isolines, 2 vertex colour (data.rgb)
+uniform float u_isolines;      // number of isoline intervals over [0,1]; 0 = none
+uniform int u_wireframe;       // 0/1
+uniform vec3 u_wire_color;
+uniform int u_flat;            // 1: faceted normals from screen-space derivatives
+
+out vec4 frag_color;
+
+// Turbo colour map (Mikhailov 2019), polynomial fit: perceptually ordered, readable on dark themes.
+vec3 turbo(float x) {
+  x = clamp(x, 0.0, 1.0);
+  const vec4 kr = vec4(0.13572138, 4.61539260, -42.66032258, 132.13108234);
+  const vec4 kg = vec4(0.09140261, 2.19418839, 4.84296658, -14.18503333);
+  const vec4 kb = vec4(0.10667330, 12.64194608, -60.58204836, 110.36276771);
+  const vec2 kr2 = vec2(-152.94239396, 59.28637943);
+  const vec2 kg2 = vec2(4.27729857, 2.82956604);
+  const vec2 kb2 = vec2(-89.90310912, 27.34824973);
+  vec4 v4 = vec4(1.0, x, x * x, x * x * x);
+  vec2 v2 = v4.zw * v4.z;
+  return vec3(dot(v4, kr) + dot(v2, kr2), dot(v4, kg) + dot(v2, kg2), dot(v4, kb) + dot(v2, kb2));
+}
+
+void main() {
+  vec3 n = normalize(g_normal_view);
+  if (u_flat == 1) n = normalize(cross(dFdx(g_pos_view), dFdy(g_pos_view)));
+  vec3 view_dir = normalize(-g_pos_view);
+  bool front = gl_FrontFacing;
+  if (!front) n = -n;
+
+  vec3 albedo = front ? u_base_color : u_back_color;
+  float iso = 0.0;
+  if (front && u_color_mode == 1) {
+    float w = g_data.x;
+    albedo = turbo(w);
+    if (u_isolines > 0.0) {
+      float f = w * u_isolines;
+      float d = abs(fract(f - 0.5) - 0.5) / max(fwidth(f), 1e-5);
+      iso = 1.0 - clamp(d - 0.5, 0.0, 1.0);
+    }
+  } else if (front && u_color_mode == 2) {
+    albedo = g_data.rgb;
+  }
+
+  // Key light from upper left, fill from lower right, both attached to the camera.
+  vec3 key_dir = normalize(vec3(-0.45, 0.65, 0.62));
+  vec3 fill_dir = normalize(vec3(0.6, -0.25, 0.75));
+  float key = max(dot(n, key_dir), 0.0);
+  float fill = max(dot(n, fill_dir), 0.0);
+  float hemi = 0.5 + 0.5 * n.y;
+  vec3 ambient = mix(vec3(0.10, 0.09, 0.09), vec3(0.22, 0.24, 0.28), hemi);
+  vec3 h = normalize(key_dir + view_dir);
+  float spec = front ? pow(max(dot(n, h), 0.0), 48.0) * 0.25 : 0.0;
+  float rim = pow(1.0 - max(dot(n, view_dir), 0.0), 3.0) * 0.18;
+  vec3 color = albedo * (ambient + 0.78 * key * vec3(1.0, 0.97, 0.92) + 0.30 * fill * vec3(0.75, 0.82, 1.0)) +
+               vec3(spec) + vec3(rim);
+  color = mix(color, vec3(0.05), iso * 0.85);
+
+  if (u_wireframe == 1) {
+    float d = min(g_edge_dist.x, min(g_edge_dist.y, g_edge_dist.z));
+    float a = 1.0 - smoothstep(0.4, 1.2, d);
+    color = mix(color, u_wire_color, a * 0.8);
+  }
+  // Display gamma: shading is computed in linear space.
+  frag_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
+}

@@ -1,0 +1,4 @@
+# core/anim: keyframes, interpolation, baking, animation manifolds; render/slice_pass (GL).
+dfm_test(test_anim SOURCES test_anim.cpp LIBS dfm_anim)
+dfm_test(test_manifold SOURCES test_manifold.cpp LIBS dfm_anim dfm_mesh)
+dfm_test(test_gpu_slice SOURCES test_gpu_slice.cpp LIBS dfm_render dfm_anim GL)

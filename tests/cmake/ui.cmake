@@ -1,0 +1,16 @@
+# The editor's CPU logic (camera, picking, gizmo) is tested from its sources so a half-written GL pass
+# elsewhere in render/ never blocks these tests.
+dfm_test(test_camera SOURCES test_camera.cpp ${PROJECT_SOURCE_DIR}/render/camera.cpp LIBS Eigen3::Eigen)
+dfm_test(test_editor_picking SOURCES test_editor_picking.cpp ${PROJECT_SOURCE_DIR}/render/camera.cpp
+         ${PROJECT_SOURCE_DIR}/render/picking.cpp LIBS Eigen3::Eigen)
+dfm_test(test_editor_gizmo SOURCES test_editor_gizmo.cpp ${PROJECT_SOURCE_DIR}/render/camera.cpp
+         ${PROJECT_SOURCE_DIR}/app/editor/gizmo.cpp ${PROJECT_SOURCE_DIR}/app/editor/camera_sync.cpp
+         ${PROJECT_SOURCE_DIR}/app/editor/file_panel.cpp LIBS Eigen3::Eigen imgui)
+
+# The real editor binary under the suite's X server.
+if(DFM_BUILD_EDITOR)
+  dfm_test(test_editor_gl SOURCES test_editor_gl.cpp ${PROJECT_SOURCE_DIR}/render/screenshot.cpp
+           LIBS dfm_util PkgConfig::EPOXY TIMEOUT 600)
+  target_compile_definitions(test_editor_gl PRIVATE DFM_EDITOR_EXE="$<TARGET_FILE:deform-editor>")
+  add_dependencies(test_editor_gl deform-editor)
+endif()

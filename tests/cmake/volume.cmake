@@ -1,0 +1,4 @@
+# volume engineer: tetrahedralization (TetGen subprocess), handle geometry, winding numbers, robust volume.
+dfm_test(test_winding_number SOURCES test_winding_number.cpp LIBS dfm_bind dfm_mesh)
+dfm_test(test_tetrahedralize SOURCES test_tetrahedralize.cpp LIBS dfm_bind dfm_mesh)
+dfm_test(test_bind_volume SOURCES test_bind_volume.cpp LIBS dfm_bind dfm_rig dfm_mesh TIMEOUT 600)

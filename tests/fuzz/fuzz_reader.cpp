@@ -1,0 +1,129 @@
+// libFuzzer target for one reader, chosen at compile time with -DDFM_FUZZ_READER=<name>:
+// obj off ply stl mesh tetgen dmat tgf points. The input is written to a temp file and read back
+// through the public API. A dfm::Error is the expected outcome for bad input; any other exception,
+// a sanitizer report, or a failed round trip (read -> write -> read must give the same data) is a bug.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "core/mesh/io.h"
+#include "core/mesh/mesh_info.h"
+#include "core/rig/rig_io.h"
+#include "core/util/error.h"
+
+#define DFM_STR2(x) #x
+#define DFM_STR(x) DFM_STR2(x)
+
+namespace {
+
+std::string temp_base() {
+  static const std::string base = [] {
+    const char* dir = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+    return std::string(dir) + "/dfm_fuzz_" + std::to_string(getpid());
+  }();
+  return base;
+}
+
+void put(const std::string& path, const uint8_t* data, size_t size) {
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+}
+
+void check(bool ok, const char* what) {
+  if (!ok) {
+    std::fprintf(stderr, "round trip mismatch: %s\n", what);
+    std::abort();
+  }
+}
+
+void exercise_surface(const dfm::TriMesh& m) {
+  dfm::bounding_box(m.V);
+  dfm::is_closed(m.F);
+  dfm::connected_component_count(m.F);
+  dfm::degenerate_face_count(m.V, m.F);
+  dfm::duplicate_vertex_count(m.V, 1e-3);
+}
+
+void surface_round_trip(const dfm::TriMesh& m, const std::string& ext, bool binary) {
+  const std::string out = temp_base() + "_out" + ext;
+  dfm::write_surface(out, m, binary);
+  dfm::TriMesh r = dfm::read_surface(out);
+  check(r.V == m.V && r.F == m.F, "surface V/F");
+  check(r.N.size() == 0 || r.N == m.N, "surface N");
+}
+
+void one_input(const uint8_t* data, size_t size) {
+  const std::string reader = DFM_STR(DFM_FUZZ_READER);
+  const std::string base = temp_base();
+  if (reader == "obj" || reader == "off" || reader == "ply" || reader == "stl") {
+    const std::string path = base + "." + reader;
+    put(path, data, size);
+    dfm::TriMesh m = dfm::read_surface(path);
+    exercise_surface(m);
+    if (reader != "stl") surface_round_trip(m, "." + reader, false);
+    if (reader == "ply") surface_round_trip(m, ".ply", true);
+  } else if (reader == "mesh") {
+    const std::string path = base + ".mesh";
+    put(path, data, size);
+    dfm::TetMesh m = dfm::read_tet_mesh(path);
+    dfm::tet_boundary_faces(m.T);
+    dfm::write_tet_mesh(base + "_out.mesh", m);
+    dfm::TetMesh r = dfm::read_tet_mesh(base + "_out.mesh");
+    check(r.V == m.V && r.F == m.F, "mesh V/F");
+    check(r.T.rows() == m.T.rows(), "mesh T");  // zero-volume tets may differ in orientation only
+  } else if (reader == "tetgen") {
+    // "node text" [ "@@\n" "ele text" ]; without a separator a fixed one-tet .ele is used.
+    std::string s(reinterpret_cast<const char*>(data), size);
+    size_t sep = s.find("@@\n");
+    std::string node = s.substr(0, sep), ele = sep == std::string::npos ? "1 4 0\n1 1 2 3 4\n" : s.substr(sep + 3);
+    put(base + ".node", reinterpret_cast<const uint8_t*>(node.data()), node.size());
+    put(base + ".ele", reinterpret_cast<const uint8_t*>(ele.data()), ele.size());
+    dfm::TetMesh m = dfm::read_tet_mesh(base + ".node");
+    dfm::non_positive_tet_count(m.V, m.T);
+  } else if (reader == "dmat") {
+    const std::string path = base + ".dmat";
+    put(path, data, size);
+    Eigen::MatrixXd M = dfm::read_dmat(path);
+    for (bool binary : {false, true}) {
+      dfm::write_dmat(base + "_out.dmat", M, binary);
+      Eigen::MatrixXd R = dfm::read_dmat(base + "_out.dmat");
+      check(R.rows() == M.rows() && R.cols() == M.cols() && R == M, "dmat");
+    }
+  } else if (reader == "tgf") {
+    const std::string path = base + ".tgf";
+    put(path, data, size);
+    dfm::TgfData t = dfm::read_tgf(path);
+    dfm::Rig rig;
+    try {
+      dfm::add_tgf_to_rig(rig, t, path);  // may refuse (cycles, pseudo-edges on bones): dfm::Error
+    } catch (const dfm::Error&) {
+      return;
+    }
+    dfm::Rig again;
+    dfm::add_tgf_to_rig(again, dfm::rig_to_tgf(rig), "again");
+    check(again.skeleton.num_bones() == rig.skeleton.num_bones() && again.points.size() == rig.points.size() &&
+              again.pseudo_edges == rig.pseudo_edges,
+          "tgf rig");
+  } else if (reader == "points") {
+    const std::string path = base + ".xyz";
+    put(path, data, size);
+    dfm::read_points(path);
+  } else {
+    std::fprintf(stderr, "unknown DFM_FUZZ_READER %s\n", reader.c_str());
+    std::abort();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  try {
+    one_input(data, size);
+  } catch (const dfm::Error&) {
+    // the expected, clean failure
+  }
+  return 0;
+}

@@ -1,0 +1,54 @@
+#!/bin/sh
+# libFuzzer targets for every reader, built with clang++ directly (no need to build the whole project
+# with clang). Usage:
+#   tests/fuzz/run_fuzz.sh build OUT               build OUT/fuzz_<reader> for every reader
+#   tests/fuzz/run_fuzz.sh run OUT READER SECONDS  fuzz one reader: -seed=1, seed corpus tests/fuzz/corpus/READER
+#   tests/fuzz/run_fuzz.sh all OUT SECONDS         build, then fuzz every reader
+# Crashes land in OUT/crashes/; copy them to tests/fuzz/crashes/<reader>/ so test_io_fuzz_inputs
+# replays them in the normal suite. Exit status is non-zero when a fuzzer finds a crash.
+set -eu
+HERE=$(cd "$(dirname "$0")" && pwd)
+ROOT=$(cd "$HERE/../.." && pwd)
+READERS="obj off ply stl mesh tetgen dmat tgf points"
+CXX=${FUZZ_CXX:-$(command -v clang++-14 || command -v clang++ || true)}
+
+build() {
+  out=$1
+  [ -n "$CXX" ] || { echo "run_fuzz.sh: clang++ not found (apt-get install clang-14 libclang-rt-14-dev)" >&2; exit 1; }
+  mkdir -p "$out/obj"
+  flags="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT -I/usr/include/eigen3"
+  objs=""
+  for src in "$ROOT"/core/util/*.cpp "$ROOT"/core/mesh/*.cpp "$ROOT"/core/rig/rig.cpp "$ROOT"/core/rig/rig_io.cpp; do
+    o="$out/obj/$(basename "$src" .cpp).o"
+    if [ ! -f "$o" ] || [ "$src" -nt "$o" ] || [ "$ROOT/core/mesh/io_parse.h" -nt "$o" ]; then
+      "$CXX" $flags -fsanitize=fuzzer-no-link,address,undefined -c "$src" -o "$o"
+    fi
+    objs="$objs $o"
+  done
+  for r in $READERS; do
+    "$CXX" $flags -fsanitize=fuzzer,address,undefined -DDFM_FUZZ_READER=$r "$HERE/fuzz_reader.cpp" $objs \
+      -o "$out/fuzz_$r"
+  done
+}
+
+run() {
+  out=$1 r=$2 secs=$3
+  work="$out/corpus/$r"
+  mkdir -p "$work" "$out/crashes"
+  # A scratch copy of the seeds: libFuzzer adds what it finds to the first corpus folder.
+  cp "$HERE/corpus/$r"/* "$work"/ 2>/dev/null || true
+  ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    "$out/fuzz_$r" -seed=1 -max_total_time="$secs" -rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=10 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$out/crashes/$r-" "$work"
+}
+
+case "${1:-}" in
+  build) build "$2" ;;
+  run) run "$2" "$3" "$4" ;;
+  all)
+    build "$2"
+    status=0
+    for r in $READERS; do run "$2" "$r" "$3" || status=1; done
+    exit $status ;;
+  *) sed -n '2,10p' "$0"; exit 2 ;;
+esac

@@ -1,0 +1,106 @@
+// Runs the real editor binary under the suite's X server: --screenshot writes a PNG showing a lit
+// mesh; without a display the editor exits 1 naming xvfb-run; a script drives the document.
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "render/screenshot.h"
+#include "tests/test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int code = -1;
+  std::string output;
+};
+
+Run run(const std::string& cmd) {
+  Run r;
+  std::FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string tmp(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("dfm_editor_test_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return (d / name).string();
+}
+
+// Statistics of the 3D viewport (the window minus the panels): the fraction of pixels that are the
+// warm lit mesh, and the spread of their brightness (shading varies across a lit surface).
+struct Coverage {
+  double fraction = 0;
+  double luminance_stddev = 0;
+};
+
+Coverage mesh_coverage(const dfm::gl::Image& img) {
+  const int x0 = 260, x1 = img.width - 310, y0 = 40, y1 = img.height - 128;
+  long n = 0, mesh = 0;
+  double sum = 0, sum2 = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const unsigned char* p = &img.rgba[(size_t(y) * img.width + x) * 4];
+      ++n;
+      // The background and grid are blue-grey; the default material is warm (red > blue).
+      if (int(p[0]) - int(p[2]) > 8 && p[0] > 45) {
+        ++mesh;
+        const double l = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+        sum += l;
+        sum2 += l * l;
+      }
+    }
+  Coverage c;
+  c.fraction = n ? double(mesh) / n : 0;
+  if (mesh > 1) c.luminance_stddev = std::sqrt(std::max(0.0, sum2 / mesh - (sum / mesh) * (sum / mesh)));
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("editor --screenshot renders a lit mesh and exits", "[editor][gl]") {
+  DFM_DATA_OR_SKIP(knight, "decimated-knight.off");
+  const std::string png = tmp("knight.png");
+  const Run r = run(std::string("\"") + DFM_EDITOR_EXE + "\" \"" + knight + "\" --screenshot \"" + png + "\" --quit");
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  const dfm::gl::Image img = dfm::gl::read_png(png);
+  REQUIRE(img.width == 1280);
+  REQUIRE(img.height == 800);
+  const Coverage c = mesh_coverage(img);
+  INFO("mesh fraction " << c.fraction << ", luminance stddev " << c.luminance_stddev);
+  REQUIRE(c.fraction > 0.05);   // framed: the mesh fills a good part of the view
+  REQUIRE(c.fraction < 0.9);    // ...but is not everything
+  REQUIRE(c.luminance_stddev > 8.0);  // lit: shading varies
+}
+
+TEST_CASE("editor without a display exits 1 and names xvfb-run", "[editor][gl]") {
+  const Run r = run(std::string("env -u DISPLAY -u WAYLAND_DISPLAY \"") + DFM_EDITOR_EXE + "\" --quit");
+  REQUIRE(r.code == 1);
+  REQUIRE(r.output.find("xvfb-run") != std::string::npos);
+}
+
+TEST_CASE("editor rejects unknown options with exit 2", "[editor]") {
+  const Run r = run(std::string("\"") + DFM_EDITOR_EXE + "\" --bogus");
+  REQUIRE(r.code == 2);
+  REQUIRE(r.output.find("unknown option") != std::string::npos);
+}
+
+TEST_CASE("editor runs from any working directory and reports a missing file", "[editor][gl]") {
+  const Run r = run("cd / && \"" + std::string(DFM_EDITOR_EXE) + "\" /nonexistent/mesh.obj --quit");
+  REQUIRE(r.code == 1);
+  REQUIRE(r.output.find("/nonexistent/mesh.obj") != std::string::npos);
+}

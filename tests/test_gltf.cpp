@@ -1,0 +1,209 @@
+// glTF export: TRS decomposition, influence pruning, and the export -> import -> skin round trip
+// on a synthetic rig with every handle kind (the validator run lives in test_gltf_validator.cpp).
+#include <filesystem>
+#include <random>
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+
+#include "core/export/gltf_export.h"
+#include "core/export/gltf_import.h"
+#include "core/export/prune.h"
+#include "core/export/trs.h"
+#include "core/skin/lbs.h"
+#include "core/util/error.h"
+#include "tests/test_gltf_fixtures.h"
+
+using namespace dfm;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("dfm_test_gltf_" + name + "_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+double max_row_distance(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  REQUIRE(A.rows() == B.rows());
+  return (A - B).rowwise().norm().maxCoeff();
+}
+
+}  // namespace
+
+TEST_CASE("TRS: compose(decompose(M)) == M for random TRS, including reflections", "[gltf][trs]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int i = 0; i < 200; ++i) {
+    Trs t;
+    t.translation = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 10;
+    t.rotation = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized());
+    t.scale = Eigen::Vector3d(0.1 + std::abs(u(rng)) * 3, 0.1 + std::abs(u(rng)) * 3, 0.1 + std::abs(u(rng)) * 3);
+    if (i % 3 == 0) t.scale.y() = -t.scale.y();  // a reflection
+    // Independent construction of the matrix: scale first, then rotate, then translate.
+    Eigen::Affine3d M = Eigen::Translation3d(t.translation) * t.rotation * Eigen::Scaling(t.scale);
+    const TrsFit fit = decompose_trs(M);
+    CHECK(fit.shear < 1e-12);
+    CHECK(std::abs(fit.trs.rotation.norm() - 1) < 1e-12);
+    CHECK((compose_trs(fit.trs).matrix() - M.matrix()).norm() < 1e-10 * M.matrix().norm());
+    CHECK(fit.trs.rotation.toRotationMatrix().determinant() > 0);
+  }
+}
+
+TEST_CASE("TRS: shear is reported, singular transforms throw", "[gltf][trs]") {
+  Eigen::Affine3d M = Eigen::Affine3d::Identity();
+  M.linear() << 1, 0.5, 0, 0, 1, 0, 0, 0, 1;
+  const TrsFit fit = decompose_trs(M);
+  CHECK(fit.shear > 0.1);
+  // The residual is what the fit leaves out, measured independently.
+  CHECK(std::abs((compose_trs(fit.trs).linear() - M.linear()).norm() / M.linear().norm() - fit.shear) < 1e-12);
+  Eigen::Affine3d Z = Eigen::Affine3d::Identity();
+  Z.linear()(2, 2) = 0;
+  CHECK_THROWS_AS(decompose_trs(Z), Error);
+  Eigen::Affine3d Nan = Eigen::Affine3d::Identity();
+  Nan.translation().x() = std::nan("");
+  CHECK_THROWS_AS(decompose_trs(Nan), Error);
+}
+
+TEST_CASE("pruning for export: top k, renormalized, non-negative, never all zero", "[gltf][prune]") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.05, 1);
+  Eigen::MatrixXd W(300, 11);
+  for (int i = 0; i < W.rows(); ++i)
+    for (int j = 0; j < W.cols(); ++j) W(i, j) = u(rng);
+  W.row(5).setZero();
+  W.row(6).setConstant(-0.1);
+  W(6, 7) = -0.5;
+  for (int k : {1, 4, 8, 11, 16}) {
+    const Influences inf = prune_for_export(W, k);
+    REQUIRE(inf.k() == k);
+    for (int v = 0; v < W.rows(); ++v) {
+      CHECK(std::abs(inf.weight.row(v).sum() - 1) < 1e-12);
+      CHECK(inf.weight.row(v).minCoeff() >= 0);
+      for (int j = 0; j < k; ++j)
+        if (inf.weight(v, j) == 0) CHECK(inf.index(v, j) == 0);
+    }
+    // Reference: brute force, keep the k largest positive weights.
+    for (int v : {0, 17, 299}) {
+      std::vector<std::pair<double, int>> all;
+      for (int j = 0; j < W.cols(); ++j) all.push_back({W(v, j), j});
+      std::sort(all.begin(), all.end(), [](auto& a, auto& b) { return a.first > b.first; });
+      double sum = 0;
+      for (int j = 0; j < std::min<int>(k, W.cols()); ++j) sum += std::max(0.0, all[j].first);
+      const Eigen::MatrixXd D = influences_to_dense(inf, W.cols());
+      for (int j = 0; j < std::min<int>(k, W.cols()); ++j)
+        CHECK(std::abs(D(v, all[j].second) - std::max(0.0, all[j].first) / sum) < 1e-12);
+    }
+    // All-zero and all-negative rows: weight 1 on the largest-magnitude handle.
+    CHECK(inf.weight(5, 0) == 1.0);
+    CHECK(inf.weight(6, 0) == 1.0);
+    CHECK(inf.index(6, 0) == 7);
+  }
+  CHECK_THROWS_AS(prune_for_export(W, 0), Error);
+}
+
+TEST_CASE("glTF round trip: re-imported skin reproduces LBS at every key (synthetic rig, all handle kinds)",
+          "[gltf][roundtrip]") {
+  const GltfExportInput in = test::synthetic_input();
+  const fs::path dir = temp_dir("roundtrip");
+  const int nh = num_handles(in.rig);
+  const double diag = (in.surface.V.colwise().maxCoeff() - in.surface.V.colwise().minCoeff()).norm();
+  double prune_err[2] = {0, 0};
+  for (int ki = 0; ki < 2; ++ki) {
+    const int k = ki == 0 ? 4 : 8;
+    for (const std::string ext : {"glb", "gltf"}) {
+      const std::string path = (dir / ("tube" + std::to_string(k) + "." + ext)).string();
+      const GltfExportReport rep = export_gltf(path, in, {k});
+      CHECK(rep.sheared_transforms == 0);
+      CHECK(rep.max_shear < 1e-9);
+      CHECK(rep.joints == nh);
+      const GltfDocument doc = read_gltf(path);
+      if (ext == "gltf") CHECK(fs::exists(dir / ("tube" + std::to_string(k) + ".bin")));
+      REQUIRE(doc.joints.size() == static_cast<size_t>(nh));
+      REQUIRE(doc.skinned.weights.cols() == k);
+      CHECK(max_row_distance(doc.skinned.V, in.surface.V) < 1e-6 * diag);
+      CHECK(doc.skinned.F == in.surface.F);
+      // Stored influences are the pruned ones.
+      const Eigen::MatrixXd Wp = influences_to_dense(prune_for_export(in.weights, k), nh);
+      Influences stored;
+      stored.index = doc.skinned.joints;
+      stored.weight = doc.skinned.weights;
+      CHECK((influences_to_dense(stored, nh) - Wp).cwiseAbs().maxCoeff() < 1e-6);
+      const std::vector<double> times = doc.key_times();
+      REQUIRE(times.size() == in.keys.size());
+      double worst_full = 0;
+      for (size_t i = 0; i < in.keys.size(); ++i) {
+        CHECK(std::abs(times[i] - in.keys[i].time) < 1e-6);
+        const Eigen::MatrixXd U = gltf_skinned_positions(doc, times[i]);
+        // Same weights as stored: only float rounding separates the two.
+        CHECK(max_row_distance(U, lbs(in.surface.V, Wp, in.keys[i].pose)) < 1e-5 * diag);
+        worst_full = std::max(worst_full, max_row_distance(U, lbs(in.surface.V, in.weights, in.keys[i].pose)));
+      }
+      // The current pose is the nodes' default transforms: skin with the animation ignored.
+      GltfDocument still = doc;
+      still.channels.clear();
+      const Eigen::MatrixXd Uc = gltf_skinned_positions(still, 0.0);
+      CHECK(max_row_distance(Uc, lbs(in.surface.V, Wp, in.current)) < 1e-5 * diag);
+      worst_full = std::max(worst_full, max_row_distance(Uc, lbs(in.surface.V, in.weights, in.current)));
+      // The exporter's pruning report matches what the file actually does.
+      CHECK(std::abs(worst_full - rep.max_prune_error) < 1e-5 * diag);
+      prune_err[ki] = rep.max_prune_error;
+    }
+  }
+  WARN("synthetic tube (10 handles, inverse-distance weights): pruning error / bbox diagonal: k=4 "
+       << prune_err[0] / diag << ", k=8 " << prune_err[1] / diag);
+  CHECK(prune_err[0] > 0);
+  CHECK(prune_err[1] < prune_err[0]);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("glTF export: baked frames as morph targets play back exactly at their times", "[gltf][morph]") {
+  GltfExportInput in = test::synthetic_input();
+  for (size_t i = 0; i < in.keys.size(); ++i) {
+    in.morph_frames.push_back(lbs(in.surface.V, in.weights, in.keys[i].pose));
+    in.morph_times.push_back(in.keys[i].time);
+  }
+  const fs::path dir = temp_dir("morph");
+  const std::string path = (dir / "morph.glb").string();
+  const GltfExportReport rep = export_gltf(path, in, {8});
+  CHECK(rep.morph_targets == 3);
+  const GltfDocument doc = read_gltf(path);
+  REQUIRE(doc.morph_node >= 0);
+  REQUIRE(doc.morph.targets.size() == 3);
+  const double diag = rep.bbox_diagonal;
+  for (size_t i = 0; i < in.keys.size(); ++i)
+    CHECK(max_row_distance(gltf_morphed_positions(doc, in.morph_times[i]), in.morph_frames[i]) < 1e-5 * diag);
+  // Halfway between two frames glTF blends them linearly.
+  const double tm = 0.5 * (in.morph_times[0] + in.morph_times[1]);
+  CHECK(max_row_distance(gltf_morphed_positions(doc, tm), 0.5 * (in.morph_frames[0] + in.morph_frames[1])) < 1e-5 * diag);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("glTF export: shear is reported, bad input throws", "[gltf][errors]") {
+  GltfExportInput in = test::synthetic_input();
+  in.keys[1].pose = test::synthetic_pose(in.rig, 1.0, /*shear=*/true);
+  const fs::path dir = temp_dir("errors");
+  const GltfExportReport rep = export_gltf((dir / "shear.glb").string(), in, {4});
+  CHECK(rep.sheared_transforms == 1);
+  CHECK(rep.max_shear > 0.05);
+  REQUIRE(!rep.notes.empty());
+  CHECK(rep.notes[0].find("base") != std::string::npos);  // names the region's node
+
+  GltfExportInput bad = test::synthetic_input();
+  bad.weights.conservativeResize(Eigen::NoChange, bad.weights.cols() - 1);
+  CHECK_THROWS_AS(export_gltf((dir / "a.glb").string(), bad, {4}), Error);
+  bad = test::synthetic_input();
+  bad.keys[2].time = bad.keys[1].time;
+  CHECK_THROWS_AS(export_gltf((dir / "b.glb").string(), bad, {4}), Error);
+  bad = test::synthetic_input();
+  bad.current.transforms.pop_back();
+  CHECK_THROWS_AS(export_gltf((dir / "c.glb").string(), bad, {4}), Error);
+  CHECK_THROWS_AS(export_gltf((dir / "d.obj").string(), test::synthetic_input(), {4}), Error);
+  CHECK_THROWS_AS(export_gltf((dir / "e.glb").string(), test::synthetic_input(), {5}), Error);
+  CHECK_THROWS_AS(export_gltf((dir / "no_such_dir" / "f.glb").string(), test::synthetic_input(), {4}), Error);
+  CHECK(!fs::exists(dir / "a.glb"));
+  CHECK_THROWS_AS(read_gltf((dir / "missing.glb").string()), Error);
+  fs::remove_all(dir);
+}

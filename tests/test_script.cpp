@@ -1,0 +1,182 @@
+// The script language: parse errors name the file and line; commands drive the Document the way the
+// UI does; save-posed writes the skinned pose, or the animation manifold's slice when keys exist,
+// checked against linear blend skinning computed here by hand.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/mesh/io.h"
+#include "core/scene/script.h"
+#include "core/util/error.h"
+
+using namespace dfm;
+namespace fs = std::filesystem;
+
+namespace {
+TriMesh tetra() {
+  TriMesh m;
+  m.V.resize(4, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  m.F.resize(4, 3);
+  m.F << 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2;
+  return m;
+}
+
+void expect_parse_error(const std::string& text, int line, const std::string& what) {
+  try {
+    parse_script(text, "s.txt");
+    FAIL("no error for: " << text);
+  } catch (const Error& e) {
+    INFO(e.what());
+    CHECK(std::string(e.what()).find("s.txt:" + std::to_string(line) + ":") == 0);
+    CHECK(std::string(e.what()).find(what) != std::string::npos);
+  }
+}
+
+struct TempDir {
+  fs::path dir = fs::temp_directory_path() / ("dfm_script_test_" + std::to_string(::getpid()));
+  TempDir() { fs::create_directories(dir); }
+  ~TempDir() { fs::remove_all(dir); }
+  std::string operator/(const std::string& f) const { return (dir / f).string(); }
+};
+
+// Two point handles on a tetrahedron, weights fixed by hand: vertex i follows handle 0 with w0(i).
+Document posable() {
+  Document d;
+  d.set_surface(tetra(), "tetra");
+  d.add_point({0.1, 0.1, 0.1});
+  d.add_point({0.2, 0.1, 0.1});
+  Eigen::MatrixXd W(4, 2);
+  W << 1, 0, 0.5, 0.5, 0.25, 0.75, 0, 1;
+  d.set_weights(W, {});
+  return d;
+}
+}  // namespace
+
+TEST_CASE("script parsing: comments, blank lines, and errors with file and line") {
+  const auto lines = parse_script("# a comment\n\nadd-point 1 2 3   # trailing\r\nselect 0\nquit\n", "s.txt");
+  REQUIRE(lines.size() == 3);
+  CHECK(lines[0].line == 3);
+  CHECK(lines[0].words == std::vector<std::string>{"add-point", "1", "2", "3"});
+  CHECK(lines[2].words[0] == "quit");
+  expect_parse_error("select 0\nfly 1 2\n", 2, "unknown command 'fly'");
+  expect_parse_error("add-point 1 2\n", 1, "takes 3 argument(s), got 2");
+  expect_parse_error("\n\ntranslate 1 x 3\n", 3, "'x' is not a finite number");
+  expect_parse_error("rotate 30 0 0 nan\n", 1, "not a finite number");
+  expect_parse_error("add-bone 0 0 0 1 1 1 2\n", 1, "takes 6..3000");
+  expect_parse_error("add-bone 0 0 0 1 1 1 2 2 2 3\n", 1, "in threes");
+  expect_parse_error("save-frames out/f 1\n", 1, "must be an integer >= 2");
+  expect_parse_error("set-key 1 2\n", 1, "usage: set-key [TIME]");
+  CHECK_THROWS_WITH(read_script("/nonexistent/s.txt"), Catch::Contains("/nonexistent/s.txt"));
+}
+
+TEST_CASE("script commands edit the document like the UI") {
+  Document d;
+  d.set_surface(tetra(), "tetra");
+  const auto lines = parse_script(
+      "add-point 0.1 0.1 0.1\n"
+      "add-point 0.2 0.1 0.1\n"
+      "pseudo-edge 0 1\n"
+      "add-bone 0 0 0.2  0.1 0 0.2  0.2 0 0.2\n"
+      "set-method dqs\n"
+      "select 2\n"
+      "rotate 90 0 0 1\n"
+      "set-key 0\n"
+      "select 0\n"
+      "translate 0 0 1\n"
+      "set-time 2\n"
+      "set-key\n"
+      "delete-key 0\n"
+      "undo\n"
+      "reset-pose\n"
+      "quit\n"
+      "add-point 9 9 9\n",
+      "s.txt");
+  int seen = 0;
+  ScriptHost host;
+  host.after_command = [&](const ScriptLine&) { ++seen; };
+  const ScriptResult r = run_script(d, lines, "s.txt", host);
+  CHECK(r.quit);
+  CHECK(r.commands_run == 16);
+  CHECK(seen == 16);
+  CHECK(d.rig().points.size() == 2);  // the line after quit never ran
+  CHECK(d.rig().pseudo_edges.size() == 1);
+  CHECK(d.rig().skeleton.num_bones() == 2);
+  CHECK(d.method() == SkinMethod::DQS);
+  REQUIRE(d.keys().size() == 2);  // delete-key was undone
+  CHECK(d.keys()[1].time == 2);
+  CHECK(d.keys()[1].params.point_translation[0] == Eigen::Vector3d(0, 0, 1));
+  CHECK(d.keys()[0].params.point_translation[0].isZero());
+  CHECK(d.keys()[0].params.bone_rotation[0].angularDistance(
+            Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()))) < 1e-12);
+  CHECK(d.pose_params().point_translation[0].isZero());  // reset-pose
+  CHECK(d.time() == 2);
+}
+
+TEST_CASE("script run errors name the script line and the command") {
+  Document d;
+  d.set_surface(tetra(), "tetra");
+  auto run = [&](const std::string& text) { run_script(d, parse_script(text, "s.txt"), "s.txt"); };
+  CHECK_THROWS_WITH(run("add-point 0 0 0\ntranslate 1 0 0\n"), Catch::StartsWith("s.txt:2: translate: no handle selected"));
+  CHECK_THROWS_WITH(run("select 7\n"), Catch::StartsWith("s.txt:1: select: no handle 7"));
+  CHECK_THROWS_WITH(run("save-posed x.obj\n"), Catch::Contains("no weights"));
+  CHECK_THROWS_WITH(run("delete-key 3\n"), Catch::StartsWith("s.txt:1: delete-key: no key at time 3"));
+  CHECK_THROWS_WITH(run("screenshot a.png\n"), Catch::Contains("screenshots need the editor"));
+  CHECK_THROWS_WITH(run("open /nonexistent/m.obj\n"), Catch::Contains("/nonexistent/m.obj"));
+  CHECK_THROWS_WITH(run("select 0\nrotate 10 0 0 0\n"), Catch::Contains("axis is zero"));
+}
+
+TEST_CASE("save-posed: the skinned pose, then the animation slice between keys") {
+  TempDir tmp;
+  Document d = posable();
+  std::string shot;
+  ScriptHost host;
+  host.screenshot = [&](const std::string& p) { shot = p; };
+  const std::string posed = tmp / "posed.obj", mid = tmp / "mid.obj", sc = tmp / "s.scene.json";
+  run_script(d,
+             parse_script("select 0\ntranslate 1 0 0\nselect 1\ntranslate 0 2 0\nsave-posed " + posed +
+                              "\nscreenshot " + tmp / "a.png" + "\n",
+                          "s.txt"),
+             "s.txt", host);
+  CHECK(shot == tmp / "a.png");
+  // LBS with pure translations: v + sum_j w_j t_j.
+  const Eigen::MatrixXd& W = d.weights();
+  Eigen::MatrixXd expect = tetra().V;
+  for (int i = 0; i < 4; ++i) expect.row(i) += Eigen::RowVector3d(W(i, 0), 2 * W(i, 1), 0);
+  const TriMesh got = read_surface(posed);
+  REQUIRE(got.num_vertices() == 4);
+  CHECK((got.V - expect).cwiseAbs().maxCoeff() < 1e-6);
+
+  // Keys at t = 0 (rest) and t = 2 (the pose above); translations blend linearly in time, so the
+  // slice at t = 0.5 is a quarter of the way.
+  run_script(d,
+             parse_script("set-key 2\nreset-pose\nset-key 0\nset-time 0.5\nsave-posed " + mid + "\nsave-scene " + sc +
+                              "\nsave-frames " + tmp / "f_" + " 3\n",
+                          "s.txt"),
+             "s.txt");
+  const TriMesh slice = read_surface(mid);
+  REQUIRE(slice.num_vertices() == 4);
+  const Eigen::MatrixXd quarter = tetra().V + 0.25 * (expect - tetra().V);
+  // Slice vertices may come in another order: match each to its nearest expected vertex.
+  for (int i = 0; i < 4; ++i) {
+    double best = 1e9;
+    for (int j = 0; j < 4; ++j) best = std::min(best, (slice.V.row(i) - quarter.row(j)).norm());
+    CHECK(best < 1e-6);
+  }
+  CHECK(fs::exists(tmp / "f_0000.obj"));
+  CHECK(fs::exists(tmp / "f_0002.obj"));
+  CHECK_FALSE(fs::exists(tmp / "f_0003.obj"));
+  const TriMesh last = read_surface(tmp / "f_0002.obj");
+  for (int i = 0; i < 4; ++i) {
+    double best = 1e9;
+    for (int j = 0; j < 4; ++j) best = std::min(best, (last.V.row(i) - expect.row(j)).norm());
+    CHECK(best < 1e-6);
+  }
+  // The saved scene reopens with keys, weights and time.
+  Document e;
+  run_script(e, parse_script("open " + sc + "\n", "s.txt"), "s.txt");
+  CHECK(e.keys().size() == 2);
+  CHECK(e.has_weights());
+  CHECK(e.time() == 0.5);
+}
