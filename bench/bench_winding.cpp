@@ -40,14 +40,17 @@ int main(int argc, char** argv) {
   const dfm::WindingTree tree = dfm::build_winding_tree(m.V, m.F);
   const double t_build = since(t);
   std::printf("tree build:    %8.3f s  (%zu nodes)\n", t_build, tree.nodes.size());
-  for (double beta : {1.5, 2.0, 3.0, 4.0, 6.0}) {
+  const dfm::WindingAccuracy def;
+  for (dfm::WindingAccuracy acc : {dfm::WindingAccuracy{2.0, 1e300}, dfm::WindingAccuracy{4.0, 1e300},
+                                   dfm::WindingAccuracy{5.0, 1e300}, def, dfm::WindingAccuracy{2.0, 1e-4},
+                                   dfm::WindingAccuracy{2.0, 1e-5}}) {
     t = Clock::now();
-    const Eigen::VectorXd wt = dfm::winding_numbers(tree, P, beta, threads);
+    const Eigen::VectorXd wt = dfm::winding_numbers(tree, P, acc, threads);
     const double tt = since(t);
     int disagree = 0;
     for (int i = 0; i < n; ++i) disagree += (wd(i) > 0.5) != (wt(i) > 0.5);
-    std::printf("tree beta=%.1f: %8.3f s  speed-up %7.1fx (%6.1fx incl. build)  max |diff| %.2e  in/out flips %d\n",
-                beta, tt, t_direct / tt, t_direct / (tt + t_build), (wd - wt).cwiseAbs().maxCoeff(), disagree);
+    std::printf("tree beta=%.1f node_tol=%-7.0e%s: %7.3f s  speed-up %7.1fx (%6.1fx incl. build)  max |diff| %.2e  in/out flips %d\n",
+                acc.beta, acc.node_tolerance, acc.node_tolerance == def.node_tolerance && acc.beta == def.beta ? " (default)" : "          ", tt, t_direct / tt, t_direct / (tt + t_build), (wd - wt).cwiseAbs().maxCoeff(), disagree);
   }
   return 0;
 }

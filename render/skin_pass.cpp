@@ -7,7 +7,7 @@
 namespace dfm::gl {
 
 namespace {
-constexpr int kHandleTexels = 12;  // must match HANDLE_TEXELS in shaders/skin.vert.glsl
+constexpr int kHandleTexels = 16;  // must match HANDLE_TEXELS in shaders/skin.vert.glsl
 
 void put_row(float* dst, const Eigen::Vector4d& v) {
   for (int c = 0; c < 4; ++c) dst[c] = static_cast<float>(v[c]);
@@ -88,7 +88,7 @@ void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
   for (int h = 0; h < nh; ++h) {
     float* d = &data[static_cast<size_t>(h) * kHandleTexels * 4];
     const bool active = !stbs.empty() && stbs[h].active;
-    const Eigen::Affine3d T = active ? pose.transforms[h] * stbs[h].unstretched : pose.transforms[h];
+    const Eigen::Affine3d& T = pose.transforms[h];
     for (int r = 0; r < 3; ++r) put_row(d + 4 * r, T.matrix().row(r).transpose());
     put_row(d + 12, dq[h].real);
     put_row(d + 16, dq[h].dual);
@@ -98,6 +98,8 @@ void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
       put_row(d + 32, Eigen::Vector4d(s.origin.x(), s.origin.y(), s.origin.z(), s.twist));
       put_row(d + 36, Eigen::Vector4d(s.axis.x(), s.axis.y(), s.axis.z(), 1.0));
       put_row(d + 40, Eigen::Vector4d(s.stretch.x(), s.stretch.y(), s.stretch.z(), 0.0));
+      const Eigen::Affine3d Tp = T * s.unstretched;
+      for (int r = 0; r < 3; ++r) put_row(d + 44 + 4 * r, Tp.matrix().row(r).transpose());
     }
   }
   handle_data_.upload(GL_TEXTURE_BUFFER, data, GL_STREAM_DRAW);

@@ -18,7 +18,7 @@ namespace dfm::gl {
 enum class SurfaceColorMode { Shaded = 0, Scalar = 1, VertexColor = 2 };
 
 struct SurfaceStyle {
-  Eigen::Vector3f base_color{0.72f, 0.66f, 0.60f};  // linear RGB
+  Eigen::Vector3f base_color{0.50f, 0.40f, 0.31f};  // linear RGB: warm clay
   Eigen::Vector3f back_color{0.55f, 0.12f, 0.10f};
   Eigen::Vector3f wire_color{0.08f, 0.08f, 0.09f};
   bool wireframe = false;

@@ -2,13 +2,14 @@
 // One method per compiled program: METHOD_LBS, METHOD_DQS or METHOD_STBS; K = 4 or 8 influences.
 // Mirrors core/skin/{lbs,dqs,stbs}.cpp term by term (those are the double-precision references).
 // Handle data: a texture buffer (RGBA32F), HANDLE_TEXELS texels per handle:
-//   0-2  rows of [A | t] (STBS: of T' = T W^-1 for active bones)
+//   0-2  rows of [A | t]
 //   3    dual quaternion real part (x y z w)      4  dual part
 //   5-7  rows of the DQS stretch S = R^T A
 //   8    STBS: bone origin a (xyz), twist angle (w)
 //   9    STBS: unit bone axis (xyz), 1 if the bone is active (w)
 //   10   STBS: stretch offset (sigma - 1)(b - a) (xyz)
-#define HANDLE_TEXELS 12
+//   11-13  STBS: rows of T' = T W^-1 (the bone without its twist/stretch) for active bones
+#define HANDLE_TEXELS 16
 
 layout(location = 0) in vec3 rest_position;
 layout(location = 1) in vec3 rest_normal;
@@ -74,12 +75,12 @@ void main() {
     float w = ws[j];
     if (w == 0.0) continue;
     int h = hs[j];
-    vec4 r0 = texel(h, 0), r1 = texel(h, 1), r2 = texel(h, 2);
-    mat3 L = transpose(mat3(r0.xyz, r1.xyz, r2.xyz));
-    vec3 t = vec3(r0.w, r1.w, r2.w);
 #ifdef METHOD_STBS
     vec4 axis = texel(h, 9);
     if (axis.w > 0.5) {
+      vec4 s0 = texel(h, 11), s1 = texel(h, 12), s2 = texel(h, 13);
+      mat3 L = transpose(mat3(s0.xyz, s1.xyz, s2.xyz));
+      vec3 t = vec3(s0.w, s1.w, s2.w);
       vec4 origin = texel(h, 8);
       float angle = es[j] * origin.w;
       mat3 R = axis_rotation(axis.xyz, angle);
@@ -90,6 +91,9 @@ void main() {
       continue;
     }
 #endif
+    vec4 r0 = texel(h, 0), r1 = texel(h, 1), r2 = texel(h, 2);
+    mat3 L = transpose(mat3(r0.xyz, r1.xyz, r2.xyz));
+    vec3 t = vec3(r0.w, r1.w, r2.w);
     q += w * (L * p + t);
     A += w * L;
   }

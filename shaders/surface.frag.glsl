@@ -60,8 +60,8 @@ void main() {
   vec3 h = normalize(key_dir + view_dir);
   float spec = front ? pow(max(dot(n, h), 0.0), 48.0) * 0.25 : 0.0;
   float rim = pow(1.0 - max(dot(n, view_dir), 0.0), 3.0) * 0.18;
-  vec3 color = albedo * (ambient + 0.78 * key * vec3(1.0, 0.97, 0.92) + 0.30 * fill * vec3(0.75, 0.82, 1.0)) +
-               vec3(spec) + vec3(rim);
+  vec3 color = albedo * (ambient + 0.85 * key * vec3(1.0, 0.96, 0.90) + 0.28 * fill * vec3(0.70, 0.80, 1.0)) +
+               vec3(spec) + rim * vec3(0.55, 0.65, 0.85);
   color = mix(color, vec3(0.05), iso * 0.85);
 
   if (u_wireframe == 1) {

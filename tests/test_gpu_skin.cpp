@@ -48,6 +48,15 @@ static void check_arm_pose(gl::Context& ctx, int k) {
     const double nrm_err = (gpu.N - cpu.N).rowwise().norm().maxCoeff();
     WARN(skin_method_name(m) << " k=" << k << ": max |GPU - CPU| = " << pos_err / diag
                              << " of the bbox diagonal; normals " << nrm_err);
+    {
+      Eigen::Index worst;
+      (gpu.V - cpu.V).rowwise().norm().maxCoeff(&worst);
+      WARN("worst " << worst << " gpu " << gpu.V.row(worst) << " cpu " << cpu.V.row(worst) << " rest " << mesh.V.row(worst)
+                    << " idx " << b.influences.index.row(worst) << " w " << b.influences.weight.row(worst));
+      int bad = 0;
+      for (int i = 0; i < gpu.V.rows(); ++i) bad += (gpu.V.row(i) - cpu.V.row(i)).norm() > 1e-5 * diag;
+      WARN("bad " << bad);
+    }
     REQUIRE(pos_err <= 1e-5 * diag);
     REQUIRE(nrm_err <= 1e-4);
     // The pose really moved the mesh (the comparison is not trivially of two rest meshes).
@@ -88,4 +97,23 @@ TEST_CASE("GPU skinning: identity pose returns the rest mesh; many handles fit",
     REQUIRE((pass.read_back_result().V - skin(m, b, moved).V).cwiseAbs().maxCoeff() < 1e-5 * h);
   }
   REQUIRE_THROWS_AS(pass.set_pose(identity_pose(10)), Error);
+}
+
+TEST_CASE("debug rot", "[.debug]") {
+  gl::Context ctx;
+  Eigen::MatrixXd V(2, 3);
+  V << 1, 0, 0, 0, 2, 0;
+  Rig rig;
+  rig.points.resize(2);
+  Eigen::MatrixXd W(2, 2);
+  W << 1, 0, 0, 1;
+  const SkinBinding b = make_skin_binding(V, Eigen::MatrixXd(), W, rig, 4);
+  gl::SkinPass pass(b);
+  Pose p = identity_pose(2);
+  p.transforms[0] = Eigen::Affine3d(Eigen::AngleAxisd(1.5707963, Eigen::Vector3d::UnitZ()));
+  p.transforms[1].translation() << 0, 0, 5;
+  pass.set_pose(p);
+  pass.run(SkinMethod::LBS);
+  WARN(pass.read_back_result().V);
+  WARN(skin(SkinMethod::LBS, b, p).V);
 }

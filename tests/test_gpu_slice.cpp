@@ -96,8 +96,9 @@ TEST_CASE("GPU slices equal the CPU slices on every axis", "[gl][manifold]") {
     const ManifoldSlice cpu = slice_manifold(M, c.axis, c.at);
     const int n = pass.slice(c.axis, c.at);
     REQUIRE(n == cpu.mesh.num_faces());
-    if (c.axis == SliceAxis::T)
-      REQUIRE(pass.last_tets_drawn() < M.num_tets());  // only the active slab(s)
+    const auto range = slice_tet_range(M, c.axis, c.at);
+    REQUIRE(pass.last_tets_drawn() == range.second - range.first);
+    if (c.axis == SliceAxis::T && c.at != 1.0) REQUIRE(pass.last_tets_drawn() < M.num_tets());  // one slab
     require_same_triangles(cpu, pass.read_back(), tol);
   }
   // At a key time the GPU gives the keyframe's triangles (no collapsed ones).

@@ -85,6 +85,10 @@ TEST_CASE("OBJ: out-of-range, negative and malformed indices, NaN, garbage", "[i
   require_error(surface(put("bin.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10) + "\xff\xfe garbage\n")),
                 {"bin.obj:1:", "unknown OBJ statement"});
   require_error(surface(put("nofaces.obj", "v 0 0 0\n")), {"nofaces.obj", "no faces"});
+  require_error(surface(put("min.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -9223372036854775808 1 2\n")),
+                {"min.obj:4:", "vertex index -9223372036854775808 out of range"});
+  require_error(surface(put("big.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 99999999999999999999 1 2\n")),
+                {"big.obj:4:", "bad corner"});
 }
 
 TEST_CASE("OFF: enormous counts, truncation, wrong counts, bad indices", "[io][hostile]") {
@@ -214,6 +218,8 @@ TEST_CASE("dmat: truncated binary, wrong counts, NaN, garbage", "[io][hostile]")
   require_error(dmat(put("nan.dmat", "1 2\n1\nnan\n")), {"nan.dmat:3:", "(row 2, column 1) is not finite"});
   require_error(dmat(put("word.dmat", "1 2\n1\nabc\n")), {"word.dmat:3:", "expected a number", "'abc'"});
   require_error(dmat(put("huge.dmat", "4000000000 1\n")), {"huge.dmat:1:", "too large"});
+  require_error(dmat(put("hugeb.dmat", "0 0\n2000000000 2000000000\n" + le64d(1))),
+                {"hugeb.dmat: byte offset 26", "needs too many bytes", "truncated"});
   require_error(dmat(put("neg.dmat", "-1 3\n")), {"neg.dmat:1:", "negative size"});
   require_error(dmat(put("garb.dmat", std::string("\x89PNG\r\n\x1a\n\0\0", 10))), {"garb.dmat:1:", "expected an integer"});
 }

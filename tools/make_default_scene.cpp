@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -153,12 +154,53 @@ dfm::TriMesh marching_tets(const Vector3d& lo, const Vector3d& hi, double h) {
   return m;
 }
 
-// Orient every triangle so its normal points along the field gradient (outward).
-void orient_outward(dfm::TriMesh& m) {
+// Orient every triangle consistently with its neighbours (breadth-first across shared edges), then
+// flip everything if the enclosed volume comes out negative. Returns how many triangles then face
+// against the field gradient (folded triangles; the generator insists on none).
+int orient_outward(dfm::TriMesh& m) {
+  std::map<std::pair<int, int>, std::vector<int>> edge_faces;
+  for (int t = 0; t < m.num_faces(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = m.F(t, e), b = m.F(t, (e + 1) % 3);
+      edge_faces[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  auto has_directed = [&](int t, int a, int b) {
+    for (int e = 0; e < 3; ++e)
+      if (m.F(t, e) == a && m.F(t, (e + 1) % 3) == b) return true;
+    return false;
+  };
+  std::vector<char> done(m.num_faces(), 0);
+  for (int seed = 0; seed < m.num_faces(); ++seed) {
+    if (done[seed]) continue;
+    done[seed] = 1;
+    std::vector<int> queue{seed};
+    while (!queue.empty()) {
+      const int t = queue.back();
+      queue.pop_back();
+      for (int e = 0; e < 3; ++e) {
+        const int a = m.F(t, e), b = m.F(t, (e + 1) % 3);
+        for (int u : edge_faces[{std::min(a, b), std::max(a, b)}]) {
+          if (u == t || done[u]) continue;
+          if (has_directed(u, a, b)) std::swap(m.F(u, 1), m.F(u, 2));  // must run b -> a
+          done[u] = 1;
+          queue.push_back(u);
+        }
+      }
+    }
+  }
+  double vol = 0;
   for (int t = 0; t < m.num_faces(); ++t) {
     const Vector3d a = m.V.row(m.F(t, 0)), b = m.V.row(m.F(t, 1)), c = m.V.row(m.F(t, 2));
-    if ((b - a).cross(c - a).dot(gradient((a + b + c) / 3.0)) < 0) std::swap(m.F(t, 1), m.F(t, 2));
+    vol += a.dot(b.cross(c)) / 6.0;
   }
+  if (vol < 0)
+    for (int t = 0; t < m.num_faces(); ++t) std::swap(m.F(t, 1), m.F(t, 2));
+  int against = 0;
+  for (int t = 0; t < m.num_faces(); ++t) {
+    const Vector3d a = m.V.row(m.F(t, 0)), b = m.V.row(m.F(t, 1)), c = m.V.row(m.F(t, 2));
+    if ((b - a).cross(c - a).dot(gradient((a + b + c) / 3.0)) <= 0) ++against;
+  }
+  return against;
 }
 
 // Relax: each vertex moves halfway to its neighbours' average, then back onto the surface.
@@ -273,9 +315,10 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(out);
 
     dfm::TriMesh surface = marching_tets({-1.35, -1.4, -0.5}, {1.35, 1.4, 0.5}, 0.055);
-    collapse_short_edges(surface, 0.02);
+    //collapse_short_edges(surface, 0.02);
     relax(surface, 4);
-    orient_outward(surface);
+    const int folded = orient_outward(surface);
+    if (folded > 0) throw dfm::Error(std::to_string(folded) + " folded triangles: adjust the grid or relaxation");
 
     // The rig: a spine (pelvis -> chest -> neck), two arms hanging off the chest, two legs off the
     // pelvis; three point handles (ears, belly); an open cage over the face.

@@ -1,5 +1,6 @@
 // `deform export`: the bound, posed and keyed surface as glTF 2.0 (.glb, or .gltf + .bin), with the
 // handles as a skin's joints, the keys as an animation and optionally baked frames as morph targets.
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
@@ -34,10 +35,6 @@ const char* kUsage =
     "  --morph-frames N      also bake N frames (LBS, all weights, keys interpolated) as morph targets\n"
     "  --verify              re-import the file and report its error against LBS with all weights per key\n"
     "The exporter reports the largest vertex error the influence pruning causes over the keys.";
-
-struct Loaded {
-  dfm::GltfExportInput in;
-};
 
 dfm::Pose pose_from_params(const dfm::Rig& rig, dfm::PoseParams p) {
   return dfm::evaluate_pose(rig, dfm::fit_pose_params(rig, std::move(p)));
@@ -137,6 +134,7 @@ int run(const dfm::cli::Args& args) {
     load_mesh_input(input, weights, skeleton, poses, points, key_seconds, in);
   }
   in.name = std::filesystem::path(input).stem().string();
+  if (scene && std::filesystem::path(in.name).extension() == ".scene") in.name = std::filesystem::path(in.name).stem().string();
   if (in.name.empty()) in.name = "mesh";
 
   if (morph_frames > 0) {

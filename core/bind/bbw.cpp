@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -85,7 +84,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
 
   // ---- one factorization of Q_ff shared by every handle: the bound-free biharmonic solutions, the
   // starting point of every bounded solve (often nearly feasible).
-  progress("factorization", 0.0);
+  progress("factorization", 0.1);
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X0;
   {
@@ -97,7 +96,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   stats.factorization_seconds = seconds_since(t0);
 
   // ---- bounded solves
-  progress("solve", 0.0);
+  progress("solve", 0.3);
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X(nf, m);
   if (opts.exact_partition_of_unity) {
@@ -114,7 +113,6 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     std::mutex mu;
     int next = 0, finished = 0;
     BoxQPOptions qo;
-    if (const char* e = std::getenv("DFM_RINGS")) qo.release_rings = atoi(e);
     qo.tolerance = opts.tolerance;
     qo.cancel = opts.cancel;
     auto worker = [&] {
@@ -130,7 +128,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
           std::lock_guard<std::mutex> lock(mu);
           results[j] = std::move(r);
           ++finished;
-          if (opts.progress) opts.progress("solve", double(finished) / m);
+          if (opts.progress) opts.progress("solve", 0.3 + 0.7 * double(finished) / m);
         } catch (const std::exception& e) {
           std::lock_guard<std::mutex> lock(mu);
           errors.push_back(e.what());
@@ -161,7 +159,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   Eigen::MatrixXd W(n, m);
   for (int k = 0; k < nf; ++k) W.row(f(k)) = X.row(k);
   for (int k = 0; k < b.size(); ++k) W.row(b(k)) = bc.row(k);
-  if (!opts.exact_partition_of_unity) {
+  if (!opts.exact_partition_of_unity && opts.normalize_rows) {
     // Default mode: normalize rows. A row of all zeros (every handle's weight hit the bound there) takes
     // the clipped bound-free solution instead, which sums to 1 before clipping.
     for (int k = 0; k < nf; ++k) {

@@ -15,14 +15,6 @@ namespace {
 
 using Status = Eigen::Matrix<signed char, Eigen::Dynamic, Eigen::Dynamic>;  // -1 at 0, +1 at 1, 0 free
 
-double scale_of(const Eigen::SparseMatrix<double>& H, const Eigen::MatrixXd& G, const Eigen::MatrixXd& X) {
-  Eigen::MatrixXd s = G.cwiseAbs();
-  Eigen::SparseMatrix<double> Ha = H.cwiseAbs();
-  s += Ha * X.cwiseAbs();
-  const double m = s.size() ? s.maxCoeff() : 0.0;
-  return m > 0 ? m : 1.0;
-}
-
 // Minimizer with the active entries at their bounds and each row's free entries summing to 1 - (fixed).
 // The pivot of each row (its largest free entry in `xcur`) is eliminated through the sum constraint.
 void solve_face(const Eigen::SparseMatrix<double>& H, const Eigen::MatrixXd& G, const Status& st,
@@ -115,7 +107,7 @@ void keep_one_free(Status& st, const Eigen::MatrixXd& x) {
 
 double exact_pou_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::MatrixXd& G, const Eigen::MatrixXd& X) {
   const Eigen::MatrixXd grad = H * X + G;
-  const double scale = scale_of(H, G, X);
+  const Eigen::VectorXd hd = H.diagonal();
   double res = 0;
   for (int i = 0; i < X.rows(); ++i) {
     res = std::max(res, std::abs(X.row(i).sum() - 1.0));
@@ -136,7 +128,7 @@ double exact_pou_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen:
     for (int j = 0; j < X.cols(); ++j) {
       const double x = X(i, j), gl = grad(i, j) + lambda;
       const double v = (x > 0 && x < 1) ? std::abs(gl) : (x <= 0 ? std::max(0.0, -gl) : std::max(0.0, gl));
-      res = std::max(res, v / scale);
+      res = std::max(res, v / hd(i));  // Jacobi-scaled, in weight units (as box_qp_kkt_residual)
     }
   }
   return res;
@@ -157,6 +149,7 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
   keep_one_free(st, x);
   std::vector<int> pivot;
   Eigen::MatrixXd xt;
+  const Eigen::VectorXd hd = H.diagonal();
 
   // Multiplier-corrected gradient sign test: returns the number of entries released.
   auto release_wrong_signs = [&](const Eigen::MatrixXd& xs, double tau) {
@@ -166,7 +159,7 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
       const double lambda = -grad(i, pivot[i]);
       for (int j = 0; j < m; ++j) {
         const double gl = grad(i, j) + lambda;
-        if ((st(i, j) < 0 && gl < -tau) || (st(i, j) > 0 && gl > tau)) st(i, j) = 0, ++released;
+        if ((st(i, j) < 0 && gl < -tau * hd(i)) || (st(i, j) > 0 && gl > tau * hd(i))) st(i, j) = 0, ++released;
       }
     }
     return released;
@@ -179,7 +172,7 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
     solve_face(H, G, st, x, xt, pivot);
     ++res.iterations;
     x = xt;
-    const double tau = 0.1 * tolerance * scale_of(H, G, x);
+    const double tau = 0.1 * tolerance;
     int changes = 0;
     for (int k = 0; k < x.size(); ++k) {
       signed char& s = st.data()[k];
@@ -189,7 +182,8 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
     Status before = st;
     changes += release_wrong_signs(x, tau);
     keep_one_free(st, x);
-    if (changes == 0 && st == before) done = true;
+    if ((changes == 0 && st == before) || exact_pou_kkt_residual(H, G, x.cwiseMax(0.0).cwiseMin(1.0)) <= tolerance)
+      done = true;
     else if (!seen.insert(hash_status(st)).second) break;
   }
 
@@ -226,7 +220,7 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
         keep_one_free(st, x);
         continue;
       }
-      if (release_wrong_signs(x, 0.1 * tolerance * scale_of(H, G, x)) == 0) {
+      if (release_wrong_signs(x, 0.1 * tolerance) == 0) {
         done = true;
         break;
       }

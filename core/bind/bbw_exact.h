@@ -15,7 +15,7 @@ struct ExactPouResult {
   Eigen::MatrixXd X;  // #rows x #handles
   int iterations = 0;
   int fallback_iterations = 0;
-  double kkt_residual = 0;  // relative, stationarity with the rows' multipliers + sign conditions + row sums
+  double kkt_residual = 0;  // weight units: Jacobi-scaled stationarity with the rows' multipliers, signs, row sums
   bool converged = false;
 };
 
@@ -24,7 +24,7 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
                                const Eigen::MatrixXd& X0, double tolerance,
                                const std::atomic<bool>* cancel = nullptr, int max_iterations = 500);
 
-// The relative KKT residual used above, for any X.
+// The KKT residual used above, for any X (row multipliers estimated from the free entries).
 double exact_pou_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::MatrixXd& G, const Eigen::MatrixXd& X);
 
 }  // namespace dfm

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -108,18 +106,6 @@ Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double
 
 namespace {
 
-// Per-row magnitude of the terms that sum to the gradient: |g_i| + sum_k |H_ik x_k|.
-double gradient_scale(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& x) {
-  Eigen::VectorXd s = g.cwiseAbs();
-  for (int k = 0; k < H.outerSize(); ++k) {
-    const double xk = std::abs(x(k));
-    if (xk == 0) continue;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(H, k); it; ++it) s(it.row()) += std::abs(it.value()) * xk;
-  }
-  const double m = s.size() ? s.maxCoeff() : 0.0;
-  return m > 0 ? m : 1.0;
-}
-
 uint64_t hash_status(const std::vector<signed char>& st) {
   uint64_t h = 1469598103934665603ull;
   for (signed char s : st) h = (h ^ static_cast<uint64_t>(s + 1)) * 1099511628211ull;
@@ -131,20 +117,17 @@ uint64_t hash_status(const std::vector<signed char>& st) {
 double box_qp_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
                            const Eigen::VectorXd& hi, const Eigen::VectorXd& x) {
   const Eigen::VectorXd grad = H * x + g;
-  const double scale = gradient_scale(H, g, x);
+  const Eigen::VectorXd d = H.diagonal();
   double r = 0;
   for (int i = 0; i < x.size(); ++i) {
-    const double range = std::max(hi(i) - lo(i), 1e-300);
-    if (x(i) < lo(i)) r = std::max(r, (lo(i) - x(i)) / range);
-    if (x(i) > hi(i)) r = std::max(r, (x(i) - hi(i)) / range);
-    double gi;
-    if (x(i) <= lo(i))
-      gi = std::max(0.0, -grad(i));
-    else if (x(i) >= hi(i))
-      gi = std::max(0.0, grad(i));
-    else
-      gi = std::abs(grad(i));
-    r = std::max(r, gi / scale);
+    if (!(d(i) > 0)) throw Error("box QP: the matrix has a non-positive diagonal entry");
+    // Natural residual in the Jacobi metric: how far one diagonal Newton step, projected on the box,
+    // would move x_i. Zero iff stationary (free), or the gradient points out of the box (at a bound).
+    const double step = std::min(std::max(x(i) - grad(i) / d(i), lo(i)), hi(i));
+    double v = std::abs(step - x(i));
+    if (x(i) < lo(i)) v = std::max(v, lo(i) - x(i));
+    if (x(i) > hi(i)) v = std::max(v, x(i) - hi(i));
+    r = std::max(r, v);
   }
   return r;
 }
@@ -187,6 +170,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     for (int k = 0; k < F.size(); ++k) out(F(k)) = xf(k);
   };
 
+  const Eigen::VectorXd hd = H.diagonal();
   // ---- primal-dual active set
   std::unordered_set<uint64_t> seen;
   bool done = false;
@@ -194,36 +178,21 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     check_cancel();
     solve_face(x);
     const Eigen::VectorXd grad = H * x + g;
-    const double tau = 0.1 * opts.tolerance * gradient_scale(H, g, x);
+    const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
     int changes = 0;
-    std::vector<signed char> prev = st;
-    std::vector<int> released;
     for (int i = 0; i < n; ++i) {
       signed char s = st[i];
       const double eps = 1e-13 * (hi(i) - lo(i));
       if (s == 0) {
         if (x(i) < lo(i) - eps) s = -1;
         else if (x(i) > hi(i) + eps) s = 1;
-      } else if (s < 0 && grad(i) < -tau) {
-        s = 0, released.push_back(i);
-      } else if (s > 0 && grad(i) > tau) {
+      } else if (s < 0 && grad(i) < -tau * hd(i)) {
+        s = 0;
+      } else if (s > 0 && grad(i) > tau * hd(i)) {
         s = 0;
       }
       if (s != st[i]) ++changes, st[i] = s;
     }
-    // The support of the solution grows about one ring of H per iteration when only the wrong-sign
-    // variables are released; releasing their neighbours too (those that were already at the lower
-    // bound) lets it grow faster. Over-released variables are simply clamped again next iteration.
-    for (int d = 0; d < opts.release_rings && false; ++d) {
-      std::vector<int> next;
-      for (int i : released)
-        for (Eigen::SparseMatrix<double>::InnerIterator nb(H, i); nb; ++nb) {
-          const int k = static_cast<int>(nb.row());
-          if (st[k] < 0 && prev[k] < 0) st[k] = 0, next.push_back(k), ++changes;
-        }
-      released.swap(next);
-    }
-    if (std::getenv("DFM_QP_TRACE")) fprintf(stderr, "pdas it %d free %d changes %d\n", it, (int)std::count(st.begin(), st.end(), 0), changes);
     // The tail of PDAS moves a few variables with tiny multipliers: stop as soon as the clipped iterate
     // is a KKT point to the tolerance (checked exactly, not estimated).
     if (changes == 0 || box_qp_kkt_residual(H, g, lo, hi, x.cwiseMax(lo).cwiseMin(hi)) <= opts.tolerance) done = true;
@@ -259,10 +228,10 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
         continue;
       }
       const Eigen::VectorXd grad = H * x + g;
-      const double tau = 0.1 * opts.tolerance * gradient_scale(H, g, x);
+      const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
       int released = 0;
       for (int i = 0; i < n; ++i)
-        if ((st[i] < 0 && grad(i) < -tau) || (st[i] > 0 && grad(i) > tau)) st[i] = 0, ++released;
+        if ((st[i] < 0 && grad(i) < -tau * hd(i)) || (st[i] > 0 && grad(i) > tau * hd(i))) st[i] = 0, ++released;
       if (released == 0) {
         done = true;
         break;

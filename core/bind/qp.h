@@ -16,10 +16,9 @@
 namespace dfm {
 
 struct BoxQPOptions {
-  double tolerance = 1e-6;     // relative KKT residual to stop at (see box_qp_kkt_residual)
+  double tolerance = 1e-6;     // KKT residual to stop at (see box_qp_kkt_residual)
   int max_pdas_iterations = 60;
-  int max_iterations = 2000;
-  int release_rings = 1;       // PDAS: also release this many rings of H-neighbours of released variables   // PDAS + fallback together
+  int max_iterations = 2000;   // PDAS + fallback together
   const std::atomic<bool>* cancel = nullptr;  // polled once per iteration; throws dfm::Error("cancelled")
 };
 
@@ -27,15 +26,15 @@ struct BoxQPResult {
   Eigen::VectorXd x;
   int iterations = 0;          // linear solves on a free set
   int fallback_iterations = 0; // of which in the monotone fallback
-  double kkt_residual = 0;     // relative, see box_qp_kkt_residual
+  double kkt_residual = 0;     // see box_qp_kkt_residual
   bool converged = false;
   int num_free = 0;            // free variables at the solution
 };
 
-// Relative KKT residual of x (x must satisfy the bounds; violations count too): the largest of
-//   |grad_i| for free i, max(0, -grad_i) at a lower bound, max(0, grad_i) at an upper bound, where
-// grad = H x + g, divided by the gradient scale max_i (|g_i| + sum_k |H_ik x_k|) (1 if that is 0).
-// Bound violations are added in units of the bound range.
+// KKT residual of x, in the units of x: the natural residual max_i |x_i - clip(x_i - grad_i / H_ii)|,
+// grad = H x + g: the gradient relative to each variable's own curvature (its scale). It is zero exactly
+// at the minimizer: |grad_i| for free i, max(0, -grad_i) at a lower bound, max(0, grad_i) at an upper
+// bound, each divided by H_ii; bound violations count as their size.
 double box_qp_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
                            const Eigen::VectorXd& hi, const Eigen::VectorXd& x);
 

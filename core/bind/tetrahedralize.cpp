@@ -49,7 +49,10 @@ struct TempDir {
 
 std::string checked_switches(const std::string& sw, bool has_facets) {
   std::string out;
+  bool skipping_number = false;
   for (char ch : sw) {
+    if (skipping_number && (std::isdigit(static_cast<unsigned char>(ch)) || ch == '.' || ch == '/')) continue;
+    skipping_number = false;
     if (ch == '-' && out.empty()) continue;  // tolerate a leading dash
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '/'))
       throw Error("TetGen switches \"" + sw + "\": unexpected character '" + std::string(1, ch) + "'");
@@ -57,7 +60,11 @@ std::string checked_switches(const std::string& sw, bool has_facets) {
     if (ch == 'z') continue;  // added below
     if (std::strchr("roNEIwimh", ch))
       throw Error("TetGen switches \"" + sw + "\": switch '" + std::string(1, ch) + "' is not supported here");
-    if (!has_facets && std::strchr("pYd", ch)) continue;  // a point set has no PLC to preserve
+    // A point set has no PLC; TetGen 1.5.0 also deletes every tet of a point set refined with q or a.
+    if (!has_facets && std::strchr("pYdqa", ch)) {
+      skipping_number = true;
+      continue;
+    }
     out += ch;
   }
   return out + "z";

@@ -25,7 +25,7 @@ struct TetgenResult {
 
 // switches: TetGen's command-line switches without the dash, e.g. "pq1.414Y". 'z' (0-based output) is
 // added. Switches that change the output's shape (r, N, E, o2, ...) are refused. With facets, 'p' is
-// expected; without facets, 'p' and 'Y' are removed. Throws dfm::Error with TetGen's message on failure.
+// expected; without facets (a point set: plain Delaunay) p, Y, d, q and a are removed. Throws dfm::Error with TetGen's message on failure.
 TetgenResult tetrahedralize(const Plc& plc, const std::string& switches = "pq1.414Y");
 
 // The executable used (DFM_TETGEN_EXE, overridable with the environment variable DFM_TETGEN).

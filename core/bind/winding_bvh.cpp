@@ -28,6 +28,7 @@ void fill_moments(WindingTree& t, WindingTree::Node& n) {
     c = t.a[n.begin];
   }
   n.center = c;
+  n.area = area;
   n.M.setZero();
   for (auto& h : n.H) h.setZero();
   n.radius = 0;
@@ -90,7 +91,8 @@ WindingTree build_winding_tree(const Eigen::MatrixXd& V, const Eigen::MatrixXi& 
   return t;
 }
 
-double winding_number(const WindingTree& t, const Eigen::Vector3d& p, double beta) {
+double winding_number(const WindingTree& t, const Eigen::Vector3d& p, const WindingAccuracy& acc) {
+  const double beta2 = acc.beta * acc.beta, tol = 4.0 * M_PI * acc.node_tolerance;
   if (t.nodes.empty()) return 0;
   double sum = 0;  // in units of 4 pi
   int stack[128];
@@ -100,7 +102,8 @@ double winding_number(const WindingTree& t, const Eigen::Vector3d& p, double bet
     const WindingTree::Node& n = t.nodes[stack[--top]];
     const Eigen::Vector3d R = n.center - p;
     const double r2 = R.squaredNorm();
-    if (r2 > beta * beta * n.radius * n.radius) {
+    const double rad3 = n.radius * n.radius * n.radius;
+    if (r2 > beta2 * n.radius * n.radius && n.area * rad3 < tol * r2 * r2 * std::sqrt(r2)) {
       // Far field: Taylor expansion of K(r) = r / |r|^3 about the node center.
       const double r = std::sqrt(r2), ir2 = 1.0 / r2, ir3 = ir2 / r, ir5 = ir3 * ir2, ir7 = ir5 * ir2;
       double w = R.dot(n.N) * ir3;
@@ -124,9 +127,10 @@ double winding_number(const WindingTree& t, const Eigen::Vector3d& p, double bet
   return sum / (4.0 * M_PI);
 }
 
-Eigen::VectorXd winding_numbers(const WindingTree& tree, const Eigen::MatrixXd& P, double beta, int threads) {
+Eigen::VectorXd winding_numbers(const WindingTree& tree, const Eigen::MatrixXd& P, const WindingAccuracy& acc,
+                                int threads) {
   Eigen::VectorXd w(P.rows());
-  parallel_for(static_cast<int>(P.rows()), threads, [&](int i) { w(i) = winding_number(tree, P.row(i).transpose(), beta); });
+  parallel_for(static_cast<int>(P.rows()), threads, [&](int i) { w(i) = winding_number(tree, P.row(i).transpose(), acc); });
   return w;
 }
 

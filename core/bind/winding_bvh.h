@@ -13,6 +13,7 @@ struct WindingTree {
   struct Node {
     Eigen::Vector3d center;  // area-weighted centroid of its triangles (expansion point)
     double radius = 0;       // max distance from center to any of its triangles' corners
+    double area = 0;         // total triangle area (bounds the truncation error)
     Eigen::Vector3d N;       // sum of area vectors a_t n_t (zeroth order)
     Eigen::Matrix3d M;       // sum (a_t n_t) (centroid_t - center)^T (first order)
     Eigen::Matrix3d H[3];    // H[i] = sum (a_t n_t)_i * int_t d d^T / a_t (second order)
@@ -26,9 +27,15 @@ struct WindingTree {
 
 WindingTree build_winding_tree(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int leaf_size = 8);
 
-// Larger beta = more accurate and slower; 2 gives ~1e-5 errors on typical meshes.
-double winding_number(const WindingTree& tree, const Eigen::Vector3d& p, double beta = 2.0);
-Eigen::VectorXd winding_numbers(const WindingTree& tree, const Eigen::MatrixXd& P, double beta = 2.0,
+// A node is expanded only when the query is farther than beta * its radius and the estimated
+// truncation error, area * radius^3 / (4 pi distance^5) (the size of the dropped third-order term),
+// is below node_tolerance. The defaults keep |tree - direct| below 1e-4 on the test meshes.
+struct WindingAccuracy {
+  double beta = 2.0;
+  double node_tolerance = 2e-5;
+};
+double winding_number(const WindingTree& tree, const Eigen::Vector3d& p, const WindingAccuracy& acc = {});
+Eigen::VectorXd winding_numbers(const WindingTree& tree, const Eigen::MatrixXd& P, const WindingAccuracy& acc = {},
                                 int threads = 0);
 
 }  // namespace dfm

@@ -1,6 +1,8 @@
 // .dmat dense matrices (libigl's format, see ../shared/data/README.md). Text: "cols rows" then the
 // entries column by column. Binary: a first line "0 0", a second line "cols rows", then rows*cols
 // little-endian doubles column by column. Non-finite entries are rejected.
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <iomanip>
@@ -42,11 +44,15 @@ Eigen::MatrixXd read_binary(const std::string& path, const std::string& data, si
   check_dims(path, 2, cols, rows);
   const long long start = static_cast<long long>(second_end + 1);
   const long long have = static_cast<long long>(data.size()) - start;
-  const long long need = rows * cols * 8;  // both <= INT_MAX: fits in 64 bits
-  if (have != need)
+  const long long entries = rows * cols;  // both <= INT_MAX: fits in 63 bits; entries * 8 may not
+  if (entries > have / 8 || have != entries * 8) {
+    const bool short_file = entries > have / 8;
     throw byte_error(path, start, "binary dmat " + std::to_string(rows) + " x " + std::to_string(cols) + " needs " +
-                                      std::to_string(need) + " bytes of doubles, file has " + std::to_string(have) +
-                                      (have < need ? " (truncated)" : " (trailing bytes)"));
+                                      (entries <= LLONG_MAX / 8 ? std::to_string(entries * 8) : std::string("too many")) +
+                                      " bytes of doubles, file has " + std::to_string(have) +
+                                      (short_file ? " (truncated)" : " (trailing bytes)"));
+  }
+  const long long need = entries * 8;
   Eigen::MatrixXd M(rows, cols);  // column-major, like the file
   std::memcpy(M.data(), data.data() + start, static_cast<size_t>(need));
   if (!little_endian())

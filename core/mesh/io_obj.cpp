@@ -2,6 +2,8 @@
 // Polygons are fan-triangulated. Per-vertex normals are kept when faces assign one to every vertex.
 // Other standard statements (vt, o, g, s, usemtl, l, ...) are ignored; unknown ones are errors so that
 // garbage is reported rather than read as an empty mesh.
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <iomanip>
 #include <set>
@@ -21,7 +23,7 @@ const std::set<std::string_view> kIgnored = {
 // Resolves a 1-based or negative (relative) OBJ index against `count`; -1 if out of range.
 long long resolve(long long i, long long count) {
   if (i > 0 && i <= count) return i - 1;
-  if (i < 0 && -i <= count) return count + i;
+  if (i < 0 && i >= -count) return count + i;  // never negate i: it may be LLONG_MIN
   return -1;
 }
 

@@ -1,5 +1,6 @@
 #include "core/mesh/io_parse.h"
 
+#include <cctype>
 #include <charconv>
 #include <climits>
 #include <cmath>

@@ -1,6 +1,7 @@
 // .tgf skeletons (see ../shared/data/README.md): joint lines "index x y z [ignored columns]", a line
 // "#", edge lines "a b [is_bone is_pseudo_edge is_cage_edge]" (1-based), optionally a further "#"
 // after which everything is ignored. An edge with only two numbers is a bone.
+#include <cmath>
 #include <iomanip>
 
 #include "core/mesh/io.h"

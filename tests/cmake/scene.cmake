@@ -1,2 +1,13 @@
 # core/scene: the document, its file format, the script language and the default scene generator.
 dfm_test(test_document SOURCES test_document.cpp LIBS dfm_scene)
+dfm_test(test_scene_file SOURCES test_scene_file.cpp LIBS dfm_scene)
+dfm_test(test_script SOURCES test_script.cpp LIBS dfm_scene)
+
+# The generator of assets/default.* (run by hand: make_default_scene assets). Built with the tests so
+# the test below can regenerate the scene and compare it with the committed copy.
+add_executable(make_default_scene ${PROJECT_SOURCE_DIR}/tools/make_default_scene.cpp)
+target_link_libraries(make_default_scene PRIVATE dfm_scene)
+dfm_test(test_scene_default SOURCES test_scene_default.cpp LIBS dfm_scene)
+add_dependencies(test_scene_default make_default_scene)
+target_compile_definitions(test_scene_default PRIVATE DFM_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets"
+  DFM_MAKE_DEFAULT_SCENE="$<TARGET_FILE:make_default_scene>")

@@ -1,0 +1,93 @@
+// Bind benchmark: hand.mesh + hand.tgf (tet input, 20 bones) and armadillo.obj + 10 point handles at
+// surface vertices (TetGen pq1.414Y). Prints per-stage wall times, CPU time (the machine may be shared),
+// solver iterations, KKT residual, peak RSS, and the ratio of the bounded solve to the bound-free
+// biharmonic solve (the baseline measured in the same run: one factorization + solve for all handles).
+//   bench_bind [hand|armadillo|all] [--reference]   (--reference: also solve to 1e-10 and print the
+//                                                    largest weight difference of the default 1e-6 run)
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "core/bind/bind.h"
+#include "core/mesh/io.h"
+#include "core/rig/rig_io.h"
+
+namespace {
+
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;  // KiB on Linux
+}
+
+void print(const char* name, const dfm::BindResult& r, double cpu) {
+  const dfm::BindReport& p = r.report;
+  std::printf("%s: %d tets, %d tet vertices, %d handles\n", name, p.tets, p.tet_vertices, p.handles);
+  std::printf("  wall [s]: meshing %.3f  assembly %.3f  factorization+bound-free solve %.3f  bounded solve %.3f"
+              "  total %.3f\n",
+              p.meshing_seconds, p.assembly_seconds, p.factorization_seconds, p.solve_seconds, p.total_seconds);
+  std::printf("  whole solve (assembly + factorization + bounded solve): %.3f s wall; process CPU %.3f s\n",
+              p.assembly_seconds + p.factorization_seconds + p.solve_seconds, cpu);
+  std::printf("  solver: %d free-set solves (worst handle %d, fallback %d), KKT residual %.2e, factor nnz %ld\n",
+              p.bbw.iterations_total, p.bbw.iterations_max, p.bbw.fallback_iterations, p.bbw.kkt_residual,
+              p.bbw.factor_nonzeros);
+  std::printf("  weights: min %.3g max %.3g max|rowsum-1| %.2e exact zeros %.1f%%\n", p.min_weight, p.max_weight,
+              p.max_row_sum_error, 100 * p.zero_fraction);
+  std::printf("  ratio bounded solve / bound-free baseline (factorization + solve): %.1fx\n",
+              p.solve_seconds / std::max(p.factorization_seconds, 1e-9));
+  std::printf("  peak RSS %.0f MB\n", peak_rss_mb());
+}
+
+void hand(bool reference) {
+  const std::string dir = DFM_DATA_DIR;
+  const dfm::TetMesh tets = dfm::read_tet_mesh(dir + "/hand.mesh");
+  dfm::Rig rig;
+  dfm::add_tgf_to_rig(rig, dfm::read_tgf(dir + "/hand.tgf"), "hand.tgf");
+  const double c0 = cpu_seconds();
+  const dfm::BindResult r = dfm::bind_tet_mesh(tets, rig);
+  print("hand", r, cpu_seconds() - c0);
+  if (reference) {
+    dfm::BindOptions o;
+    o.tolerance = 1e-10;
+    const double c1 = cpu_seconds();
+    const dfm::BindResult ref = dfm::bind_tet_mesh(tets, rig, o);
+    print("hand (reference, tolerance 1e-10)", ref, cpu_seconds() - c1);
+    std::printf("  max |w(1e-6) - w(1e-10)| = %.2e\n", (r.weights - ref.weights).cwiseAbs().maxCoeff());
+  }
+}
+
+void armadillo() {
+  const std::string dir = DFM_DATA_DIR;
+  const dfm::TriMesh surf = dfm::read_surface(dir + "/armadillo.obj");
+  dfm::Rig rig;
+  for (int k = 0; k < 10; ++k) {
+    const int v = static_cast<int>((static_cast<long>(k) * surf.num_vertices()) / 10);
+    rig.points.push_back({surf.V.row(v).transpose(), "v" + std::to_string(v)});
+  }
+  const double c0 = cpu_seconds();
+  const dfm::BindResult r = dfm::bind_surface(surf, rig);
+  print("armadillo + 10 points", r, cpu_seconds() - c0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string which = argc > 1 ? argv[1] : "hand";
+  const bool reference = argc > 2 && std::strcmp(argv[2], "--reference") == 0;
+  try {
+    if (which == "hand" || which == "all") hand(reference);
+    if (which == "armadillo" || which == "all") armadillo();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_bind: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

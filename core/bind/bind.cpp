@@ -1,0 +1,100 @@
+#include "core/bind/bind.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/util/error.h"
+
+namespace dfm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+void check_cancel(const BindOptions& opts) {
+  if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
+}
+
+// Meshing takes the first 30% of the progress bar when it runs, the weights the rest.
+constexpr double kMeshingShare = 0.3;
+
+BindResult solve_weights(BindVolume volume, const BindOptions& opts, double progress_start, Clock::time_point t_all) {
+  check_cancel(opts);
+  BindResult res;
+  BbwOptions bo;
+  bo.exact_partition_of_unity = opts.exact_partition_of_unity;
+  bo.shape_mask = opts.shape_mask;
+  bo.tolerance = opts.tolerance;
+  bo.threads = opts.threads;
+  bo.cancel = opts.cancel;
+  if (opts.progress)
+    bo.progress = [&](const std::string& stage, double f) {
+      opts.progress(stage, progress_start + (0.97 - progress_start) * f);
+    };
+  if (opts.shape_mask.size() && opts.shape_mask.size() != volume.tets.num_tets())
+    throw Error("shape mask has " + std::to_string(opts.shape_mask.size()) + " values for " +
+                std::to_string(volume.tets.num_tets()) + " tets of the bind volume");
+  res.tet_weights = bbw_weights(volume.tets.V, volume.tets.T, volume.b, volume.bc, bo, &res.report.bbw);
+  if (opts.progress) opts.progress("mapping", 0.97);
+  if (volume.to_user.cols() != res.tet_weights.rows())
+    throw Error("bind volume: the map to the user's vertices has " + std::to_string(volume.to_user.cols()) +
+                " columns for " + std::to_string(res.tet_weights.rows()) + " tet vertices");
+  res.weights = volume.to_user * res.tet_weights;
+  // The map interpolates (rows sum to 1); renormalize away its rounding.
+  for (int i = 0; i < res.weights.rows(); ++i) {
+    const double s = res.weights.row(i).sum();
+    if (s > 0) res.weights.row(i) /= s;
+  }
+  BindReport& r = res.report;
+  r.meshing_seconds = volume.meshing_seconds;
+  r.assembly_seconds = r.bbw.assembly_seconds;
+  r.factorization_seconds = r.bbw.factorization_seconds;
+  r.solve_seconds = r.bbw.solve_seconds;
+  r.tet_vertices = volume.tets.num_vertices();
+  r.tets = volume.tets.num_tets();
+  r.handles = static_cast<int>(volume.bc.cols());
+  r.notes = volume.notes;
+  if (r.bbw.rows_renormalized_from_zero)
+    r.notes.push_back(std::to_string(r.bbw.rows_renormalized_from_zero) +
+                      " tet vertices had every weight at 0; they took the bound-free solution");
+  weight_statistics(res.weights, r);
+  res.volume = std::move(volume);
+  r.total_seconds = since(t_all);
+  if (opts.progress) opts.progress("done", 1.0);
+  return res;
+}
+
+}  // namespace
+
+void weight_statistics(const Eigen::MatrixXd& W, BindReport& r) {
+  if (W.size() == 0) return;
+  r.min_weight = W.minCoeff();
+  r.max_weight = W.maxCoeff();
+  r.max_row_sum_error = (W.rowwise().sum().array() - 1.0).abs().maxCoeff();
+  r.zero_fraction = static_cast<double>((W.array() == 0.0).count()) / static_cast<double>(W.size());
+}
+
+BindResult bind_surface(const TriMesh& surface, const Rig& rig, const BindOptions& opts) {
+  const auto t0 = Clock::now();
+  if (opts.progress) opts.progress("meshing", 0.0);
+  check_cancel(opts);
+  BindVolume vol = build_bind_volume(surface, rig, opts.volume);
+  if (vol.meshing_seconds == 0) vol.meshing_seconds = since(t0);
+  return solve_weights(std::move(vol), opts, kMeshingShare, t0);
+}
+
+BindResult bind_tet_mesh(const TetMesh& tets, const Rig& rig, const BindOptions& opts) {
+  const auto t0 = Clock::now();
+  if (opts.progress) opts.progress("meshing", 0.0);
+  check_cancel(opts);
+  BindVolume vol = bind_volume_from_tets(tets, rig);
+  if (vol.meshing_seconds == 0) vol.meshing_seconds = since(t0);
+  return solve_weights(std::move(vol), opts, 0.05, t0);
+}
+
+BindResult bind_on_volume(BindVolume volume, const BindOptions& opts) {
+  return solve_weights(std::move(volume), opts, 0.0, Clock::now());
+}
+
+}  // namespace dfm

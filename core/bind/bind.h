@@ -1,0 +1,56 @@
+#pragma once
+// The whole bind: volume (TetGen or the given tets) -> FEM -> BBW -> weights on the user's vertices,
+// with per-stage timings, progress and cancellation for the editor's worker thread.
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/bind/bbw.h"
+#include "core/bind/bind_volume.h"
+#include "core/mesh/mesh.h"
+#include "core/rig/rig.h"
+
+namespace dfm {
+
+struct BindOptions {
+  VolumeOptions volume;
+  bool exact_partition_of_unity = false;
+  Eigen::VectorXd shape_mask;  // per-tet rho of the bind volume (only with a tet-mesh input), or empty
+  double tolerance = 1e-6;     // KKT residual, weight units
+  int threads = 2;
+  // (stage, fraction of the whole bind in [0, 1]); stages: "meshing", "assembly", "factorization",
+  // "solve", "mapping", "done". May be empty.
+  std::function<void(const std::string& stage, double fraction)> progress;
+  const std::atomic<bool>* cancel = nullptr;  // throws dfm::Error("cancelled") soon after it is set
+};
+
+struct BindReport {
+  double meshing_seconds = 0, assembly_seconds = 0, factorization_seconds = 0, solve_seconds = 0, total_seconds = 0;
+  int tet_vertices = 0, tets = 0, handles = 0;
+  BbwStats bbw;  // iterations, KKT residual, factor size
+  // On the user's vertices:
+  double min_weight = 0, max_weight = 0, max_row_sum_error = 0, zero_fraction = 0;
+  std::vector<std::string> notes;
+};
+
+struct BindResult {
+  Eigen::MatrixXd weights;  // #user vertices x #handles (rig.h order), rows sum to 1
+  BindVolume volume;        // the tets the weights were solved on, with the constraints
+  Eigen::MatrixXd tet_weights;  // #tet vertices x #handles
+  BindReport report;
+};
+
+// Surface input: tetrahedralized conforming to the handles (build_bind_volume).
+BindResult bind_surface(const TriMesh& surface, const Rig& rig, const BindOptions& opts = {});
+// Tet-mesh input, used as it is (bind_volume_from_tets).
+BindResult bind_tet_mesh(const TetMesh& tets, const Rig& rig, const BindOptions& opts = {});
+// The weights stage alone, on a volume already built.
+BindResult bind_on_volume(BindVolume volume, const BindOptions& opts = {});
+
+// Weight statistics used in the report (min, max, max |row sum - 1|, fraction of exact zeros).
+void weight_statistics(const Eigen::MatrixXd& W, BindReport& report);
+
+}  // namespace dfm

@@ -1,0 +1,4 @@
+# Weights (FEM, box QP, BBW, bind orchestration).
+dfm_test(test_fem SOURCES test_fem.cpp LIBS dfm_bind)
+dfm_test(test_bbw SOURCES test_bbw.cpp LIBS dfm_bind)
+dfm_test(test_bind SOURCES test_bind.cpp LIBS dfm_bind dfm_mesh dfm_rig TIMEOUT 900)

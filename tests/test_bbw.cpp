@@ -1,0 +1,257 @@
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/bind/bbw.h"
+#include "core/bind/bbw_exact.h"
+#include "core/bind/fem.h"
+#include "core/bind/qp.h"
+#include "core/util/error.h"
+#include "tests/weights_test_meshes.h"
+
+using namespace dfm;
+
+// Reference box-QP minimizer by enumerating every (lower, free, upper) assignment: the unique one whose
+// face minimizer is feasible with correct gradient signs.
+static Eigen::VectorXd enumerate_box_qp(const Eigen::MatrixXd& H, const Eigen::VectorXd& g) {
+  const int n = static_cast<int>(g.size());
+  int total = 1;
+  for (int i = 0; i < n; ++i) total *= 3;
+  Eigen::VectorXd best;
+  for (int code = 0; code < total; ++code) {
+    std::vector<int> s(n);
+    for (int i = 0, c = code; i < n; ++i, c /= 3) s[i] = c % 3;  // 0 lower, 1 free, 2 upper
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    std::vector<int> F;
+    for (int i = 0; i < n; ++i) {
+      if (s[i] == 2) x(i) = 1;
+      if (s[i] == 1) F.push_back(i);
+    }
+    if (!F.empty()) {
+      Eigen::MatrixXd HF(F.size(), F.size());
+      Eigen::VectorXd r(F.size());
+      const Eigen::VectorXd gr = H * x + g;
+      for (size_t a = 0; a < F.size(); ++a) {
+        r(a) = -gr(F[a]);
+        for (size_t b = 0; b < F.size(); ++b) HF(a, b) = H(F[a], F[b]);
+      }
+      const Eigen::VectorXd xf = HF.llt().solve(r);
+      for (size_t a = 0; a < F.size(); ++a) x(F[a]) = xf(a);
+    }
+    const Eigen::VectorXd gr = H * x + g;
+    bool ok = true;
+    for (int i = 0; i < n && ok; ++i) {
+      if (s[i] == 1) ok = x(i) >= -1e-12 && x(i) <= 1 + 1e-12;
+      if (s[i] == 0) ok = gr(i) >= -1e-10;
+      if (s[i] == 2) ok = gr(i) <= 1e-10;
+    }
+    if (ok) return x;
+  }
+  return best;
+}
+
+TEST_CASE("box QP matches enumeration of active sets on random dense problems", "[qp]") {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> N(0, 1);
+  for (int trial = 0; trial < 30; ++trial) {
+    const int n = 6;
+    Eigen::MatrixXd A(n, n);
+    for (int i = 0; i < A.size(); ++i) A.data()[i] = N(rng);
+    const Eigen::MatrixXd H = A.transpose() * A + 0.05 * Eigen::MatrixXd::Identity(n, n);  // not an M-matrix
+    Eigen::VectorXd g(n);
+    for (int i = 0; i < n; ++i) g(i) = 3 * N(rng);
+    const Eigen::VectorXd ref = enumerate_box_qp(H, g);
+    REQUIRE(ref.size() == n);
+    const Eigen::SparseMatrix<double> Hs = H.sparseView();
+    BoxQPOptions o;
+    o.tolerance = 1e-12;
+    const BoxQPResult r = solve_box_qp(Hs, g, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Ones(n), {}, o);
+    REQUIRE(r.converged);
+    REQUIRE(r.kkt_residual <= 1e-12);
+    REQUIRE((r.x - ref).cwiseAbs().maxCoeff() < 1e-8);
+  }
+}
+
+TEST_CASE("box QP KKT residual: zero at the minimizer, positive elsewhere", "[qp]") {
+  Eigen::MatrixXd H(2, 2);
+  H << 2, 0, 0, 2;
+  const Eigen::SparseMatrix<double> Hs = H.sparseView();
+  const Eigen::VectorXd g = Eigen::Vector2d(-1, 4);  // unconstrained minimizer (0.5, -2)
+  const Eigen::VectorXd lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Ones();
+  REQUIRE(box_qp_kkt_residual(Hs, g, lo, hi, Eigen::Vector2d(0.5, 0)) == Approx(0).margin(1e-15));
+  REQUIRE(box_qp_kkt_residual(Hs, g, lo, hi, Eigen::Vector2d(0.4, 0)) == Approx(0.1));   // not stationary
+  REQUIRE(box_qp_kkt_residual(Hs, g, lo, hi, Eigen::Vector2d(0.5, 1)) == Approx(1.0));   // wrong sign at upper
+  REQUIRE(box_qp_kkt_residual(Hs, g, lo, hi, Eigen::Vector2d(0.5, -0.5)) >= 0.5);        // infeasible
+}
+
+namespace {
+// A 8 x 2 x 2 bar of cubes (4 x 1 x 1), with point handles at the centres of both ends and the middle.
+struct Bar {
+  TetMesh m = test::cube_grid(8, 2, 2, 0.5);
+  Eigen::VectorXi b;
+  Eigen::MatrixXd bc;
+  int id(int i, int j, int k) const { return i + 9 * (j + 3 * k); }
+  Bar() {
+    b.resize(3);
+    b << id(0, 1, 1), id(8, 1, 1), id(4, 1, 1);
+    bc = Eigen::MatrixXd::Identity(3, 3);
+  }
+};
+
+double energy(const Eigen::SparseMatrix<double>& Q, const Eigen::MatrixXd& W) {
+  double e = 0;
+  for (int j = 0; j < W.cols(); ++j) e += 0.5 * W.col(j).dot(Q * W.col(j));
+  return e;
+}
+}  // namespace
+
+TEST_CASE("bbw on a bar: bounded, partition of unity, interpolating, local and monotone", "[bbw]") {
+  Bar bar;
+  BbwStats st;
+  const Eigen::MatrixXd W = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, {}, &st);
+  REQUIRE(st.converged);
+  REQUIRE(st.kkt_residual <= 1e-6);
+  REQUIRE(W.minCoeff() >= 0);
+  REQUIRE(W.maxCoeff() <= 1);
+  REQUIRE((W.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-12);
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j) REQUIRE(W(bar.b(k), j) == (k == j ? 1.0 : 0.0));
+  // Along the centre line the left handle's weight decreases from 1 to 0 at the middle handle, and
+  // is 0 beyond it (locality).
+  for (int i = 0; i < 8; ++i) REQUIRE(W(bar.id(i + 1, 1, 1), 0) <= W(bar.id(i, 1, 1), 0) + 1e-12);
+  REQUIRE(W(bar.id(2, 1, 1), 0) > 0.2);
+  for (int i = 5; i <= 8; ++i) REQUIRE(W(bar.id(i, 1, 1), 0) < 1e-3);
+  // Symmetry of the problem: left and right handle mirror each other.
+  for (int i = 0; i <= 8; ++i) REQUIRE(W(bar.id(i, 1, 1), 0) == Approx(W(bar.id(8 - i, 1, 1), 1)).margin(1e-5));
+}
+
+TEST_CASE("bbw per handle is the box-QP minimizer before normalization (independent KKT check)", "[bbw]") {
+  Bar bar;
+  const Eigen::SparseMatrix<double> Q = bbw_energy_matrix(bar.m.V, bar.m.T);
+  // Q = K M^-1 K assembled independently here.
+  const Eigen::SparseMatrix<double> K = cotangent_stiffness(bar.m.V, bar.m.T);
+  const Eigen::VectorXd Minv = lumped_mass(bar.m.V, bar.m.T).cwiseInverse();
+  REQUIRE((Eigen::MatrixXd(Q) - Eigen::MatrixXd(K) * Minv.asDiagonal() * Eigen::MatrixXd(K)).cwiseAbs().maxCoeff() <
+          1e-9 * Eigen::MatrixXd(Q).cwiseAbs().maxCoeff());
+  // One handle alone (no normalization involved): the gradient on free vertices vanishes where
+  // 0 < w < 1 and points outward at the bounds.
+  BbwOptions o;
+  o.tolerance = 1e-10;
+  o.normalize_rows = false;
+  const Eigen::MatrixXd W = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o).leftCols(1);
+  const Eigen::VectorXd grad = Q * W.col(0);
+  const double gscale = (Eigen::MatrixXd(Q).cwiseAbs() * W.col(0).cwiseAbs()).maxCoeff();
+  std::vector<bool> fixed(bar.m.V.rows(), false);
+  for (int k = 0; k < 3; ++k) fixed[bar.b(k)] = true;
+  for (int v = 0; v < W.rows(); ++v) {
+    if (fixed[v]) continue;
+    const double w = W(v, 0);
+    if (w > 0 && w < 1) REQUIRE(std::abs(grad(v)) < 1e-7 * gscale);
+    if (w == 0) REQUIRE(grad(v) > -1e-7 * gscale);
+    if (w == 1) REQUIRE(grad(v) < 1e-7 * gscale);
+  }
+}
+
+TEST_CASE("exact partition of unity: rows sum to 1 inside the QP, energy no higher than normalized", "[bbw]") {
+  Bar bar;
+  const Eigen::SparseMatrix<double> Q = bbw_energy_matrix(bar.m.V, bar.m.T);
+  BbwOptions o;
+  o.exact_partition_of_unity = true;
+  o.tolerance = 1e-9;
+  BbwStats st;
+  const Eigen::MatrixXd We = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o, &st);
+  REQUIRE(st.converged);
+  REQUIRE(st.kkt_residual <= 1e-9);
+  REQUIRE(We.minCoeff() >= 0);
+  REQUIRE(We.maxCoeff() <= 1);
+  REQUIRE((We.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-9);
+  const Eigen::MatrixXd Wd = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc);
+  // The normalized default weights are feasible for the joint problem, so the joint minimum is lower.
+  REQUIRE(energy(Q, We) <= energy(Q, Wd) * (1 + 1e-9));
+}
+
+// Independent reference for the joint problem: accelerated projected gradient on the product of
+// probability simplices (sum 1 and >= 0 imply <= 1), many iterations on a tiny problem.
+static Eigen::RowVectorXd project_simplex(Eigen::RowVectorXd y) {
+  Eigen::RowVectorXd s = y;
+  std::sort(s.data(), s.data() + s.size(), std::greater<double>());
+  double cum = 0, theta = 0;
+  for (int k = 0; k < s.size(); ++k) {
+    cum += s(k);
+    const double t = (cum - 1) / (k + 1);
+    if (s(k) - t > 0) theta = t;
+  }
+  return (y.array() - theta).max(0.0);
+}
+
+TEST_CASE("exact partition of unity solver matches projected gradient on a random small problem", "[qp]") {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> N(0, 1);
+  const int n = 6, m = 3;
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < A.size(); ++i) A.data()[i] = N(rng);
+  const Eigen::MatrixXd H = A.transpose() * A + 0.1 * Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd G(n, m);
+  for (int i = 0; i < G.size(); ++i) G.data()[i] = 2 * N(rng);
+  const Eigen::SparseMatrix<double> Hs = H.sparseView();
+  const ExactPouResult r = solve_exact_pou(Hs, G, Eigen::MatrixXd::Constant(n, m, 1.0 / m), 1e-12);
+  REQUIRE(r.converged);
+  Eigen::MatrixXd X = Eigen::MatrixXd::Constant(n, m, 1.0 / m), Y = X;
+  const double step = 1.0 / Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(H).eigenvalues().maxCoeff();
+  double t = 1;
+  for (int it = 0; it < 20000; ++it) {
+    Eigen::MatrixXd Xn = Y - step * (H * Y + G);
+    for (int i = 0; i < n; ++i) Xn.row(i) = project_simplex(Xn.row(i));
+    const double tn = (1 + std::sqrt(1 + 4 * t * t)) / 2;
+    Y = Xn + ((t - 1) / tn) * (Xn - X);
+    X = Xn, t = tn;
+  }
+  REQUIRE((r.X - X).cwiseAbs().maxCoeff() < 1e-6);
+  REQUIRE(exact_pou_kkt_residual(Hs, G, X) < 1e-6);
+}
+
+TEST_CASE("shape mask keeps painted tets stiffer (Eq. 4.7)", "[bbw]") {
+  Bar bar;
+  // Paint the tets between x = 0.5 and 1.5.
+  Eigen::VectorXd rho = Eigen::VectorXd::Zero(bar.m.T.rows());
+  for (int t = 0; t < bar.m.T.rows(); ++t) {
+    double cx = 0;
+    for (int c = 0; c < 4; ++c) cx += bar.m.V(bar.m.T(t, c), 0) / 4;
+    if (cx > 0.5 && cx < 1.5) rho(t) = 1e3;
+  }
+  BbwOptions o;
+  o.shape_mask = rho;
+  const Eigen::MatrixXd Wm = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o);
+  const Eigen::MatrixXd W0 = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc);
+  const Eigen::SparseMatrix<double> Kp = masked_stiffness(bar.m.V, bar.m.T, (rho.array() > 0).cast<double>());
+  double e_mask = 0, e_free = 0;
+  for (int j = 0; j < 3; ++j) e_mask += Wm.col(j).dot(Kp * Wm.col(j)), e_free += W0.col(j).dot(Kp * W0.col(j));
+  REQUIRE(e_mask < 0.2 * e_free);
+  REQUIRE((Wm.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-12);
+}
+
+TEST_CASE("bbw: progress is reported, cancel stops it, bad input is an error", "[bbw]") {
+  Bar bar;
+  std::vector<double> fractions;
+  BbwOptions o;
+  o.progress = [&](const std::string&, double f) { fractions.push_back(f); };
+  bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o);
+  REQUIRE(fractions.size() >= 4);
+  REQUIRE(fractions.back() == 1.0);
+  for (size_t k = 1; k < fractions.size(); ++k) REQUIRE(fractions[k] >= fractions[k - 1]);
+  std::atomic<bool> cancel{true};
+  o.cancel = &cancel;
+  REQUIRE_THROWS_WITH(bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o), "cancelled");
+  Eigen::VectorXi bad = bar.b;
+  bad(1) = bad(0);
+  REQUIRE_THROWS_AS(bbw_weights(bar.m.V, bar.m.T, bad, bar.bc), Error);
+  REQUIRE_THROWS_AS(bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc.topRows(2)), Error);
+  Eigen::MatrixXd zero_col = bar.bc;
+  zero_col.col(2).setZero();
+  REQUIRE_THROWS_AS(bbw_weights(bar.m.V, bar.m.T, bar.b, zero_col), Error);
+}

@@ -1,0 +1,118 @@
+// The default scene in assets/: a closed, manifold, outward character with every handle inside it,
+// small enough to commit, and exactly what tools/make_default_scene.cpp generates.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
+
+#include "core/mesh/io.h"
+#include "core/mesh/mesh_info.h"
+#include "core/scene/document.h"
+
+using namespace dfm;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string kAssets = DFM_ASSETS_DIR;
+
+// Generalized winding number by summing signed solid angles (Van Oosterom & Strackee), brute force:
+// ~1 inside a closed outward surface, ~0 outside. Independent of the bind module's BVH version.
+double winding_number(const TriMesh& m, const Eigen::Vector3d& p) {
+  double sum = 0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Eigen::Vector3d a = m.V.row(m.F(f, 0)).transpose() - p, b = m.V.row(m.F(f, 1)).transpose() - p,
+                          c = m.V.row(m.F(f, 2)).transpose() - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double num = a.dot(b.cross(c));
+    const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    sum += 2 * std::atan2(num, den);
+  }
+  return sum / (4 * M_PI);
+}
+
+// Distance from p to the nearest surface vertex (a cheap lower bound on clearance is not needed; this
+// only guards against handles grazing the skin).
+double nearest_vertex(const TriMesh& m, const Eigen::Vector3d& p) {
+  return (m.V.rowwise() - p.transpose()).rowwise().norm().minCoeff();
+}
+
+void require_inside(const TriMesh& m, const Eigen::Vector3d& p, const std::string& what) {
+  INFO(what << " at " << p.transpose());
+  CHECK(winding_number(m, p) > 0.99);
+  CHECK(nearest_vertex(m, p) > 0.02);
+}
+}  // namespace
+
+TEST_CASE("the default scene is a closed, manifold, outward character of a few thousand vertices") {
+  Document d;
+  d.load_scene(kAssets + "/default.scene.json");
+  const TriMesh& m = d.surface();
+  CHECK(m.num_vertices() >= 3000);
+  CHECK(m.num_vertices() <= 8000);
+  CHECK(is_closed(m.F));
+  CHECK(boundary_edge_count(m.F) == 0);
+  CHECK(non_manifold_edge_count(m.F) == 0);
+  CHECK(inconsistent_edge_count(m.F) == 0);
+  CHECK(connected_component_count(m.F) == 1);
+  CHECK(unreferenced_vertex_count(m.num_vertices(), m.F) == 0);
+  CHECK(degenerate_face_count(m.V, m.F, 1e-10) == 0);
+  CHECK(duplicate_vertex_count(m.V, 1e-6) == 0);
+  CHECK(signed_volume(m.V, m.F) > 0.5);
+  // Euler characteristic of a sphere: V - E + F = 2 (E = 3F/2 on a closed surface).
+  CHECK(m.num_vertices() - 3 * m.num_faces() / 2 + m.num_faces() == 2);
+  // The plain mesh file holds the same surface.
+  const TriMesh obj = read_surface(kAssets + "/default.obj");
+  REQUIRE(obj.num_vertices() == m.num_vertices());
+  CHECK(obj.F == m.F);
+  CHECK((obj.V - m.V).cwiseAbs().maxCoeff() < 1e-5);
+}
+
+TEST_CASE("the default rig shows every handle type, all inside the character") {
+  Document d;
+  d.load_scene(kAssets + "/default.scene.json");
+  const Rig& rig = d.rig();
+  const TriMesh& m = d.surface();
+  CHECK(rig.points.size() >= 2);
+  CHECK(rig.skeleton.num_bones() >= 3);
+  REQUIRE(rig.cages.size() == 1);
+  CHECK(boundary_edge_count(rig.cages[0].mesh.F) > 0);  // a partial (open) cage
+  for (const PointHandle& p : rig.points) require_inside(m, p.position, "point " + p.name);
+  for (const Bone& b : rig.skeleton.bones)
+    for (double t = 0; t <= 1.0; t += 0.125) {
+      const Eigen::Vector3d p = (1 - t) * rig.skeleton.joints.row(b.a).transpose() + t * rig.skeleton.joints.row(b.b).transpose();
+      require_inside(m, p, "bone " + b.name);
+    }
+  const TriMesh& cage = rig.cages[0].mesh;
+  for (int v = 0; v < cage.num_vertices(); ++v) require_inside(m, cage.V.row(v).transpose(), "cage vertex");
+  for (int f = 0; f < cage.num_faces(); ++f)
+    require_inside(m, (cage.V.row(cage.F(f, 0)) + cage.V.row(cage.F(f, 1)) + cage.V.row(cage.F(f, 2))).transpose() / 3.0,
+                   "cage face");
+  // Handles must not touch each other (a bind needs disjoint boundary conditions).
+  for (const PointHandle& p : rig.points)
+    for (int v = 0; v < cage.num_vertices(); ++v) CHECK((p.position - cage.V.row(v).transpose()).norm() > 0.05);
+  // The tgf and cage files hold the same rig.
+  const TgfData tgf = read_tgf(kAssets + "/default.tgf");
+  CHECK(tgf.edges.rows() == rig.skeleton.num_bones());
+  CHECK(read_surface(kAssets + "/default-cage.obj").num_vertices() == cage.num_vertices());
+}
+
+TEST_CASE("the committed default scene is small and is what the generator makes") {
+  std::uintmax_t total = 0;
+  for (const auto& e : fs::directory_iterator(kAssets))
+    if (e.path().filename().string().rfind("default", 0) == 0) total += e.file_size();
+  CHECK(total < 1024 * 1024);
+
+  const fs::path tmp = fs::temp_directory_path() / ("dfm_default_scene_" + std::to_string(::getpid()));
+  const std::string cmd = std::string("\"") + DFM_MAKE_DEFAULT_SCENE + "\" \"" + tmp.string() + "\" > /dev/null";
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  Document fresh, committed;
+  fresh.load_scene((tmp / "default.scene.json").string());
+  committed.load_scene(kAssets + "/default.scene.json");
+  fs::remove_all(tmp);
+  REQUIRE(fresh.surface().num_vertices() == committed.surface().num_vertices());
+  CHECK(fresh.surface().F == committed.surface().F);
+  CHECK((fresh.surface().V - committed.surface().V).cwiseAbs().maxCoeff() < 1e-9);
+  CHECK(fresh.num_handles() == committed.num_handles());
+  CHECK(fresh.rig().skeleton.joints == committed.rig().skeleton.joints);
+}
