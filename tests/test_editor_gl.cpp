@@ -104,3 +104,32 @@ TEST_CASE("editor runs from any working directory and reports a missing file", "
   REQUIRE(r.code == 1);
   REQUIRE(r.output.find("/nonexistent/mesh.obj") != std::string::npos);
 }
+
+TEST_CASE("a script on the default scene binds, poses, keys, scrubs and saves", "[editor][gl]") {
+  const std::string posed = tmp("posed.obj"), shot = tmp("scrub.png"), script = tmp("accept.txt");
+  {
+    std::ofstream s(script);
+    s << "bind\nset-key 0\nselect 5\nrotate 40 0 0 1\nselect 6\nrotate -40 0 0 1\nset-key 1\n"
+         "select 5\nrotate -60 0 0 1\nselect 0\ntranslate 0 0.15 0\nset-key 2\nset-time 1.5\n"
+      << "save-posed " << posed << "\nscreenshot " << shot << "\n";
+  }
+  const Run r = run(std::string("\"") + DFM_EDITOR_EXE + "\" --script \"" + script + "\" --quit");
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  REQUIRE(fs::file_size(posed) > 1000);
+  const Coverage c = mesh_coverage(dfm::gl::read_png(shot));
+  INFO("mesh fraction " << c.fraction);
+  REQUIRE(c.fraction > 0.05);
+  REQUIRE(c.luminance_stddev > 8.0);
+}
+
+TEST_CASE("a failing script line exits 1 naming the script and line", "[editor][gl]") {
+  const std::string script = tmp("bad.txt");
+  {
+    std::ofstream s(script);
+    s << "select 0\nrotate 30 0 0\n";  // rotate needs 4 numbers
+  }
+  const Run r = run(std::string("\"") + DFM_EDITOR_EXE + "\" --script \"" + script + "\" --quit");
+  REQUIRE(r.code == 1);
+  REQUIRE(r.output.find("bad.txt:2") != std::string::npos);
+}

@@ -115,7 +115,8 @@ TEST_CASE("glTF round trip: re-imported skin reproduces LBS at every key (synthe
     const int k = ki == 0 ? 4 : 8;
     for (const std::string ext : {"glb", "gltf"}) {
       const std::string path = (dir / ("tube" + std::to_string(k) + "." + ext)).string();
-      const GltfExportReport rep = export_gltf(path, in, {k});
+      // Plain pruning here (refit off): the stored weights have an independent reference.
+      const GltfExportReport rep = export_gltf(path, in, {k, false});
       CHECK(rep.sheared_transforms == 0);
       CHECK(rep.max_shear < 1e-9);
       CHECK(rep.joints == nh);
@@ -157,6 +158,48 @@ TEST_CASE("glTF round trip: re-imported skin reproduces LBS at every key (synthe
   CHECK(prune_err[0] > 0);
   CHECK(prune_err[1] < prune_err[0]);
   fs::remove_all(dir);
+}
+
+TEST_CASE("refit of pruned weights: same support, valid weights, lower error over the fitted poses; in the file",
+          "[gltf][prune]") {
+  const GltfExportInput in = test::synthetic_input();
+  const int nh = num_handles(in.rig);
+  std::vector<Pose> poses = {in.current};
+  for (const auto& k : in.keys) poses.push_back(k.pose);
+  auto sq_error = [&](const Influences& inf) {
+    double e = 0;
+    for (const auto& p : poses)
+      e += (lbs(in.surface.V, influences_to_dense(inf, nh), p) - lbs(in.surface.V, in.weights, p)).squaredNorm();
+    return e;
+  };
+  for (int k : {4, 8}) {
+    const Influences plain = prune_for_export(in.weights, k);
+    Influences fit = plain;
+    const int n = refit_influences(fit, in.surface.V, in.weights, poses);
+    CHECK(n > 0);
+    for (int v = 0; v < fit.num_vertices(); ++v) {
+      CHECK(std::abs(fit.weight.row(v).sum() - 1) < 1e-12);
+      CHECK(fit.weight.row(v).minCoeff() >= 0);
+      for (int j = 0; j < k; ++j)
+        if (fit.weight(v, j) > 0) CHECK(plain.weight.row(v).cwiseProduct((plain.index.row(v).array() == fit.index(v, j)).matrix().cast<double>()).sum() > 0);
+    }
+    CHECK(sq_error(fit) < 0.5 * sq_error(plain));
+    // The exported file (refit on by default) skins like the refit weights, and the report says so.
+    const fs::path dir = temp_dir("refit");
+    const std::string path = (dir / "refit.glb").string();
+    const GltfExportReport rep = export_gltf(path, in, {k});
+    CHECK(rep.refit_vertices == n);
+    const GltfDocument doc = read_gltf(path);
+    const Eigen::MatrixXd Wf = influences_to_dense(fit, nh);
+    double worst = 0;
+    for (size_t i = 0; i < in.keys.size(); ++i) {
+      const Eigen::MatrixXd U = gltf_skinned_positions(doc, in.keys[i].time);
+      CHECK(max_row_distance(U, lbs(in.surface.V, Wf, in.keys[i].pose)) < 1e-5 * rep.bbox_diagonal);
+      worst = std::max(worst, max_row_distance(U, lbs(in.surface.V, in.weights, in.keys[i].pose)));
+    }
+    CHECK(worst <= rep.max_prune_error + 1e-5 * rep.bbox_diagonal);
+    fs::remove_all(dir);
+  }
 }
 
 TEST_CASE("glTF export: baked frames as morph targets play back exactly at their times", "[gltf][morph]") {

@@ -9,6 +9,7 @@
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
 #include "core/scene/document.h"
+#include "core/scene/script.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
@@ -115,4 +116,43 @@ TEST_CASE("the committed default scene is small and is what the generator makes"
   CHECK((fresh.surface().V - committed.surface().V).cwiseAbs().maxCoeff() < 1e-9);
   CHECK(fresh.num_handles() == committed.num_handles());
   CHECK(fresh.rig().skeleton.joints == committed.rig().skeleton.joints);
+}
+
+TEST_CASE("the default scene binds, and a scripted animation slice at a key equals hand-computed LBS") {
+  Document d;
+  d.load_scene(kAssets + "/default.scene.json");
+  const fs::path tmp = fs::temp_directory_path() / ("dfm_default_bind_" + std::to_string(::getpid()));
+  fs::create_directories(tmp);
+  const std::string out = (tmp / "mid.obj").string();
+  // Handles: 0,1 ears, 2 belly (points), 3.. bones (3 = spine, 5 = left upper arm).
+  run_script(d,
+             parse_script("bind\n"
+                          "set-key 0\n"
+                          "select 5\nrotate 45 0 0 1\n"
+                          "select 0\ntranslate 0 0.1 0\n"
+                          "set-key 1\n"
+                          "select 3\nrotate -20 0 0 1\n"
+                          "set-key 2\n"
+                          "set-time 1\n"
+                          "save-posed " + out + "\n",
+                          "acceptance.txt"),
+             "acceptance.txt");
+  REQUIRE(d.has_weights());
+  const Eigen::MatrixXd& W = d.weights();
+  CHECK((W.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-6);
+  CHECK(W.minCoeff() > -1e-6);
+  REQUIRE(d.keys().size() == 3);
+  // LBS by hand with the middle key's pose (t = 1 is a layer: the slice is that layer exactly).
+  const Pose pose = d.key_poses()[1];
+  const TriMesh& rest = d.surface();
+  Eigen::MatrixXd expect = Eigen::MatrixXd::Zero(rest.num_vertices(), 3);
+  for (int i = 0; i < rest.num_vertices(); ++i)
+    for (int j = 0; j < pose.size(); ++j)
+      expect.row(i) += W(i, j) * (pose.transforms[j] * Eigen::Vector3d(rest.V.row(i).transpose())).transpose();
+  const TriMesh got = read_surface(out);
+  fs::remove_all(tmp);
+  REQUIRE(got.num_vertices() == rest.num_vertices());
+  CHECK((got.V - expect).cwiseAbs().maxCoeff() < 1e-5);
+  // The pose actually moved the mesh.
+  CHECK((expect - rest.V).cwiseAbs().maxCoeff() > 0.05);
 }

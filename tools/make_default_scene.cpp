@@ -6,7 +6,8 @@
 // tetrahedra on a regular grid (each cube split into 6 tets around its main diagonal, so neighbouring
 // cubes agree on face diagonals and the result is a closed, edge-manifold surface), then relaxed a few
 // times (move to the neighbour average, project back onto the implicit surface) to even out the
-// sliver triangles marching tetrahedra makes. Triangles are oriented along the field gradient (outward).
+// sliver triangles marching tetrahedra makes (six passes; the generator refuses any triangle folded
+// against the field gradient). Triangles are oriented along the field gradient (outward).
 //
 // Usage: make_default_scene OUT_DIR   -> OUT_DIR/default.{obj,tgf}, default-cage.obj,
 //                                         default.scene.json + default.scene.bin
@@ -227,82 +228,6 @@ void relax(dfm::TriMesh& m, int iterations) {
   }
 }
 
-// Marching tetrahedra makes many tiny triangles where the surface passes close to a grid point.
-// Collapse edges much shorter than the grid spacing (keeping the surface a manifold: only when the two
-// endpoints share exactly two neighbours, the link condition), then re-index.
-void collapse_short_edges(dfm::TriMesh& m, double min_len) {
-  bool changed = true;
-  while (changed) {
-    changed = false;
-    const int nv = m.num_vertices();
-    std::vector<std::vector<int>> vf(nv);
-    for (int t = 0; t < m.num_faces(); ++t)
-      for (int e = 0; e < 3; ++e) vf[m.F(t, e)].push_back(t);
-    std::vector<char> alive(m.num_faces(), 1), touched(nv, 0);
-    std::vector<int> rep(nv);
-    for (int v = 0; v < nv; ++v) rep[v] = v;
-    auto neighbours = [&](int v) {
-      std::vector<int> n;
-      for (int t : vf[v])
-        if (alive[t])
-          for (int e = 0; e < 3; ++e)
-            if (m.F(t, e) != v) n.push_back(m.F(t, e));
-      std::sort(n.begin(), n.end());
-      n.erase(std::unique(n.begin(), n.end()), n.end());
-      return n;
-    };
-    for (int t = 0; t < m.num_faces(); ++t) {
-      if (!alive[t]) continue;
-      for (int e = 0; e < 3; ++e) {
-        const int a = m.F(t, e), b = m.F(t, (e + 1) % 3);
-        if (touched[a] || touched[b]) continue;
-        if ((m.V.row(a) - m.V.row(b)).norm() >= min_len) continue;
-        const auto na = neighbours(a), nb = neighbours(b);
-        std::vector<int> common;
-        std::set_intersection(na.begin(), na.end(), nb.begin(), nb.end(), std::back_inserter(common));
-        if (common.size() != 2 || na.size() < 4 || nb.size() < 4) continue;
-        // Collapse b into a at the edge midpoint (projected back onto the surface).
-        m.V.row(a) = project(0.5 * (m.V.row(a) + m.V.row(b)).transpose()).transpose();
-        for (int f : vf[b]) {
-          if (!alive[f]) continue;
-          bool has_a = false;
-          for (int q = 0; q < 3; ++q) has_a |= m.F(f, q) == a;
-          if (has_a) {
-            alive[f] = 0;
-            continue;
-          }
-          for (int q = 0; q < 3; ++q)
-            if (m.F(f, q) == b) m.F(f, q) = a;
-          vf[a].push_back(f);
-        }
-        rep[b] = a;
-        for (int u : na) touched[u] = 1;
-        for (int u : nb) touched[u] = 1;
-        touched[a] = touched[b] = 1;
-        changed = true;
-        break;
-      }
-    }
-    // Re-index the surviving faces and vertices.
-    std::vector<int> used(nv, -1);
-    int k = 0;
-    std::vector<std::array<int, 3>> faces;
-    for (int t = 0; t < m.num_faces(); ++t)
-      if (alive[t]) faces.push_back({m.F(t, 0), m.F(t, 1), m.F(t, 2)});
-    for (auto& f : faces)
-      for (int& v : f) {
-        if (used[v] < 0) used[v] = k++;
-        v = used[v];
-      }
-    Eigen::MatrixXd V(k, 3);
-    for (int v = 0; v < nv; ++v)
-      if (used[v] >= 0) V.row(used[v]) = m.V.row(v);
-    m.V = V;
-    m.F.resize(faces.size(), 3);
-    for (size_t i = 0; i < faces.size(); ++i) m.F.row(i) << faces[i][0], faces[i][1], faces[i][2];
-  }
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -314,9 +239,8 @@ int main(int argc, char** argv) {
     const std::filesystem::path out = argv[1];
     std::filesystem::create_directories(out);
 
-    dfm::TriMesh surface = marching_tets({-1.35, -1.4, -0.5}, {1.35, 1.4, 0.5}, 0.055);
-    //collapse_short_edges(surface, 0.02);
-    relax(surface, 4);
+    dfm::TriMesh surface = marching_tets({-1.35, -1.4, -0.5}, {1.35, 1.4, 0.5}, 0.08);
+    relax(surface, 6);
     const int folded = orient_outward(surface);
     if (folded > 0) throw dfm::Error(std::to_string(folded) + " folded triangles: adjust the grid or relaxation");
 

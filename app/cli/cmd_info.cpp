@@ -2,6 +2,7 @@
 // .ele), skeletons (.tgf), matrices (.dmat) and point lists (.xyz .pts .txt). Exit 1 on a bad file.
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "app/cli/command.h"
 #include "core/mesh/io.h"
@@ -14,47 +15,48 @@ namespace {
 
 using dfm::BoundingBox;
 
-void print_box(const BoundingBox& b) {
-  std::cout << "  bounding box: [" << b.min.x() << ", " << b.min.y() << ", " << b.min.z() << "] .. [" << b.max.x()
+void print_box(std::ostream& out, const BoundingBox& b) {
+  out << "  bounding box: [" << b.min.x() << ", " << b.min.y() << ", " << b.min.z() << "] .. [" << b.max.x()
             << ", " << b.max.y() << ", " << b.max.z() << "]  (size " << b.diagonal().x() << " x " << b.diagonal().y()
             << " x " << b.diagonal().z() << ")\n";
 }
 
 // Shared by surfaces and tet-mesh boundaries.
-void print_surface_checks(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+void print_surface_checks(std::ostream& out, const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool tet_boundary) {
   const bool closed = dfm::is_closed(F);
-  std::cout << "  closed: " << (closed ? "yes" : "no") << "\n"
+  out << "  closed: " << (closed ? "yes" : "no") << "\n"
             << "  components: " << dfm::connected_component_count(F) << "\n"
             << "  boundary edges: " << dfm::boundary_edge_count(F) << "\n"
             << "  non-manifold edges: " << dfm::non_manifold_edge_count(F) << "\n"
             << "  inconsistently oriented edges: " << dfm::inconsistent_edge_count(F) << "\n"
             << "  degenerate faces: " << dfm::degenerate_face_count(V, F) << "\n"
             << "  duplicate vertices: " << dfm::duplicate_vertex_count(V) << "\n"
-            << "  unreferenced vertices: " << dfm::unreferenced_vertex_count(static_cast<int>(V.rows()), F) << "\n";
-  if (closed) std::cout << "  volume: " << dfm::signed_volume(V, F) << "\n";
+            << (tet_boundary ? "  interior vertices: " : "  unreferenced vertices: ")
+            << dfm::unreferenced_vertex_count(static_cast<int>(V.rows()), F) << "\n";
+  if (closed) out << "  volume: " << dfm::signed_volume(V, F) << "\n";
 }
 
-void info_surface(const std::string& path) {
+void info_surface(std::ostream& out, const std::string& path) {
   dfm::TriMesh m = dfm::read_surface(path);
-  std::cout << "  kind: surface (triangle mesh)\n  vertices: " << m.num_vertices() << "\n  triangles: " << m.num_faces()
+  out << "  kind: surface (triangle mesh)\n  vertices: " << m.num_vertices() << "\n  triangles: " << m.num_faces()
             << "\n  normals: " << (m.N.rows() ? "per vertex" : "none") << "\n";
-  print_box(dfm::bounding_box(m.V));
-  print_surface_checks(m.V, m.F);
+  print_box(out, dfm::bounding_box(m.V));
+  print_surface_checks(out, m.V, m.F, false);
 }
 
-void info_tet(const std::string& path) {
+void info_tet(std::ostream& out, const std::string& path) {
   dfm::TetMesh m = dfm::read_tet_mesh(path);
-  std::cout << "  kind: tet mesh\n  vertices: " << m.num_vertices() << "\n  tetrahedra: " << m.num_tets()
+  out << "  kind: tet mesh\n  vertices: " << m.num_vertices() << "\n  tetrahedra: " << m.num_tets()
             << "\n  surface triangles in file: " << m.F.rows() << "\n";
-  print_box(dfm::bounding_box(m.V));
-  std::cout << "  tet volume: " << dfm::tet_mesh_volume(m.V, m.T)
+  print_box(out, dfm::bounding_box(m.V));
+  out << "  tet volume: " << dfm::tet_mesh_volume(m.V, m.T)
             << "\n  flat tetrahedra: " << dfm::non_positive_tet_count(m.V, m.T) << "\n";
   Eigen::MatrixXi B = dfm::tet_boundary_faces(m.T);
-  std::cout << "  boundary triangles: " << B.rows() << "\n";
-  print_surface_checks(m.V, B);
+  out << "  boundary of the tets: " << B.rows() << " triangles\n";
+  print_surface_checks(out, m.V, B, true);
 }
 
-void info_tgf(const std::string& path) {
+void info_tgf(std::ostream& out, const std::string& path) {
   dfm::TgfData t = dfm::read_tgf(path);
   dfm::Rig rig;
   dfm::add_tgf_to_rig(rig, t, path);
@@ -62,33 +64,32 @@ void info_tgf(const std::string& path) {
   for (const dfm::Bone& b : rig.skeleton.bones) roots += b.parent < 0;
   int cage_edges = 0;
   for (const dfm::Cage& c : rig.cages) cage_edges += static_cast<int>(c.edges.rows());
-  std::cout << "  kind: skeleton (TGF)\n  joints: " << t.joints.rows() << "\n  edges: " << t.edges.rows()
+  out << "  kind: skeleton (TGF)\n  joints: " << t.joints.rows() << "\n  edges: " << t.edges.rows()
             << "\n  bones: " << rig.skeleton.num_bones() << " (" << roots << (roots == 1 ? " root" : " roots")
             << ")\n  point handles: " << rig.points.size() << "\n  pseudo-edges: " << rig.pseudo_edges.size()
             << "\n  cage edges: " << cage_edges << "\n  handles (weight columns): " << dfm::num_handles(rig) << "\n";
-  print_box(dfm::bounding_box(t.joints));
+  print_box(out, dfm::bounding_box(t.joints));
 }
 
-void info_dmat(const std::string& path) {
+void info_dmat(std::ostream& out, const std::string& path) {
   Eigen::MatrixXd M = dfm::read_dmat(path);
-  std::cout << "  kind: matrix (dmat)\n  size: " << M.rows() << " rows x " << M.cols() << " columns\n";
-  if (M.size() > 0) std::cout << "  min: " << M.minCoeff() << "\n  max: " << M.maxCoeff() << "\n";
+  out << "  kind: matrix (dmat)\n  size: " << M.rows() << " rows x " << M.cols() << " columns\n";
+  if (M.size() > 0) out << "  min: " << M.minCoeff() << "\n  max: " << M.maxCoeff() << "\n";
 }
 
-void info_points(const std::string& path) {
+void info_points(std::ostream& out, const std::string& path) {
   Eigen::MatrixXd P = dfm::read_points(path);
-  std::cout << "  kind: points\n  points: " << P.rows() << "\n";
-  print_box(dfm::bounding_box(P));
+  out << "  kind: points\n  points: " << P.rows() << "\n";
+  print_box(out, dfm::bounding_box(P));
 }
 
 int run(const dfm::cli::Args& args) {
   if (args.empty()) throw dfm::cli::UsageError("info needs at least one FILE");
   for (const std::string& a : args)
     if (a.rfind("--", 0) == 0) throw dfm::cli::UsageError("unknown option " + a);
-  std::cout << std::setprecision(6);
   for (const std::string& path : args) {
     const std::string e = dfm::file_extension(path);
-    void (*show)(const std::string&) = nullptr;
+    void (*show)(std::ostream&, const std::string&) = nullptr;
     if (e == "obj" || e == "off" || e == "ply" || e == "stl") show = info_surface;
     else if (dfm::is_tet_mesh_path(path)) show = info_tet;
     else if (e == "tgf") show = info_tgf;
@@ -99,8 +100,10 @@ int run(const dfm::cli::Args& args) {
       throw dfm::file_error(path, 0, "unknown file type '." + e +
                                          "' (known: .obj .off .ply .stl .mesh .node .ele .tgf .dmat .xyz .pts .txt)");
     }
-    std::cout << path << "\n";
-    show(path);
+    std::ostringstream out;  // printed only once the whole file has been read
+    out << std::setprecision(6) << path << "\n";
+    show(out, path);
+    std::cout << out.str();
   }
   return 0;
 }

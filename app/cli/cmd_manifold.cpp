@@ -1,4 +1,5 @@
 // `deform manifold`: join keyframe meshes into an animation manifold and save slices of it.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -11,17 +12,23 @@
 #include "core/anim/surface_checks.h"
 #include "core/mesh/io.h"
 #include "core/util/error.h"
+#include "render/camera.h"
+#include "render/gl_context.h"
+#include "render/screenshot.h"
+#include "render/slice_pass.h"
+#include "render/surface_pass.h"
 
 namespace {
 
 const char* kUsage =
     "usage: deform manifold (--keyframes K0.obj K1.obj ... [--times t0 t1 ...] | --manifold M.tet4)\n"
     "                       [--axis t|x|y|z] [--at VALUE -o SLICE.obj] [--save-manifold M.tet4] [--stats]\n"
-    "                       [--frames N --sequence PREFIX]\n"
+    "                       [--frames N [--sequence PREFIX] [--strip STRIP.png]]\n"
     "  Keyframes are meshes with identical connectivity (default times 0, 1, 2, ...), joined into 4D\n"
     "  tetrahedra (x, y, z, t). --at slices at that value of --axis (default t; x, y, z give the sweep\n"
     "  through time drawn in the other three coordinates) and writes the welded slice with normals.\n"
     "  --sequence writes N slices on t evenly spaced over the animation as PREFIX0000.obj, ...\n"
+    "  --strip renders those N frames side by side on the GPU slicer (needs a display: xvfb-run).\n"
     "  --stats prints the tetrahedron count and the slice's triangles, vertices, closedness, volume.";
 
 void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, dfm::SliceAxis axis, double at) {
@@ -39,11 +46,46 @@ void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, d
     std::cout << "volume: n/a (open slice)\n";
 }
 
+// N frames of the GPU slice (slice shader -> transform feedback -> surface pass) side by side.
+void render_strip(const dfm::AnimationManifold& M, int frames, const std::string& png) {
+  namespace gl = dfm::gl;
+  const int w = std::max(64, std::min(320, 1260 / frames)), h = 400;
+  gl::ContextOptions opts;
+  opts.width = w * frames;
+  opts.height = h;
+  gl::Context ctx(opts);
+  gl::SlicePass slicer;
+  slicer.upload(M);
+  gl::SurfacePass surface;
+  gl::Camera cam;
+  cam.width = w;
+  cam.height = h;
+  const Eigen::Vector3d lo = M.V.leftCols<3>().colwise().minCoeff().transpose();
+  const Eigen::Vector3d hi = M.V.leftCols<3>().colwise().maxCoeff().transpose();
+  gl::set_view_preset(cam, gl::ViewPreset::Front);
+  gl::frame_box(cam, lo, hi);
+  glViewport(0, 0, w * frames, h);
+  glClearColor(0.145f, 0.15f, 0.165f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const double t0 = M.times.front(), t1 = M.times.back();
+  for (int i = 0; i < frames; ++i) {
+    const double t = frames == 1 ? t0 : t0 + (t1 - t0) * i / (frames - 1);
+    const int n = slicer.slice(dfm::SliceAxis::T, t);
+    glViewport(i * w, 0, w, h);
+    surface.set_geometry(slicer.output().id(), 3 * n, 0, 0);
+    surface.draw(cam, gl::SurfaceStyle{});
+  }
+  glFinish();
+  glReadBuffer(GL_BACK);
+  gl::write_png(png, gl::read_framebuffer(w * frames, h));
+  std::printf("wrote %s (%d frames, t = %g .. %g, %s)\n", png.c_str(), frames, t0, t1, ctx.renderer().c_str());
+}
+
 int run(const dfm::cli::Args& args) {
   using dfm::cli::UsageError;
   dfm::cli::ArgReader r(args);
   std::vector<std::string> keyframes, times_text;
-  std::string manifold_in, out, save_manifold, sequence;
+  std::string manifold_in, out, save_manifold, sequence, strip;
   std::optional<double> at;
   dfm::SliceAxis axis = dfm::SliceAxis::T;
   bool stats = false;
@@ -65,15 +107,18 @@ int run(const dfm::cli::Args& args) {
     else if (f == "--stats") stats = true;
     else if (f == "--frames") frames = r.integer(f);
     else if (f == "--sequence") sequence = r.value(f);
+    else if (f == "--strip") strip = r.value(f);
     else throw UsageError("unknown argument '" + f + "'");
   }
   if (keyframes.empty() == manifold_in.empty()) throw UsageError("give either --keyframes or --manifold");
   if (!manifold_in.empty() && !times_text.empty()) throw UsageError("--times goes with --keyframes");
   if (!out.empty() && !at) throw UsageError("-o needs --at VALUE");
   if (at && out.empty() && !stats) throw UsageError("--at needs -o SLICE.obj (or --stats)");
-  if ((frames > 0) != !sequence.empty()) throw UsageError("--frames N and --sequence PREFIX go together");
-  if (!sequence.empty() && frames < 1) throw UsageError("--frames needs at least 1");
-  if (!at && sequence.empty() && save_manifold.empty()) throw UsageError("nothing to do: give --at, --sequence or --save-manifold");
+  if ((frames != 0) != (!sequence.empty() || !strip.empty()))
+    throw UsageError("--frames N goes with --sequence PREFIX and/or --strip STRIP.png");
+  if (frames < 0 || frames > 100000) throw UsageError("--frames needs a count >= 1");
+  if (!at && sequence.empty() && strip.empty() && save_manifold.empty())
+    throw UsageError("nothing to do: give --at, --sequence, --strip or --save-manifold");
 
   dfm::AnimationManifold M;
   if (!manifold_in.empty()) {
@@ -128,6 +173,7 @@ int run(const dfm::cli::Args& args) {
     }
     std::printf("wrote %d frames: %s0000.obj .. %s%04d.obj\n", frames, sequence.c_str(), sequence.c_str(), frames - 1);
   }
+  if (!strip.empty()) render_strip(M, frames, strip);
   return 0;
 }
 

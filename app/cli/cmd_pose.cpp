@@ -11,6 +11,7 @@
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
 #include "core/skin/skin.h"
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "render/gl_context.h"
 #include "render/skin_pass.h"

@@ -311,8 +311,92 @@ void Editor::save_screenshot(const std::string& path) {
   status("screenshot " + path);
 }
 
+// Plays the timeline for a number of frames, each one fully drawn and finished (glFinish), and prints
+// the frame times: what an artist sees while the animation plays.
+void Editor::play_benchmark(int frames) {
+  playing_ = true;
+  loop_ = true;
+  std::vector<double> ms;
+  double last = glfwGetTime();
+  for (int i = 0; i < frames + 3; ++i) {
+    const double t0 = glfwGetTime();
+    tick(1.0 / 30.0);
+    render_frame();
+    glFinish();
+    glfwSwapBuffers(window_);
+    glfwPollEvents();
+    const double now = glfwGetTime();
+    if (i >= 3) ms.push_back(1000.0 * (now - t0));  // the first frames compile shaders and upload
+    frame_ms_.push_back(1000.0 * (now - last));
+    if (frame_ms_.size() > 60) frame_ms_.pop_front();
+    last = now;
+  }
+  playing_ = false;
+  std::sort(ms.begin(), ms.end());
+  double sum = 0;
+  for (double m : ms) sum += m;
+  std::printf("play-frames: %d frames, %d vertices shown (%s), mean %.2f ms, median %.2f ms, p95 %.2f ms, max %.2f ms\n",
+              int(ms.size()), view_->display_vertex_count(), view_->showing_slice() ? "manifold slice" : "skinned",
+              sum / ms.size(), ms[ms.size() / 2], ms[std::min(ms.size() - 1, size_t(0.95 * ms.size()))], ms.back());
+  std::fflush(stdout);
+}
+
+// "tool=rotate,weights=selected,wireframe=1,ortho=0,preset=iso,sweep=x,grid=0": the state a user
+// would click to, so a screenshot can show any tool. Unknown keys or values are errors.
+void Editor::apply_ui_options(const std::string& spec) {
+  size_t pos = 0;
+  while (pos < spec.size()) {
+    size_t end = spec.find(',', pos);
+    if (end == std::string::npos) end = spec.size();
+    const std::string item = spec.substr(pos, end - pos);
+    pos = end + 1;
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) throw Error("--ui: expected key=value, got '" + item + "'");
+    const std::string k = item.substr(0, eq), v = item.substr(eq + 1);
+    auto bad = [&]() { return Error("--ui: bad value '" + v + "' for " + k); };
+    if (k == "tool") {
+      if (v == "select") tool_ = Tool::Select;
+      else if (v == "point") tool_ = Tool::PlacePoint;
+      else if (v == "bone") tool_ = Tool::DrawBone;
+      else if (v == "paint") tool_ = Tool::Paint;
+      else if (v == "move") tool_ = Tool::Pose, gizmo_rotate_ = false;
+      else if (v == "rotate") tool_ = Tool::Pose, gizmo_rotate_ = true;
+      else throw bad();
+    } else if (k == "weights") {
+      if (v == "off") weight_view_ = WeightView::Off;
+      else if (v == "selected") weight_view_ = WeightView::Selected;
+      else if (v == "all") weight_view_ = WeightView::AllHandles;
+      else if (v == "mask") weight_view_ = WeightView::Mask;
+      else throw bad();
+    } else if (k == "wireframe" || k == "ortho" || k == "grid" || k == "handles") {
+      if (v != "0" && v != "1") throw bad();
+      bool& b = k == "wireframe" ? wireframe_ : k == "ortho" ? cam_.orthographic : k == "grid" ? show_grid_ : show_handles_;
+      b = v == "1";
+    } else if (k == "preset") {
+      bool found = false;
+      for (auto p : {gl::ViewPreset::Front, gl::ViewPreset::Back, gl::ViewPreset::Left, gl::ViewPreset::Right,
+                     gl::ViewPreset::Top, gl::ViewPreset::Bottom, gl::ViewPreset::Iso}) {
+        std::string n = gl::view_preset_name(p);
+        std::transform(n.begin(), n.end(), n.begin(), ::tolower);
+        if (n == v) gl::set_view_preset(cam_, p), found = true;
+      }
+      if (!found) throw bad();
+      frame_all();
+    } else if (k == "sweep") {
+      if (v == "t") sweep_axis_ = -1;
+      else if (v == "x" || v == "y" || v == "z") sweep_axis_ = v[0] - 'x';
+      else throw bad();
+    } else if (k == "vertex") {
+      picked_vertex_ = std::atoi(v.c_str());
+    } else {
+      throw Error("--ui: unknown key '" + k + "' (tool, weights, wireframe, ortho, grid, handles, preset, sweep, vertex)");
+    }
+  }
+}
+
 int Editor::run() {
   load_initial();
+  if (!opts_.ui.empty()) apply_ui_options(opts_.ui);
   if (cam_.scene_radius <= 0 || view_->surface_bounds().isEmpty()) cam_.scene_radius = 1.0;
 
   if (!opts_.script.empty()) {
@@ -346,6 +430,7 @@ int Editor::run() {
     const ScriptResult r = run_script(doc_, lines, opts_.script, host);
     if (r.quit) should_quit_ = true;
   }
+  if (opts_.play_frames > 0) play_benchmark(opts_.play_frames);
   if (!opts_.screenshot.empty()) save_screenshot(opts_.screenshot);
   if (opts_.quit || should_quit_) return 0;
 

@@ -28,6 +28,8 @@ struct EditorOptions {
   std::string script;      // --script
   std::string screenshot;  // --screenshot (after the script)
   bool quit = false;       // --quit
+  std::string ui;          // --ui key=value,...: initial tool / view state (screenshots, tests)
+  int play_frames = 0;     // --play-frames N: play the timeline N frames, print frame times
   int width = 1280, height = 800;
 };
 
@@ -64,6 +66,8 @@ class Editor {
   void status(const std::string& msg, bool error = false);
   void request_quit();
   void autosave_if_due();
+  void play_benchmark(int frames);
+  void apply_ui_options(const std::string& spec);
   // editor_input.cpp
   void handle_shortcuts();
   void handle_viewport_input();

@@ -63,7 +63,9 @@ void Editor::draw_timeline() {
   auto x_of = [&](double time) { return p0.x + pad + float((time - t0) / (t1 - t0)) * (w - 2 * pad); };
   auto t_of = [&](float x) { return t0 + (t1 - t0) * double(x - p0.x - pad) / double(w - 2 * pad); };
   dl->AddRectFilled(p0, ImVec2(p0.x + w, p0.y + h), IM_COL32(24, 25, 28, 255), 3.0f);
-  const double step = std::pow(10.0, std::floor(std::log10((t1 - t0) / 5.0)));
+  double step = std::pow(10.0, std::floor(std::log10((t1 - t0) / 5.0)));
+  for (double m : {2.0, 5.0})  // at most about ten labelled ticks
+    if ((t1 - t0) / step > 10.0) step *= m == 2.0 ? 2.0 : 2.5;
   for (double s = std::ceil(t0 / step) * step; s <= t1 + 1e-9; s += step) {
     const float x = x_of(s);
     dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p0.y + 8), IM_COL32(110, 114, 122, 255));

@@ -1,6 +1,7 @@
 // deform-editor [FILE] [--script S.txt] [--screenshot OUT.png] [--quit]
 // Opens the editor on FILE (a scene .json, a surface or tet mesh) or on the default scene.
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -18,6 +19,10 @@ void usage(std::FILE* out) {
                "  --screenshot F    write a PNG of the window after the script\n"
                "  --quit            exit after the script / screenshot instead of staying open\n"
                "  --size WxH        window size (default 1280x800)\n"
+               "  --ui K=V,...      initial state: tool=select|point|bone|paint|move|rotate,\n"
+               "                    weights=off|selected|all|mask, wireframe=0|1, ortho=0|1, grid=0|1,\n"
+               "                    preset=front|right|top|iso..., sweep=t|x|y|z, vertex=N\n"
+               "  --play-frames N   play the timeline for N frames and print frame times (benchmark)\n"
                "Without a display, run it under a virtual X server:\n"
                "  xvfb-run -a -s \"-screen 0 1280x1024x24\" deform-editor ...\n");
 }
@@ -43,6 +48,10 @@ int main(int argc, char** argv) {
       opts.script = value("--script");
     } else if (a == "--screenshot") {
       opts.screenshot = value("--screenshot");
+    } else if (a == "--play-frames") {
+      opts.play_frames = std::atoi(value("--play-frames").c_str());
+    } else if (a == "--ui") {
+      opts.ui = value("--ui");
     } else if (a == "--quit") {
       opts.quit = true;
     } else if (a == "--size") {

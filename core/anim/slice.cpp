@@ -95,10 +95,36 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
     }
   }
 
-  // Pass 2: weld. Sorted keys give a deterministic vertex order (a layer's own order at key times).
-  std::vector<std::uint64_t> keys = corners;
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  // Pass 2: weld. An open-addressing table gives each distinct key a first-seen id; the ids are then
+  // renumbered in key order so the vertex order is deterministic (a layer's own order at key times).
+  size_t cap = 16;
+  while (cap < corners.size()) cap <<= 1;
+  cap <<= 1;  // load factor <= 1/2
+  constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  std::vector<std::uint64_t> slot_key(cap, kEmpty);
+  std::vector<int> slot_id(cap);
+  std::vector<std::uint64_t> keys;  // by first-seen id
+  std::vector<int> corner_id(corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const std::uint64_t k = corners[i];
+    size_t h = static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & (cap - 1);
+    while (slot_key[h] != kEmpty && slot_key[h] != k) h = (h + 1) & (cap - 1);
+    if (slot_key[h] == kEmpty) {
+      slot_key[h] = k;
+      slot_id[h] = static_cast<int>(keys.size());
+      keys.push_back(k);
+    }
+    corner_id[i] = slot_id[h];
+  }
+  std::vector<int> order(keys.size()), rank(keys.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return keys[a] < keys[b]; });
+  for (size_t i = 0; i < order.size(); ++i) rank[order[i]] = static_cast<int>(i);
+  {
+    std::vector<std::uint64_t> sorted(keys.size());
+    for (size_t i = 0; i < order.size(); ++i) sorted[i] = keys[order[i]];
+    keys.swap(sorted);
+  }
 
   ManifoldSlice out;
   const int nv = static_cast<int>(keys.size());
@@ -128,7 +154,7 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
   out.mesh.F.resize(nf, 3);
   for (int f = 0; f < nf; ++f)
     for (int j = 0; j < 3; ++j)
-      out.mesh.F(f, j) = static_cast<int>(std::lower_bound(keys.begin(), keys.end(), corners[3 * f + j]) - keys.begin());
+      out.mesh.F(f, j) = rank[corner_id[3 * f + j]];
 
   // Area-weighted vertex normals of the welded slice.
   out.mesh.N = Eigen::MatrixXd::Zero(nv, 3);

@@ -1,4 +1,5 @@
 #include "core/bind/robust_volume.h"
+#include "core/mesh/mesh_info.h"
 
 #include <algorithm>
 #include <array>
@@ -104,33 +105,6 @@ TetMesh compact_tet_mesh(const TetMesh& tets, Eigen::VectorXi& old_to_new) {
   for (int t = 0; t < tets.T.rows(); ++t)
     for (int k = 0; k < 4; ++k) out.T(t, k) = old_to_new(tets.T(t, k));
   return out;
-}
-
-Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T) {
-  // Faces opposite each corner, oriented outward for a positively oriented tet.
-  static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::vector<std::pair<std::array<int, 3>, int>> all;  // sorted key, (tet*4+corner)
-  all.reserve(T.rows() * 4);
-  for (int t = 0; t < T.rows(); ++t)
-    for (int c = 0; c < 4; ++c) {
-      std::array<int, 3> k{T(t, face[c][0]), T(t, face[c][1]), T(t, face[c][2])};
-      std::sort(k.begin(), k.end());
-      all.push_back({k, t * 4 + c});
-    }
-  std::sort(all.begin(), all.end());
-  std::vector<int> once;
-  for (size_t i = 0; i < all.size();) {
-    size_t j = i;
-    while (j < all.size() && all[j].first == all[i].first) ++j;
-    if (j - i == 1) once.push_back(all[i].second);
-    i = j;
-  }
-  Eigen::MatrixXi F(once.size(), 3);
-  for (size_t i = 0; i < once.size(); ++i) {
-    const int t = once[i] / 4, c = once[i] % 4;
-    for (int k = 0; k < 3; ++k) F(i, k) = T(t, face[c][k]);
-  }
-  return F;
 }
 
 Eigen::MatrixXd tet_centroids(const TetMesh& tets) {

@@ -10,6 +10,7 @@
 #include <Eigen/Sparse>
 
 #include "core/mesh/mesh.h"
+#include "core/mesh/mesh_info.h"
 
 namespace dfm {
 
@@ -38,8 +39,7 @@ WeldedSurface weld_surface(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 // Keeps only the tets whose vertices are used; old_to_new(v) = new index or -1. Order is preserved.
 TetMesh compact_tet_mesh(const TetMesh& tets, Eigen::VectorXi& old_to_new);
 
-// Boundary triangles of a tet mesh (faces used by one tet), oriented outward.
-Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T);
+// tet_boundary_faces: see core/mesh/mesh_info.h.
 
 // Tet centroids (#T x 3).
 Eigen::MatrixXd tet_centroids(const TetMesh& tets);

@@ -250,7 +250,12 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
   report.bbox_diagonal = (S.V.colwise().maxCoeff() - S.V.colwise().minCoeff()).norm();
 
   // Pruning and its cost over every pose that will be shown.
-  const Influences inf = prune_for_export(in.weights, options.influences);
+  Influences inf = prune_for_export(in.weights, options.influences);
+  if (options.refit) {
+    std::vector<Pose> shown = {current};
+    for (const auto& k : in.keys) shown.push_back(k.pose);
+    report.refit_vertices = refit_influences(inf, S.V, in.weights, shown);
+  }
   const Eigen::MatrixXd Wp = influences_to_dense(inf, nh);
   auto prune_error = [&](const Pose& pose) {
     return (lbs(S.V, in.weights, pose) - lbs(S.V, Wp, pose)).rowwise().norm().maxCoeff();

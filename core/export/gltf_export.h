@@ -43,10 +43,14 @@ struct GltfExportInput {
 
 struct GltfExportOptions {
   int influences = 4;  // 4 (JOINTS_0/WEIGHTS_0) or 8 (adds JOINTS_1/WEIGHTS_1)
+  // Refit the kept weights to the current pose and keys (prune.h refit_influences) instead of only
+  // renormalizing them; lowers the pruning error at the keys.
+  bool refit = true;
 };
 
 struct GltfExportReport {
   int vertices = 0, triangles = 0, joints = 0, influences = 0, keys = 0, morph_targets = 0;
+  int refit_vertices = 0;  // vertices whose kept weights were refit
   double bbox_diagonal = 0.0;
   // Largest vertex distance between LBS with all weights and with the pruned weights, over the
   // current pose and every key; max_prune_error_key is the key (-1: the current pose).

@@ -1,7 +1,7 @@
 // Tet mesh dispatch by extension, and the orientation rule: TetMesh requires positively oriented tets,
-// so every tet read with a negative signed volume gets its last two vertices swapped. (MEDIT and TetGen
-// files in the wild use both conventions; hand.mesh is negatively oriented.) Zero-volume tets are
-// kept as they are: mesh checks can report them.
+// so every tet read with a negative signed volume gets its last two vertices swapped (files in the wild
+// use both conventions; hand.mesh and octopus-low.mesh are already positive and load unchanged).
+// Zero-volume tets are kept as they are: mesh checks can report them.
 #include "core/mesh/io.h"
 #include "core/mesh/io_formats.h"
 #include "core/util/atomic_file.h"

@@ -1,6 +1,5 @@
 #include "core/scene/script.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,8 +11,7 @@
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
-#include "core/bind/bbw.h"
-#include "core/bind/bind_volume.h"
+#include "core/scene/bind_document.h"
 #include "core/mesh/io.h"
 #include "core/skin/skin.h"
 #include "core/util/atomic_file.h"
@@ -170,35 +168,6 @@ std::vector<ScriptLine> read_script(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_script(ss.str(), path);
-}
-
-void run_bind_blocking(Document& doc) {
-  if (doc.surface().num_vertices() == 0) throw Error("bind: no surface (open a mesh first)");
-  if (doc.num_handles() == 0) throw Error("bind: the rig has no handles");
-  const auto t0 = std::chrono::steady_clock::now();
-  BindVolume vol;
-  if (doc.has_tets()) {
-    vol = bind_volume_from_tets(doc.tets(), doc.rig());
-  } else {
-    vol = build_bind_volume(doc.surface(), doc.rig(), doc.bind_settings().volume);
-  }
-  BbwOptions opt;
-  const Eigen::MatrixXd Wt = bbw_weights(vol.tets.V, vol.tets.T, vol.b, vol.bc, opt);
-  Eigen::MatrixXd W;
-  if (doc.has_tets()) {
-    // to_user maps to the tet mesh's own vertices; the surface is a subset of them.
-    const Eigen::MatrixXd Wu = vol.to_user * Wt;
-    W.resize(doc.surface().num_vertices(), Wt.cols());
-    for (int i = 0; i < W.rows(); ++i) W.row(i) = Wu.row(doc.data().surface_to_tet[i]);
-  } else {
-    W = vol.to_user * Wt;
-  }
-  BindStats st;
-  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  st.tet_vertices = vol.tets.num_vertices();
-  st.tets = vol.tets.num_tets();
-  st.notes = vol.notes;
-  doc.set_weights(W, st);
 }
 
 TriMesh posed_surface(const Document& doc) {

@@ -24,7 +24,8 @@ std::vector<ScriptLine> read_script(const std::string& path);
 struct ScriptHost {
   // screenshot f.png: render the current view to a PNG.
   std::function<void(const std::string& png_path)> screenshot;
-  // bind: compute weights for doc (the editor runs its worker and waits). Empty -> run_bind_blocking().
+  // bind: compute weights for doc (the editor runs its worker and waits). Empty -> run_bind_blocking()
+  // (core/scene/bind_document.h).
   std::function<void(Document& doc)> bind;
   // Called after each command (the editor redraws; tests may record).
   std::function<void(const ScriptLine&)> after_command;
@@ -39,8 +40,6 @@ struct ScriptResult {
 ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, const std::string& script_name,
                         const ScriptHost& host = {});
 
-// Binds doc in the calling thread (the bind module's bind()) and stores the weights (one undo step).
-void run_bind_blocking(Document& doc);
 // The deformed surface of the current frame: the animation manifold's slice at doc.time() when the
 // document has keys (>= 2), else the current pose skinned with doc.method(). Needs weights.
 TriMesh posed_surface(const Document& doc);

@@ -4,6 +4,6 @@ dfm_test(test_gltf SOURCES test_gltf.cpp LIBS dfm_export)
 dfm_test(test_gltf_validator SOURCES test_gltf_validator.cpp LIBS dfm_export nlohmann_json::nlohmann_json TIMEOUT 600)
 target_compile_definitions(test_gltf_validator PRIVATE DFM_GLTF_VALIDATOR_DIR="${CMAKE_CURRENT_SOURCE_DIR}/gltf")
 # The shared data sets and assets/ scenes: validator + round trip (reads ../shared/data).
-dfm_test(test_gltf_data SOURCES test_gltf_data.cpp LIBS dfm_export dfm_scene nlohmann_json::nlohmann_json TIMEOUT 900)
+dfm_test(test_gltf_data SOURCES test_gltf_data.cpp LIBS dfm_export dfm_scene dfm_bind nlohmann_json::nlohmann_json TIMEOUT 900)
 target_compile_definitions(test_gltf_data PRIVATE DFM_GLTF_VALIDATOR_DIR="${CMAKE_CURRENT_SOURCE_DIR}/gltf"
                            DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

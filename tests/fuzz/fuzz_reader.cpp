@@ -1,5 +1,5 @@
-// libFuzzer target for one reader, chosen at compile time with -DDFM_FUZZ_READER=<name>:
-// obj off ply stl mesh tetgen dmat tgf points. The input is written to a temp file and read back
+// libFuzzer target for one reader, chosen by the program's name fuzz_<reader> (one binary, linked
+// under each name): obj off ply stl mesh tetgen dmat tgf points. The input is written to a temp file and read back
 // through the public API. A dfm::Error is the expected outcome for bad input; any other exception,
 // a sanitizer report, or a failed round trip (read -> write -> read must give the same data) is a bug.
 #include <unistd.h>
@@ -15,10 +15,9 @@
 #include "core/rig/rig_io.h"
 #include "core/util/error.h"
 
-#define DFM_STR2(x) #x
-#define DFM_STR(x) DFM_STR2(x)
-
 namespace {
+
+std::string g_reader;
 
 std::string temp_base() {
   static const std::string base = [] {
@@ -56,7 +55,7 @@ void surface_round_trip(const dfm::TriMesh& m, const std::string& ext, bool bina
 }
 
 void one_input(const uint8_t* data, size_t size) {
-  const std::string reader = DFM_STR(DFM_FUZZ_READER);
+  const std::string& reader = g_reader;
   const std::string base = temp_base();
   if (reader == "obj" || reader == "off" || reader == "ply" || reader == "stl") {
     const std::string path = base + "." + reader;
@@ -112,12 +111,19 @@ void one_input(const uint8_t* data, size_t size) {
     put(path, data, size);
     dfm::read_points(path);
   } else {
-    std::fprintf(stderr, "unknown DFM_FUZZ_READER %s\n", reader.c_str());
+    std::fprintf(stderr, "unknown reader '%s': run this program as fuzz_<reader>\n", reader.c_str());
     std::abort();
   }
 }
 
 }  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
+  std::string name = (*argv)[0];
+  name = name.substr(name.find_last_of('/') + 1);
+  g_reader = name.rfind("fuzz_", 0) == 0 ? name.substr(5) : name;
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

@@ -25,10 +25,9 @@ build() {
     fi
     objs="$objs $o"
   done
-  for r in $READERS; do
-    "$CXX" $flags -fsanitize=fuzzer,address,undefined -DDFM_FUZZ_READER=$r "$HERE/fuzz_reader.cpp" $objs \
-      -o "$out/fuzz_$r"
-  done
+  # One program; its name (fuzz_<reader>) picks the reader.
+  "$CXX" $flags -fsanitize=fuzzer,address,undefined "$HERE/fuzz_reader.cpp" $objs -o "$out/dfm_fuzz"
+  for r in $READERS; do ln -sf dfm_fuzz "$out/fuzz_$r"; done
 }
 
 run() {

@@ -1,0 +1,52 @@
+#include "core/scene/bind_document.h"
+
+#include "core/util/error.h"
+
+namespace dfm {
+
+BindOptions bind_options(const Document& doc) {
+  BindOptions o;
+  o.volume = doc.bind_settings().volume;
+  if (doc.has_tets() && doc.mask().size() == doc.surface().num_vertices() && doc.mask().maxCoeff() > 0) {
+    const TetMesh& t = doc.tets();
+    Eigen::VectorXd per_vertex = Eigen::VectorXd::Zero(t.num_vertices());
+    for (int i = 0; i < doc.surface().num_vertices(); ++i) per_vertex[doc.data().surface_to_tet[i]] = doc.mask()[i];
+    o.shape_mask.resize(t.num_tets());
+    for (int k = 0; k < t.num_tets(); ++k)
+      o.shape_mask[k] = 0.25 * (per_vertex[t.T(k, 0)] + per_vertex[t.T(k, 1)] + per_vertex[t.T(k, 2)] + per_vertex[t.T(k, 3)]);
+  }
+  return o;
+}
+
+void apply_bind_result(Document& doc, const BindResult& r) {
+  Eigen::MatrixXd W;
+  if (doc.has_tets()) {
+    const Eigen::VectorXi& map = doc.data().surface_to_tet;
+    if (r.weights.rows() != doc.tets().num_vertices())
+      throw Error("bind result has " + std::to_string(r.weights.rows()) + " rows but the tet mesh has " +
+                  std::to_string(doc.tets().num_vertices()) + " vertices (the scene changed during the bind)");
+    W.resize(map.size(), r.weights.cols());
+    for (int i = 0; i < map.size(); ++i) W.row(i) = r.weights.row(map[i]);
+  } else {
+    W = r.weights;
+  }
+  BindStats st;
+  st.seconds = r.report.total_seconds;
+  st.tet_vertices = r.report.tet_vertices;
+  st.tets = r.report.tets;
+  st.notes = r.report.notes;
+  doc.set_weights(W, st);  // checks #V x #handles against the current document
+}
+
+void run_bind_blocking(Document& doc, const BindOptions& extra) {
+  if (doc.surface().num_vertices() == 0) throw Error("bind: no surface (open a mesh first)");
+  if (doc.num_handles() == 0) throw Error("bind: the rig has no handles");
+  BindOptions o = extra;
+  const BindOptions from_doc = bind_options(doc);
+  o.volume = from_doc.volume;
+  if (o.shape_mask.size() == 0) o.shape_mask = from_doc.shape_mask;
+  const BindResult r = doc.has_tets() ? bind_tet_mesh(doc.tets(), doc.rig(), o) : bind_surface(doc.surface(), doc.rig(), o);
+  apply_bind_result(doc, r);
+}
+
+}  // namespace dfm
