@@ -4,6 +4,7 @@
 //   bench_winding [mesh] [#query points]
 #include <chrono>
 #include <cstdio>
+#include <algorithm>
 #include <random>
 #include <string>
 
@@ -32,25 +33,25 @@ int main(int argc, char** argv) {
                1e-3 * (hi - lo).norm() * Eigen::RowVector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
   }
   const int threads = 1;  // single core: a fair algorithmic comparison
+  // The direct sum is timed on the first nd points (it is O(#F) each) and scaled to all n.
+  const int nd = std::min(n, 1000);
   auto t = Clock::now();
-  const Eigen::VectorXd wd = dfm::winding_numbers_direct(m.V, m.F, P, threads);
-  const double t_direct = since(t);
-  std::printf("direct:        %8.3f s  (%.2f us/point)\n", t_direct, 1e6 * t_direct / n);
+  const Eigen::VectorXd wd = dfm::winding_numbers_direct(m.V, m.F, P.topRows(nd), threads);
+  const double t_direct = since(t) * n / nd;
+  std::printf("direct:        %8.3f s for %d points (timed on %d: %.2f us/point)\n", t_direct, n, nd, 1e6 * t_direct / n);
   t = Clock::now();
   const dfm::WindingTree tree = dfm::build_winding_tree(m.V, m.F);
   const double t_build = since(t);
   std::printf("tree build:    %8.3f s  (%zu nodes)\n", t_build, tree.nodes.size());
   const dfm::WindingAccuracy def;
-  for (dfm::WindingAccuracy acc : {dfm::WindingAccuracy{2.0, 1e300}, dfm::WindingAccuracy{4.0, 1e300},
-                                   dfm::WindingAccuracy{5.0, 1e300}, def, dfm::WindingAccuracy{2.0, 1e-4},
-                                   dfm::WindingAccuracy{2.0, 1e-5}}) {
+  for (dfm::WindingAccuracy acc : {dfm::WindingAccuracy{2.0, 1e300}, dfm::WindingAccuracy{4.0, 1e300}, def}) {
     t = Clock::now();
     const Eigen::VectorXd wt = dfm::winding_numbers(tree, P, acc, threads);
     const double tt = since(t);
     int disagree = 0;
-    for (int i = 0; i < n; ++i) disagree += (wd(i) > 0.5) != (wt(i) > 0.5);
+    for (int i = 0; i < nd; ++i) disagree += (wd(i) > 0.5) != (wt(i) > 0.5);
     std::printf("tree beta=%.1f node_tol=%-7.0e%s: %7.3f s  speed-up %7.1fx (%6.1fx incl. build)  max |diff| %.2e  in/out flips %d\n",
-                acc.beta, acc.node_tolerance, acc.node_tolerance == def.node_tolerance && acc.beta == def.beta ? " (default)" : "          ", tt, t_direct / tt, t_direct / (tt + t_build), (wd - wt).cwiseAbs().maxCoeff(), disagree);
+                acc.beta, acc.node_tolerance, acc.node_tolerance == def.node_tolerance && acc.beta == def.beta ? " (default)" : "          ", tt, t_direct / tt, t_direct / (tt + t_build), (wd - wt.head(nd)).cwiseAbs().maxCoeff(), disagree);
   }
   return 0;
 }

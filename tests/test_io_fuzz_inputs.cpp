@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/mesh/io.h"
+#include "core/mesh/mesh_info.h"
 #include "core/rig/rig_io.h"
 #include "core/util/error.h"
 
@@ -39,12 +40,21 @@ void read_as(const std::string& reader, const std::string& bytes, const fs::path
   const fs::path p = tmp / ("in." + ext);
   spill(p, bytes);
   if (reader == "mesh") read_tet_mesh(p.string());
-  else if (reader == "dmat") read_dmat(p.string());
+  else if (reader == "dmat") {  // and the round trip the fuzzer does (an empty matrix once hit UB)
+    Eigen::MatrixXd M = read_dmat(p.string());
+    write_dmat((tmp / "out.dmat").string(), M, true);
+    REQUIRE(read_dmat((tmp / "out.dmat").string()) == M);
+  }
   else if (reader == "points") read_points(p.string());
   else if (reader == "tgf") {
     Rig rig;
     add_tgf_to_rig(rig, read_tgf(p.string()), p.string());
-  } else read_surface(p.string());
+  } else {  // and the mesh checks the fuzzer runs (huge coordinates once overflowed a cast)
+    TriMesh m = read_surface(p.string());
+    is_closed(m.F);
+    degenerate_face_count(m.V, m.F);
+    duplicate_vertex_count(m.V, 1e-3);
+  }
 }
 
 }  // namespace

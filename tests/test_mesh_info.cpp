@@ -90,6 +90,10 @@ TEST_CASE("duplicate vertices, degenerate faces, unreferenced vertices", "[mesh_
   REQUIRE(degenerate_face_count(V, F, 1e-14) == 2);
   REQUIRE(degenerate_face_count(V, F, 1e-6) == 3);
   REQUIRE(unreferenced_vertex_count(5, F) == 1);  // vertex 2
+  // Fuzz regression: coordinates far beyond tol * 2^63 once overflowed the grid cell cast.
+  Eigen::MatrixXd H(3, 3);
+  H << 2e37, 0, 0, 2e37, 0, 0, -3e38, 1, 1;
+  REQUIRE(duplicate_vertex_count(H, 1e-3) == 1);
 }
 
 TEST_CASE("tet boundary: one tet, and hand.mesh volume = volume inside its boundary", "[mesh_info]") {

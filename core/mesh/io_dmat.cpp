@@ -54,7 +54,7 @@ Eigen::MatrixXd read_binary(const std::string& path, const std::string& data, si
   }
   const long long need = entries * 8;
   Eigen::MatrixXd M(rows, cols);  // column-major, like the file
-  std::memcpy(M.data(), data.data() + start, static_cast<size_t>(need));
+  if (need > 0) std::memcpy(M.data(), data.data() + start, static_cast<size_t>(need));  // data() is null when empty
   if (!little_endian())
     for (long long i = 0; i < rows * cols; ++i) {
       unsigned char* b = reinterpret_cast<unsigned char*>(M.data() + i);

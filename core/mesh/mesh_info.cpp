@@ -131,7 +131,8 @@ int duplicate_vertex_count(const Eigen::MatrixXd& V, double tol) {
   std::unordered_map<std::array<long long, 3>, std::vector<int>, H> grid;
   for (int i = 0; i < V.rows(); ++i) {
     std::array<long long, 3> k;
-    for (int c = 0; c < 3; ++c) k[c] = static_cast<long long>(std::floor(V(i, c) / tol));
+    for (int c = 0; c < 3; ++c)  // clamped: huge coordinates / tiny tol must not overflow the cast
+      k[c] = static_cast<long long>(std::clamp(std::floor(V(i, c) / tol), -1e15, 1e15));
     bool dup = false;
     for (int dx = -1; dx <= 1 && !dup; ++dx)
       for (int dy = -1; dy <= 1 && !dup; ++dy)
