@@ -105,7 +105,10 @@ int run(const dfm::cli::Args& args) {
     if (f == "-o" || f == "--output") out = a.value(f);
     else if (f == "--weights") weights = a.value(f);
     else if (f == "--skeleton") skeleton = a.value(f);
-    else if (f == "--pose") poses = a.values(f);
+    else if (f == "--pose") {
+      while (!a.done() && (a.peek().empty() || a.peek()[0] != '-')) poses.push_back(a.next());
+      if (poses.empty()) throw dfm::cli::UsageError("--pose needs at least one file");
+    }
     else if (f == "--points") points = a.value(f);
     else if (f == "--key-seconds") key_seconds = a.number(f);
     else if (f == "-k") k = a.integer(f);

@@ -383,7 +383,7 @@ SceneData read_scene(const std::string& path) {
   }
   const json& sk = R.field(rig, "skeleton", "rig");
   const json& joints = R.array(R.field(sk, "joints", "rig.skeleton"), "rig.skeleton.joints");
-  s.rig.skeleton.joints.resize(joints.size(), 3);
+  s.rig.skeleton.joints.resize(joints.size(), joints.empty() ? 0 : 3);  // an empty skeleton is 0 x 0
   for (size_t i = 0; i < joints.size(); ++i)
     s.rig.skeleton.joints.row(i) = R.vec3(joints[i], "rig.skeleton.joints[" + std::to_string(i) + "]").transpose();
   const json& bones = R.array(R.field(sk, "bones", "rig.skeleton"), "rig.skeleton.bones");

@@ -9,7 +9,7 @@ dfm_test(test_editor_gizmo SOURCES test_editor_gizmo.cpp ${PROJECT_SOURCE_DIR}/r
 
 # The real editor binary under the suite's X server.
 if(DFM_BUILD_EDITOR)
-  dfm_test(test_editor_gl SOURCES test_editor_gl.cpp ${PROJECT_SOURCE_DIR}/render/screenshot.cpp
+  dfm_test(test_editor_gl GL SOURCES test_editor_gl.cpp ${PROJECT_SOURCE_DIR}/render/screenshot.cpp
            LIBS dfm_util PkgConfig::EPOXY TIMEOUT 600)
   target_compile_definitions(test_editor_gl PRIVATE DFM_EDITOR_EXE="$<TARGET_FILE:deform-editor>")
   add_dependencies(test_editor_gl deform-editor)
