@@ -88,7 +88,7 @@ Eigen::MatrixXd read_dmat(const std::string& path) {
   if (tk.line() != 1) tk.fail("the first line must hold \"cols rows\"");
   io::check_count(path, 1, rows * cols, 2, tk.bytes_left(), "matrix entry");
   Eigen::MatrixXd M(rows, cols);
-  for (long long c = 0; c < cols; ++c)
+  for (long long c = 0; c < cols && rows > 0; ++c)  // rows == 0: do not spin through 2^31 empty columns
     for (long long r = 0; r < rows; ++r)
       M(r, c) = tk.real("entry (row " + std::to_string(r + 1) + ", column " + std::to_string(c + 1) + ")");
   std::string_view extra;
@@ -112,7 +112,7 @@ void write_dmat(const std::string& path, const Eigen::MatrixXd& M, bool binary) 
           o.write(reinterpret_cast<const char*>(C.data()), static_cast<std::streamsize>(C.size() * 8));
         } else {
           o << std::setprecision(17) << M.cols() << ' ' << M.rows() << '\n';
-          for (Eigen::Index c = 0; c < M.cols(); ++c)
+          for (Eigen::Index c = 0; c < M.cols() && M.rows() > 0; ++c)
             for (Eigen::Index r = 0; r < M.rows(); ++r) o << M(r, c) << '\n';
         }
       },

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -114,7 +115,8 @@ int duplicate_vertex_count(const Eigen::MatrixXd& V, double tol) {
   // vertex before it lies within tol, searched in the 27 neighbouring cells.
   struct H {
     size_t operator()(const std::array<long long, 3>& k) const {
-      return std::hash<long long>()(k[0] * 73856093LL ^ k[1] * 19349663LL ^ k[2] * 83492791LL);
+      const uint64_t x = uint64_t(k[0]) * 73856093u, y = uint64_t(k[1]) * 19349663u, z = uint64_t(k[2]) * 83492791u;
+      return std::hash<uint64_t>()(x ^ y ^ z);  // unsigned: wraps instead of overflowing
     }
   };
   struct HD {
