@@ -8,6 +8,7 @@ PACKAGES=(
   libsuitesparse-dev libepoxy-dev nlohmann-json3-dev libtinygltf-dev
   xvfb xauth libgl1-mesa-dri
   clang libclang-rt-14-dev
+  libopenblas0-pthread  # optimized BLAS behind CHOLMOD (Debian switches libblas.so.3 to it)
 )
 
 missing=()
