@@ -55,6 +55,7 @@ int run(const dfm::cli::Args& args) {
   dfm::Rig rig;
   if (!points.empty()) {
     const Eigen::MatrixXd P = dfm::read_points(points);
+    if (P.rows() == 0) throw dfm::file_error(points, 0, "holds no points (expected one 'x y z' a line)");
     for (int i = 0; i < P.rows(); ++i)
       rig.points.push_back({P.row(i).transpose(), "point " + std::to_string(i + 1)});
   }

@@ -1,5 +1,6 @@
 // `deform`: command-line front end. Thin wrappers over core/ and render/.
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -15,9 +16,15 @@ std::vector<Command>& registry() {
   return r;
 }
 
+// A flag is "-x..." or "--x..." with a letter after the dashes; "-0.5" and "-3" are values.
+static bool looks_like_flag(const std::string& s) {
+  size_t i = 0;
+  while (i < s.size() && i < 2 && s[i] == '-') ++i;
+  return i > 0 && i < s.size() && std::isalpha(static_cast<unsigned char>(s[i]));
+}
+
 std::string ArgReader::value(const std::string& flag) {
-  if (done() || (peek().rfind("--", 0) == 0 && peek().size() > 2 && !std::isdigit(peek()[2]) && peek()[2] != '.'))
-    throw UsageError(flag + " needs a value");
+  if (done() || looks_like_flag(peek())) throw UsageError(flag + " needs a value");
   return next();
 }
 
@@ -43,7 +50,7 @@ int ArgReader::integer(const std::string& flag) {
 
 std::vector<std::string> ArgReader::values(const std::string& flag) {
   std::vector<std::string> out;
-  while (!done() && peek().rfind("--", 0) != 0) out.push_back(next());
+  while (!done() && !looks_like_flag(peek())) out.push_back(next());
   if (out.empty()) throw UsageError(flag + " needs at least one value");
   return out;
 }
