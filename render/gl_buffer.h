@@ -102,17 +102,20 @@ class Texture {
   GLuint id_ = 0;
 };
 
-// Counts primitives written by a transform feedback pass.
+// Counts primitives of a pass: written to transform feedback (default), or generated
+// (GL_PRIMITIVES_GENERATED, which also counts those that overflow the feedback buffer).
 class PrimitivesQuery {
  public:
-  PrimitivesQuery() { glGenQueries(1, &id_); }
+  explicit PrimitivesQuery(GLenum target = GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN) : target_(target) {
+    glGenQueries(1, &id_);
+  }
   ~PrimitivesQuery() {
     if (id_) glDeleteQueries(1, &id_);
   }
   PrimitivesQuery(const PrimitivesQuery&) = delete;
   PrimitivesQuery& operator=(const PrimitivesQuery&) = delete;
-  void begin() { glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, id_); }
-  void end() { glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN); }
+  void begin() { glBeginQuery(target_, id_); }
+  void end() { glEndQuery(target_); }
   GLuint result() const {
     GLuint n = 0;
     glGetQueryObjectuiv(id_, GL_QUERY_RESULT, &n);
@@ -120,6 +123,7 @@ class PrimitivesQuery {
   }
 
  private:
+  GLenum target_;
   GLuint id_ = 0;
 };
 

@@ -7,29 +7,6 @@
 
 namespace dfm::gl {
 
-namespace {
-
-// Counts every primitive the geometry stage generates, including those that overflow the buffer.
-class GeneratedQuery {
- public:
-  GeneratedQuery() { glGenQueries(1, &id_); }
-  ~GeneratedQuery() { glDeleteQueries(1, &id_); }
-  GeneratedQuery(const GeneratedQuery&) = delete;
-  GeneratedQuery& operator=(const GeneratedQuery&) = delete;
-  void begin() { glBeginQuery(GL_PRIMITIVES_GENERATED, id_); }
-  void end() { glEndQuery(GL_PRIMITIVES_GENERATED); }
-  GLuint result() const {
-    GLuint n = 0;
-    glGetQueryObjectuiv(id_, GL_QUERY_RESULT, &n);
-    return n;
-  }
-
- private:
-  GLuint id_ = 0;
-};
-
-}  // namespace
-
 SlicePass::SlicePass()
     : program_(ProgramDesc{"slice.vert.glsl", "slice.geom.glsl", "", {}, {"out_position", "out_normal"}}) {
   // The derived case table, packed: count in bits 0-1, then 3 bits per corner's edge index.
@@ -93,7 +70,7 @@ int SlicePass::slice(SliceAxis axis, double value) {
   glEnable(GL_RASTERIZER_DISCARD);
   for (int attempt = 0; attempt < 2; ++attempt) {
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out_.id());
-    GeneratedQuery generated;
+    PrimitivesQuery generated(GL_PRIMITIVES_GENERATED);
     generated.begin();
     glBeginTransformFeedback(GL_TRIANGLES);
     glDrawElements(GL_LINES_ADJACENCY, 4 * (range.second - range.first), GL_UNSIGNED_INT,
