@@ -218,27 +218,21 @@ std::string Document::undo_name() const { return undo_.empty() ? "" : undo_.back
 std::string Document::redo_name() const { return redo_.empty() ? "" : redo_.back()->name; }
 int Document::undo_depth() const { return static_cast<int>(undo_.size()); }
 
-void Document::undo() {
-  if (undo_.empty()) return;
-  auto step = std::move(undo_.back());
-  undo_.pop_back();
+// Undo and redo are the same move: swap the step's saved parts with the document's, then file the
+// step on the other stack.
+void Document::replay_step(std::vector<std::unique_ptr<Step>>& from, std::vector<std::unique_ptr<Step>>& to) {
+  if (from.empty()) return;
+  auto step = std::move(from.back());
+  from.pop_back();
   swap_parts(s_, step->saved, step->parts);
   std::swap(weights_note_, step->weights_note);
-  redo_.push_back(std::move(step));
+  to.push_back(std::move(step));
   gesture_merge_ok_ = false;
   after_change();
 }
 
-void Document::redo() {
-  if (redo_.empty()) return;
-  auto step = std::move(redo_.back());
-  redo_.pop_back();
-  swap_parts(s_, step->saved, step->parts);
-  std::swap(weights_note_, step->weights_note);
-  undo_.push_back(std::move(step));
-  gesture_merge_ok_ = false;
-  after_change();
-}
+void Document::undo() { replay_step(undo_, redo_); }
+void Document::redo() { replay_step(redo_, undo_); }
 
 void Document::begin_gesture() {
   gesture_open_ = true;

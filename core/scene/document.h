@@ -234,6 +234,7 @@ class Document {
   std::string path_;
   std::string weights_note_ = "not bound yet";
   std::vector<std::unique_ptr<Step>> undo_, redo_;
+  void replay_step(std::vector<std::unique_ptr<Step>>& from, std::vector<std::unique_ptr<Step>>& to);
   std::uint64_t next_serial_ = 1, saved_serial_ = 0, revision_ = 0;
   bool gesture_open_ = false;
   bool gesture_merge_ok_ = false;  // the top step was made inside the current gesture
