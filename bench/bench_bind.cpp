@@ -6,9 +6,12 @@
 //                                                    largest weight difference of the default 1e-6 run)
 #include <sys/resource.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include "core/bind/bind.h"
 #include "core/mesh/io.h"
@@ -26,6 +29,20 @@ double peak_rss_mb() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
   return u.ru_maxrss / 1024.0;  // KiB on Linux
+}
+
+// Progress on stderr (stage changes and every 5%), so a long run shows how far it got.
+dfm::BindOptions with_progress(dfm::BindOptions o = {}) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto last = std::make_shared<std::pair<std::string, double>>("", -1.0);
+  o.progress = [t0, last](const std::string& stage, double f) {
+    if (stage == last->first && f < last->second + 0.05) return;
+    *last = {stage, f};
+    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "  [%7.2f s, CPU %7.2f s, RSS %5.0f MB] %s %.0f%%\n", t, cpu_seconds(), peak_rss_mb(),
+                 stage.c_str(), 100 * f);
+  };
+  return o;
 }
 
 void print(const char* name, const dfm::BindResult& r, double cpu) {
@@ -73,7 +90,7 @@ void armadillo() {
     rig.points.push_back({surf.V.row(v).transpose(), "v" + std::to_string(v)});
   }
   const double c0 = cpu_seconds();
-  const dfm::BindResult r = dfm::bind_surface(surf, rig);
+  const dfm::BindResult r = dfm::bind_surface(surf, rig, with_progress());
   print("armadillo + 10 points", r, cpu_seconds() - c0);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/bind/bbw_exact.h"
+#include "core/bind/numeric_threads.h"
 #include "core/bind/fem.h"
 #include "core/bind/qp.h"
 #include "core/util/error.h"
@@ -56,6 +57,7 @@ Eigen::SparseMatrix<double> bbw_energy_matrix(const Eigen::MatrixXd& V, const Ei
 Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
                             const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
   validate(V, b, bc);
+  single_threaded_numerics();  // we run one QP per thread; see numeric_threads.h
   BbwStats stats;
   auto progress = [&](const char* stage, double f) {
     if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
@@ -87,11 +89,13 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   progress("factorization", 0.1);
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X0;
+  std::vector<int> ordering;  // Q_ff's fill-reducing ordering, reused by every face solve of every handle
   {
     SpdSolver chol;
     chol.factorize(Qff);
     stats.factor_nonzeros = chol.factor_nonzeros();
     X0 = chol.solve(-G);
+    ordering = chol.permutation();
   }
   stats.factorization_seconds = seconds_since(t0);
 
@@ -115,7 +119,9 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     BoxQPOptions qo;
     qo.tolerance = opts.tolerance;
     qo.cancel = opts.cancel;
+    qo.ordering = &ordering;
     auto worker = [&] {
+      single_threaded_numerics();
       for (;;) {
         int j;
         {

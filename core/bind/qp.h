@@ -6,9 +6,11 @@
 // the active variables at their bounds and solves exactly (sparse Cholesky, CHOLMOD) on the free set
 // only, so the cost follows the support of the solution, not the mesh size. PDAS can cycle when H is not
 // an M-matrix (H = L M^-1 L is not); on a repeated active set or the iteration cap it switches to a
-// monotone primal active-set method (strict objective decrease, so it cannot cycle). It stops only at
+// monotone primal active-set method (strict objective decrease, so it cannot cycle). Between face solves a
+// few projected Gauss-Seidel sweeps move the support front (see smoothing_sweeps). It stops only at
 // a KKT point: it never returns a fixed-few-iterations answer as converged.
 #include <atomic>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Sparse>
@@ -20,6 +22,12 @@ struct BoxQPOptions {
   int max_pdas_iterations = 60;
   int max_iterations = 2000;   // PDAS + fallback together
   const std::atomic<bool>* cancel = nullptr;  // polled once per iteration; throws dfm::Error("cancelled")
+  // Fill-reducing permutation of H (fill_reducing_ordering), shared by every face solve of every QP on H.
+  // Null: computed once per call.
+  const std::vector<int>* ordering = nullptr;
+  // Projected Gauss-Seidel sweeps after each PDAS face solve (0 = plain PDAS). On hand.mesh + 20 bones
+  // 20 sweeps cut the face solves from 357 to 96 and the CPU time 2.3x (bench_bind).
+  int smoothing_sweeps = 20;
 };
 
 struct BoxQPResult {
@@ -53,11 +61,19 @@ class SpdSolver {
   void factorize(const Eigen::SparseMatrix<double>& A);
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
   long factor_nonzeros() const;
+  // The fill-reducing permutation the factorization used (perm[k] = variable eliminated k-th).
+  std::vector<int> permutation() const;
 
  private:
   struct Impl;
   Impl* impl_;
 };
+
+// AMD ordering of the symmetric matrix H (perm[k] = the variable eliminated k-th). A face of a box QP is a
+// principal submatrix; the ordering restricted to it stays a good one (the filled graph of a subgraph is a
+// subgraph of the filled graph), so one ordering serves every face: measured on hand.mesh, 18% more flops
+// than AMD on each face but no per-face AMD (which cost a third of each face factorization).
+std::vector<int> fill_reducing_ordering(const Eigen::SparseMatrix<double>& H);
 
 // Rows and columns `idx` of A (in that order).
 Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXi& idx);
