@@ -7,10 +7,14 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/export/export_document.h"
 #include "core/export/gltf_export.h"
 #include "core/export/gltf_import.h"
+#include "core/export/gltf_verify.h"
 #include "core/export/prune.h"
 #include "core/export/trs.h"
+#include "core/rig/pose_params.h"
+#include "core/scene/document.h"
 #include "core/skin/lbs.h"
 #include "core/util/error.h"
 #include "tests/test_gltf_fixtures.h"
@@ -248,5 +252,124 @@ TEST_CASE("glTF export: shear is reported, bad input throws", "[gltf][errors]") 
   CHECK_THROWS_AS(export_gltf((dir / "no_such_dir" / "f.glb").string(), test::synthetic_input(), {4}), Error);
   CHECK(!fs::exists(dir / "a.glb"));
   CHECK_THROWS_AS(read_gltf((dir / "missing.glb").string()), Error);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("residual morph targets: the file reproduces LBS with all weights at every key and the current pose",
+          "[gltf][residual]") {
+  GltfExportInput in = test::synthetic_input();
+  const fs::path dir = temp_dir("residual");
+  const double diag = (in.surface.V.colwise().maxCoeff() - in.surface.V.colwise().minCoeff()).norm();
+  std::vector<double> times;
+  std::vector<Pose> poses;
+  for (const auto& k : in.keys) times.push_back(k.time), poses.push_back(k.pose);
+  for (int k : {4, 8}) {
+    GltfExportOptions o;
+    o.influences = k;
+    o.refit = false;
+    o.residual_morph_tolerance = 1e-6;
+    const std::string path = (dir / ("residual" + std::to_string(k) + ".glb")).string();
+    const GltfExportReport rep = export_gltf(path, in, o);
+    // The current pose is not a key: one target per key plus one for it.
+    REQUIRE(rep.residual_targets == static_cast<int>(in.keys.size()) + 1);
+    CHECK(rep.max_prune_error > 1e-4 * diag);  // the skin alone is far off: the targets have work to do
+    CHECK(!rep.notes.empty());
+    const GltfDocument doc = read_gltf(path);
+    REQUIRE(doc.skinned.targets.size() == in.keys.size() + 1);
+    // Stored weights are the plain pruned ones; the targets do not change the skin.
+    const Eigen::MatrixXd Wp = influences_to_dense(prune_for_export(in.weights, k), num_handles(in.rig));
+    Influences stored;
+    stored.index = doc.skinned.joints;
+    stored.weight = doc.skinned.weights;
+    CHECK((influences_to_dense(stored, num_handles(in.rig)) - Wp).cwiseAbs().maxCoeff() < 1e-6);
+    for (size_t i = 0; i < in.keys.size(); ++i) {
+      const std::vector<double> w = gltf_morph_weights(doc, doc.skinned_node, doc.skinned, in.keys[i].time);
+      for (size_t t = 0; t < w.size(); ++t) CHECK(w[t] == (t == i ? 1.0 : 0.0));
+      CHECK(max_row_distance(gltf_skinned_positions(doc, in.keys[i].time), lbs(in.surface.V, in.weights, in.keys[i].pose)) <
+            1e-5 * diag);
+    }
+    GltfDocument still = doc;
+    still.channels.clear();
+    CHECK(max_row_distance(gltf_skinned_positions(still, 0.0), lbs(in.surface.V, in.weights, in.current)) < 1e-5 * diag);
+    const GltfVerifyResult v = verify_gltf_export(path, in.surface.V, in.weights, in.current, times, poses);
+    CHECK(v.max_error < 1e-5 * diag);
+    // Between keys the correction blends linearly: half of each neighbour's target.
+    const double tm = 0.5 * (in.keys[0].time + in.keys[1].time);
+    const std::vector<double> wm = gltf_morph_weights(doc, doc.skinned_node, doc.skinned, tm);
+    CHECK(std::abs(wm[0] - 0.5) < 1e-6);
+    CHECK(std::abs(wm[1] - 0.5) < 1e-6);
+  }
+  // Current pose == a key: no extra target; the default morph weights select that key's target.
+  in.current = in.keys[1].pose;
+  GltfExportOptions o;
+  o.residual_morph_tolerance = 1e-6;
+  const std::string path = (dir / "residual-key.gltf").string();
+  REQUIRE(export_gltf(path, in, o).residual_targets == static_cast<int>(in.keys.size()));
+  GltfDocument doc = read_gltf(path);
+  doc.channels.clear();
+  CHECK(doc.skinned.default_weights == std::vector<double>{0.0, 1.0, 0.0});
+  CHECK(max_row_distance(gltf_skinned_positions(doc, 0.0), lbs(in.surface.V, in.weights, in.current)) < 1e-5 * diag);
+  // A tolerance above the pruning error: no targets.
+  o.residual_morph_tolerance = 1.0;
+  const GltfExportReport rep = export_gltf(path, in, o);
+  CHECK(rep.residual_targets == 0);
+  CHECK(read_gltf(path).skinned.targets.empty());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("export_document_gltf: File > Export of a bound, posed, keyed document", "[gltf][document]") {
+  Document doc;
+  doc.set_surface(test::tube(21, 12, 3.0, 0.3), "tube.obj");
+  doc.add_point(Eigen::Vector3d(0.5, 0.6, 0.0), "p0");
+  doc.add_bone_chain({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(3, 0, 0)});
+  const fs::path dir = temp_dir("document");
+  const std::string path = (dir / "doc.glb").string();
+  // Not bound: a clear error, no file.
+  try {
+    export_document_gltf(doc, path);
+    FAIL("exported an unbound document");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()).find("no weights") != std::string::npos);
+  }
+  CHECK(!fs::exists(path));
+  doc.set_weights(test::inverse_distance_weights(doc.surface(), doc.rig()), BindStats{});
+  REQUIRE(doc.has_weights());
+  auto bent = [&](double s) {
+    PoseParams p = rest_pose_params(doc.rig());
+    for (size_t b = 0; b < p.bone_rotation.size(); ++b)
+      p.bone_rotation[b] = test::axis_angle(s * (b % 2 ? 0.4 : -0.6), Eigen::Vector3d(0, 0, 1));
+    p.point_translation[0] = Eigen::Vector3d(0, 0.2 * s, 0);
+    return p;
+  };
+  for (int i = 0; i < 3; ++i) {
+    doc.set_pose_params(bent(i - 1.0));
+    doc.set_key(0.5 * i);
+  }
+  doc.set_pose_params(bent(0.3));
+  GltfExportOptions o;
+  o.influences = 8;
+  o.residual_morph_tolerance = 1e-4;
+  const GltfExportReport rep = export_document_gltf(doc, path, o);
+  CHECK(rep.keys == 3);
+  CHECK(rep.joints == doc.num_handles());
+  CHECK(rep.vertices == doc.surface().num_vertices());
+  const GltfDocument g = read_gltf(path);
+  CHECK(g.nodes.at(g.skinned_node).name == "tube");  // named after the surface until the scene is saved
+  REQUIRE(g.key_times().size() == 3);
+  for (int i = 0; i < 3; ++i) CHECK(std::abs(g.key_times()[i] - 0.5 * i) < 1e-6);
+  const GltfVerifyResult v =
+      verify_gltf_export(path, doc.surface().V, doc.weights(), doc.pose(), doc.key_times(), doc.key_poses());
+  CHECK(v.max_error <= 1e-4 * v.bbox_diagonal);
+  CHECK(v.current_error <= 1e-4 * v.bbox_diagonal);  // the current pose is the nodes' default transforms
+  // The same as exporting the document's input by hand.
+  const GltfExportInput in = gltf_input_from_document(doc);
+  CHECK(in.keys.size() == 3);
+  CHECK(in.weights == doc.weights());
+  // glTF plays LBS: a DQS document is exported with a note saying so.
+  doc.set_method(SkinMethod::DQS);
+  const GltfExportReport dq = export_document_gltf(doc, path, o);
+  bool noted = false;
+  for (const auto& n : dq.notes) noted = noted || n.find("LBS") != std::string::npos;
+  CHECK(noted);
   fs::remove_all(dir);
 }

@@ -21,7 +21,7 @@
 using namespace dfm;
 namespace fs = std::filesystem;
 
-TEST_CASE("validator: synthetic rig exports (.glb/.gltf, 4/8 influences, morph targets) are clean", "[gltf][validator]") {
+TEST_CASE("validator: synthetic rig exports (.glb/.gltf, 4/8 influences, morph and residual targets) are clean", "[gltf][validator]") {
   if (!test::gltf_validator_ready()) return;
   const fs::path dir = test::gltf_temp_dir("validator");
   GltfExportInput in = test::synthetic_input();
@@ -37,12 +37,19 @@ TEST_CASE("validator: synthetic rig exports (.glb/.gltf, 4/8 influences, morph t
   }
   files.push_back((dir / "morph.gltf").string());
   export_gltf(files.back(), in, {4});
+  // Residual morph targets on the skinned mesh, animated with the keys (plus the baked frames above).
+  GltfExportOptions residual;
+  residual.residual_morph_tolerance = 1e-6;
+  files.push_back((dir / "residual.glb").string());
+  CHECK(export_gltf(files.back(), in, residual).residual_targets == static_cast<int>(in.keys.size()) + 1);
   // No keys at all: no animation, the current pose only.
   in.keys.clear();
   in.morph_frames.clear();
   in.morph_times.clear();
   files.push_back((dir / "still.glb").string());
   export_gltf(files.back(), in, {4});
+  files.push_back((dir / "still-residual.glb").string());
+  CHECK(export_gltf(files.back(), in, residual).residual_targets == 1);
   for (const auto& f : files) test::check_gltf_valid(f);
   fs::remove_all(dir);
 }

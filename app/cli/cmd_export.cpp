@@ -6,13 +6,14 @@
 
 #include "app/cli/command.h"
 #include "core/anim/interpolate.h"
+#include "core/export/export_document.h"
 #include "core/export/gltf_export.h"
 #include "core/export/gltf_verify.h"
 #include "core/mesh/io.h"
 #include "core/rig/pose_io.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
-#include "core/scene/scene_file.h"
+#include "core/scene/document.h"
 #include "core/skin/lbs.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
@@ -32,22 +33,18 @@ const char* kUsage =
     "  --key-seconds S       time between keys (default 1)\n"
     "Always:\n"
     "  -k 4|8                influences per vertex (JOINTS_0/WEIGHTS_0, or also JOINTS_1/WEIGHTS_1); default 4\n"
+    "  --residual-morphs TOL when the pruned skin misses LBS with all weights by more than TOL x bbox\n"
+    "                        diagonal at a key (1e-4 is a good value), store the misses as morph targets\n"
+    "                        of the skinned mesh so the keys play back exactly (default: off)\n"
     "  --morph-frames N      also bake N frames (LBS, all weights, keys interpolated) as morph targets\n"
     "  --verify              re-import the file and report its error against LBS with all weights per key\n"
     "The exporter reports the largest vertex error the influence pruning causes over the keys.";
 
-dfm::Pose pose_from_params(const dfm::Rig& rig, dfm::PoseParams p) {
-  return dfm::evaluate_pose(rig, dfm::fit_pose_params(rig, std::move(p)));
-}
-
 void load_scene_input(const std::string& path, dfm::GltfExportInput& in) {
-  dfm::SceneData s = dfm::read_scene(path);
-  if (s.weights.size() == 0) throw dfm::file_error(path, 0, "the scene has no weights (run bind first)");
-  in.surface = s.surface;
-  in.rig = s.rig;
-  in.weights = s.weights;
-  in.current = pose_from_params(s.rig, s.pose);
-  for (const auto& k : s.keys) in.keys.push_back({k.time, pose_from_params(s.rig, k.params)});
+  dfm::Document doc;
+  doc.load_scene(path);
+  if (!doc.has_weights()) throw dfm::file_error(path, 0, "the scene has no weights (" + doc.weights_note() + "): run bind first");
+  in = dfm::gltf_input_from_document(doc);
 }
 
 void load_mesh_input(const std::string& path, const std::string& weights, const std::string& skeleton,
@@ -98,7 +95,7 @@ int run(const dfm::cli::Args& args) {
   std::string input, out, weights, skeleton, points;
   std::vector<std::string> poses;
   int k = 4, morph_frames = 0;
-  double key_seconds = 1.0;
+  double key_seconds = 1.0, residual_tolerance = 0.0;
   bool verify = false;
   while (!a.done()) {
     const std::string f = a.next();
@@ -113,6 +110,7 @@ int run(const dfm::cli::Args& args) {
     else if (f == "--key-seconds") key_seconds = a.number(f);
     else if (f == "-k") k = a.integer(f);
     else if (f == "--morph-frames") morph_frames = a.integer(f);
+    else if (f == "--residual-morphs") residual_tolerance = a.number(f);
     else if (f == "--verify") verify = true;
     else if (!f.empty() && f[0] == '-') throw dfm::cli::UsageError("unknown option " + f);
     else if (input.empty()) input = f;
@@ -122,6 +120,7 @@ int run(const dfm::cli::Args& args) {
   if (out.empty()) throw dfm::cli::UsageError("-o OUT.glb|OUT.gltf is required");
   if (k != 4 && k != 8) throw dfm::cli::UsageError("-k must be 4 or 8");
   if (morph_frames < 0 || morph_frames == 1) throw dfm::cli::UsageError("--morph-frames needs 0 or at least 2");
+  if (!(residual_tolerance > 0) && residual_tolerance != 0) throw dfm::cli::UsageError("--residual-morphs needs a positive tolerance");
   if (!(key_seconds > 0)) throw dfm::cli::UsageError("--key-seconds must be positive");
   const std::string oext = dfm::file_extension(out);
   if (oext != "glb" && oext != "gltf") throw dfm::cli::UsageError("-o must name a .glb or .gltf file");
@@ -151,11 +150,14 @@ int run(const dfm::cli::Args& args) {
     }
   }
 
-  const dfm::GltfExportReport r = dfm::export_gltf(out, in, {k});
+  dfm::GltfExportOptions options;
+  options.influences = k;
+  options.residual_morph_tolerance = residual_tolerance;
+  const dfm::GltfExportReport r = dfm::export_gltf(out, in, options);
   const double diag = r.bbox_diagonal > 0 ? r.bbox_diagonal : 1.0;
   std::cout << "wrote " << out << ": " << r.vertices << " vertices, " << r.triangles << " triangles, " << r.joints
             << " joints, " << r.keys << " keys, " << r.morph_targets << " morph targets, " << r.influences
-            << " influences per vertex\n";
+            << " influences per vertex, " << r.residual_targets << " residual morph targets\n";
   std::cout << std::setprecision(4) << "  pruning error (LBS, all weights vs " << r.influences
             << "), max over the keys: " << r.max_prune_error << " = " << r.max_prune_error / diag
             << " of the bbox diagonal (" << (r.max_prune_error_key < 0 ? std::string("current pose")

@@ -159,6 +159,25 @@ std::vector<float> float_weights_row(const Eigen::RowVectorXd& w) {
   return f;
 }
 
+// Rest-space offsets d that make the stored pruned skin reproduce `target` at `pose`:
+//   sum_j w_j T_j (p + d) = x   =>   d = L^-1 (x - sum_j w_j T_j p),  L = sum_j w_j linear(T_j).
+// Vf: the file's (float) rest positions; weights: the stored (float) weights in influence order.
+Eigen::MatrixXd residual_offsets(const Eigen::MatrixXd& Vf, const Influences& inf, const Eigen::MatrixXd& weights,
+                                 const Pose& pose, const Eigen::MatrixXd& target) {
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(Vf.rows(), 3);
+  for (int v = 0; v < Vf.rows(); ++v) {
+    Eigen::Matrix<double, 3, 4> A = Eigen::Matrix<double, 3, 4>::Zero();
+    for (int j = 0; j < inf.k(); ++j)
+      if (weights(v, j) != 0) A += weights(v, j) * pose.transforms[inf.index(v, j)].matrix().topRows<3>();
+    const Eigen::Vector3d p = Vf.row(v).transpose();
+    const Eigen::Vector3d miss = target.row(v).transpose() - (A.leftCols<3>() * p + A.col(3));
+    const Eigen::Vector3d d = A.leftCols<3>().colPivHouseholderQr().solve(miss);
+    // A collapsed blend (no inverse) cannot be corrected in rest space: leave that vertex as skinned.
+    if (d.allFinite() && (A.leftCols<3>() * d - miss).norm() <= 1e-9 * (1.0 + miss.norm())) D.row(v) = d.transpose();
+  }
+  return D;
+}
+
 struct NodeTrsSink {
   double max_shear = 0;
   int sheared = 0;
@@ -294,9 +313,10 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
   prim.attributes["NORMAL"] = nrm_acc;
   const int sets = options.influences / 4;
   std::vector<std::vector<float>> wsets(sets, std::vector<float>(4 * nv));
+  Eigen::MatrixXd stored_w(nv, options.influences);  // what the file holds, for the residual targets
   for (int v = 0; v < nv; ++v) {
     const std::vector<float> row = float_weights_row(inf.weight.row(v));
-    for (int j = 0; j < options.influences; ++j) wsets[j / 4][4 * v + j % 4] = row[j];
+    for (int j = 0; j < options.influences; ++j) wsets[j / 4][4 * v + j % 4] = row[j], stored_w(v, j) = row[j];
   }
   for (int s = 0; s < sets; ++s) {
     int jacc;
@@ -315,9 +335,42 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
     prim.attributes["WEIGHTS_" + std::to_string(s)] =
         bb.add_floats(wsets[s], 4, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
   }
+  // Residual morph targets: one per key, then the current pose unless it is one of the keys.
+  std::vector<int> residual_key;  // per target: key index, or -1 for the current pose
+  int current_target = -1;
+  const double tol = options.residual_morph_tolerance;
+  if (tol > 0 && report.max_prune_error > tol * report.bbox_diagonal) {
+    for (size_t k = 0; k < in.keys.size(); ++k) {
+      residual_key.push_back(static_cast<int>(k));
+      if (current_target < 0 && in.keys[k].pose.transforms.size() == current.transforms.size() &&
+          std::equal(current.transforms.begin(), current.transforms.end(), in.keys[k].pose.transforms.begin(),
+                     [](const Eigen::Affine3d& a, const Eigen::Affine3d& b) { return a.matrix() == b.matrix(); }))
+        current_target = static_cast<int>(k);
+    }
+    if (current_target < 0) current_target = static_cast<int>(residual_key.size()), residual_key.push_back(-1);
+    const Eigen::MatrixXd Vf = S.V.cast<float>().cast<double>();
+    for (int key : residual_key) {
+      const Pose& pose = key < 0 ? current : in.keys[key].pose;
+      const Eigen::MatrixXd D = residual_offsets(Vf, inf, stored_w, pose, lbs(S.V, in.weights, pose));
+      std::map<std::string, int> target;
+      target["POSITION"] = bb.add_floats(rows_to_floats(D), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+      prim.targets.push_back(target);
+    }
+    report.residual_targets = static_cast<int>(residual_key.size());
+    std::ostringstream note;
+    note << options.influences << " influences miss LBS with all weights by up to " << report.max_prune_error
+         << " (" << report.max_prune_error / report.bbox_diagonal << " of the bbox diagonal): the misses at the "
+         << (in.keys.empty() ? "current pose" : "keys") << " are stored as " << residual_key.size()
+         << " residual morph target(s) of the skinned mesh";
+    report.notes.push_back(note.str());
+  }
   tinygltf::Mesh mesh;
   mesh.name = in.name;
   mesh.primitives.push_back(prim);
+  if (!residual_key.empty()) {
+    mesh.weights.assign(residual_key.size(), 0.0);
+    mesh.weights[current_target] = 1.0;
+  }
   model.meshes.push_back(mesh);
 
   // Nodes: 0 = skinned mesh, 1 = "rig", 2 + h = handle h's joint.
@@ -409,6 +462,12 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
       add_channel(2 + h, "translation", input, t, TINYGLTF_TYPE_VEC3, 3);
       add_channel(2 + h, "rotation", input, r, TINYGLTF_TYPE_VEC4, 4);
       add_channel(2 + h, "scale", input, s, TINYGLTF_TYPE_VEC3, 3);
+    }
+    if (!residual_key.empty()) {  // at key k only target k
+      const int nt = static_cast<int>(residual_key.size());
+      std::vector<float> w(nk * nt, 0.0f);
+      for (int k = 0; k < nk; ++k) w[k * nt + k] = 1.0f;
+      add_channel(0, "weights", input, w, TINYGLTF_TYPE_SCALAR, 1);
     }
   }
 

@@ -9,6 +9,12 @@
 //   skin 0:  joints = those nodes in handle order, so JOINTS_n values are weight-column indices;
 //            inverse bind matrices = inverse of each joint node's rest (bind) global transform.
 //   nodes' TRS = the current pose; animation 0 = one T/R/S channel per joint (LINEAR) over the keys.
+//   residual morph targets (optional, GltfExportOptions::residual_morph_tolerance): when pruning to k
+//            influences cannot reproduce LBS with all weights, mesh 0 gets one POSITION morph target
+//            per key (plus one for the current pose unless it equals a key): the rest-space offset that
+//            makes the pruned skin hit the full-weight LBS result at that pose exactly. glTF applies
+//            targets before skinning; a "weights" channel on node 0 shows target i at key i (LINEAR in
+//            between) and mesh.weights shows the current pose's target when no animation plays.
 //   scene 1 (only with morph frames): node "<name>-baked", an unskinned mesh whose morph targets are
 //            the baked frames, with a "weights" channel in animation 0 that shows frame i at its time.
 // A handle transform T_h (pose.h, world space) becomes the joint's global transform T_h * G_h with
@@ -46,15 +52,22 @@ struct GltfExportOptions {
   // Refit the kept weights to the current pose and keys (prune.h refit_influences) instead of only
   // renormalizing them; lowers the pruning error at the keys.
   bool refit = true;
+  // 0 = never. > 0: when the pruned skin misses LBS with all weights by more than this fraction of the
+  // bbox diagonal at the current pose or a key, store the misses as residual morph targets of the skinned
+  // mesh (see the layout above), so the file reproduces those poses up to float rounding. 1e-4 is what
+  // the editor's File > Export and `deform export --residual-morphs` use.
+  double residual_morph_tolerance = 0.0;
 };
 
 struct GltfExportReport {
   int vertices = 0, triangles = 0, joints = 0, influences = 0, keys = 0, morph_targets = 0;
   int refit_vertices = 0;  // vertices whose kept weights were refit
+  int residual_targets = 0;  // residual morph targets written (0: the skin alone was within tolerance)
   double bbox_diagonal = 0.0;
   // Largest vertex distance between LBS with all weights and with the pruned weights, over the
   // current pose and every key; max_prune_error_key is the key (-1: the current pose).
   double max_prune_error = 0.0;
+  // This is the skin's own error: residual morph targets (if written) correct it at these poses.
   int max_prune_error_key = -1;
   // Largest relative TRS residual over every exported node transform (see trs.h); transforms
   // above 1e-6 are counted in sheared_transforms and their node names listed (first few) in notes.

@@ -154,6 +154,7 @@ GltfDocument read_gltf(const std::string& path) {
     if (s.translation.size() == 3) n.translation = Eigen::Vector3d(s.translation[0], s.translation[1], s.translation[2]);
     if (s.rotation.size() == 4) n.rotation = Eigen::Quaterniond(s.rotation[3], s.rotation[0], s.rotation[1], s.rotation[2]);
     if (s.scale.size() == 3) n.scale = Eigen::Vector3d(s.scale[0], s.scale[1], s.scale[2]);
+    n.weights = s.weights;
   }
   for (size_t i = 0; i < m.nodes.size(); ++i)
     for (int c : m.nodes[i].children) {
@@ -255,9 +256,13 @@ Eigen::MatrixXd gltf_skinned_positions(const GltfDocument& doc, double t) {
   std::vector<Eigen::Matrix4d> joint_matrix(doc.joints.size());
   for (size_t j = 0; j < doc.joints.size(); ++j) joint_matrix[j] = G.at(doc.joints[j]) * doc.inverse_bind[j];
   const GltfMeshData& m = doc.skinned;
+  Eigen::MatrixXd base = m.V;
+  const std::vector<double> mw = gltf_morph_weights(doc, doc.skinned_node, m, t);
+  for (size_t i = 0; i < mw.size(); ++i)
+    if (mw[i] != 0) base += mw[i] * m.targets[i];
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(m.V.rows(), 3);
   for (long v = 0; v < m.V.rows(); ++v) {
-    const Eigen::Vector4d p(m.V(v, 0), m.V(v, 1), m.V(v, 2), 1.0);
+    const Eigen::Vector4d p(base(v, 0), base(v, 1), base(v, 2), 1.0);
     Eigen::Vector4d q = Eigen::Vector4d::Zero();
     for (long s = 0; s < m.weights.cols(); ++s)
       if (m.weights(v, s) != 0) q += m.weights(v, s) * (joint_matrix[m.joints(v, s)] * p);
@@ -266,14 +271,22 @@ Eigen::MatrixXd gltf_skinned_positions(const GltfDocument& doc, double t) {
   return out;
 }
 
-Eigen::MatrixXd gltf_morphed_positions(const GltfDocument& doc, double t) {
-  if (doc.morph_node < 0) throw Error("glTF document has no morph-target mesh");
-  std::vector<double> w = doc.morph.default_weights;
+std::vector<double> gltf_morph_weights(const GltfDocument& doc, int node, const GltfMeshData& mesh, double t) {
+  std::vector<double> w = mesh.default_weights;
+  if (node >= 0 && node < static_cast<int>(doc.nodes.size()) && !doc.nodes[node].weights.empty())
+    w = doc.nodes[node].weights;
+  w.resize(mesh.targets.size(), 0.0);
   for (const auto& c : doc.channels)
-    if (c.node == doc.morph_node && c.path == GltfChannel::Path::Weights) {
+    if (c.node == node && c.path == GltfChannel::Path::Weights) {
       const Eigen::VectorXd x = sample(c, t);
       for (long i = 0; i < x.size() && i < static_cast<long>(w.size()); ++i) w[i] = x[i];
     }
+  return w;
+}
+
+Eigen::MatrixXd gltf_morphed_positions(const GltfDocument& doc, double t) {
+  if (doc.morph_node < 0) throw Error("glTF document has no morph-target mesh");
+  const std::vector<double> w = gltf_morph_weights(doc, doc.morph_node, doc.morph, t);
   Eigen::MatrixXd V = doc.morph.V;
   for (size_t i = 0; i < w.size(); ++i) V += w[i] * doc.morph.targets[i];
   return V;

@@ -27,6 +27,7 @@ struct GltfNode {
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();
   bool has_matrix = false;
   Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+  std::vector<double> weights;  // node.weights (morph weights overriding mesh.weights), or empty
 };
 
 struct GltfMeshData {
@@ -57,7 +58,10 @@ GltfDocument read_gltf(const std::string& path);
 std::vector<GltfNode> gltf_animated_nodes(const GltfDocument& doc, double t);
 // World matrices of every node.
 std::vector<Eigen::Matrix4d> gltf_global_transforms(const std::vector<GltfNode>& nodes);
-// Skinned positions at time t: v' = sum_i w_i * globalTransform(joint_i) * inverseBindMatrix_i * v.
+// Morph weights of a node's mesh at time t: its "weights" channel, else node.weights, else mesh.weights.
+std::vector<double> gltf_morph_weights(const GltfDocument& doc, int node, const GltfMeshData& mesh, double t);
+// Skinned positions at time t: v' = sum_i w_i * globalTransform(joint_i) * inverseBindMatrix_i * m(v), where
+// m(v) = v + sum_t morphWeight_t * target_t (glTF morphs before skinning).
 Eigen::MatrixXd gltf_skinned_positions(const GltfDocument& doc, double t);
 // Morph mesh positions at time t: base + sum_i weight_i(t) * target_i.
 Eigen::MatrixXd gltf_morphed_positions(const GltfDocument& doc, double t);

@@ -1,0 +1,37 @@
+#include "core/export/export_document.h"
+
+#include <filesystem>
+
+#include "core/util/error.h"
+
+namespace dfm {
+
+GltfExportInput gltf_input_from_document(const Document& doc) {
+  if (doc.surface().num_vertices() == 0) throw Error("glTF export: the document has no surface");
+  if (!doc.has_weights())
+    throw Error("glTF export: the document has no weights (" +
+                (doc.weights_note().empty() ? std::string("not bound") : doc.weights_note()) + "); bind first");
+  GltfExportInput in;
+  const std::string from = !doc.path().empty() ? doc.path() : doc.surface_path();
+  std::filesystem::path stem = std::filesystem::path(from).stem();
+  if (stem.extension() == ".scene") stem = stem.stem();  // x.scene.json -> x
+  in.name = stem.empty() ? "mesh" : stem.string();
+  in.surface = doc.surface();
+  in.rig = doc.rig();
+  in.weights = doc.weights();
+  in.current = doc.pose();
+  const std::vector<double> times = doc.key_times();
+  const std::vector<Pose> poses = doc.key_poses();
+  for (size_t k = 0; k < times.size(); ++k) in.keys.push_back({times[k], poses[k]});
+  return in;
+}
+
+GltfExportReport export_document_gltf(const Document& doc, const std::string& path, const GltfExportOptions& options) {
+  GltfExportReport r = export_gltf(path, gltf_input_from_document(doc), options);
+  if (doc.method() != SkinMethod::LBS)
+    r.notes.push_back(std::string("the document skins with ") + skin_method_name(doc.method()) +
+                      "; glTF skinning is linear (LBS), so the file plays LBS with these weights");
+  return r;
+}
+
+}  // namespace dfm
