@@ -44,7 +44,10 @@ void main() {
     if (u_isolines > 0.0) {
       float f = w * u_isolines;
       float d = abs(fract(f - 0.5) - 0.5) / max(fwidth(f), 1e-5);
-      iso = 1.0 - clamp(d - 0.5, 0.0, 1.0);
+      // Interior levels only: where w is exactly 0 (or 1) over a triangle, fwidth is 0 and the
+      // level-0 line would cover the whole zero region with dark blotches.
+      float level = floor(f + 0.5);
+      if (level >= 1.0 && level <= u_isolines - 1.0) iso = 1.0 - clamp(d - 0.5, 0.0, 1.0);
     }
   } else if (front && u_color_mode == 2) {
     albedo = g_data.rgb;

@@ -133,3 +133,44 @@ TEST_CASE("a failing script line exits 1 naming the script and line", "[editor][
   REQUIRE(r.code == 1);
   REQUIRE(r.output.find("bad.txt:2") != std::string::npos);
 }
+
+// Regression: a time one double-ulp past a key or baked layer (as playback's accumulated dt gives)
+// rounds to the layer's float on the GPU while the slab was picked in double: the slice was empty and
+// the viewport showed no mesh. Also: frames stay drawn while the bind runs, and File > Export glTF's
+// script twin writes a GLB with the asked influence count and reports the pruning error.
+TEST_CASE("scrubbing onto a layer time shows the mesh; playback never shows an empty frame", "[editor][gl]") {
+  const std::string a = tmp("key_ulp.png"), b = tmp("layer_ulp.png"), glb = tmp("scene.glb"), script = tmp("ulp.txt");
+  {
+    std::ofstream s(script);
+    s << "bind\nset-key 0\nselect 5\nrotate 40 0 0 1\nset-key 1\nselect 5\nrotate -60 0 0 1\nset-key 2\n"
+      << "set-time 1.0000000000000002\nscreenshot " << a << "\n"
+      << "set-time 1.6000000000000003\nscreenshot " << b << "\n"
+      << "export-gltf " << glb << " 8\nset-time 0\n";
+  }
+  const Run r = run(std::string("\"") + DFM_EDITOR_EXE + "\" --script \"" + script + "\" --play-frames 40 --quit");
+  INFO(r.output);
+  REQUIRE(r.code == 0);
+  for (const std::string& png : {a, b}) {
+    const Coverage c = mesh_coverage(dfm::gl::read_png(png));
+    INFO(png << ": mesh fraction " << c.fraction);
+    REQUIRE(c.fraction > 0.05);
+  }
+  // 40 frames at 1/30 s from t = 0 cross the layers at 0.2, 0.4, ... and the key at 1.
+  REQUIRE(r.output.find("play-frames: 40 frames") != std::string::npos);
+  REQUIRE(r.output.find("showed no vertices") == std::string::npos);
+  REQUIRE(r.output.find(" 0 vertices shown") == std::string::npos);
+  REQUIRE(r.output.find("frames drawn while binding") != std::string::npos);
+  // The GLB header, and the report naming the influence count and the pruning error.
+  std::ifstream f(glb, std::ios::binary);
+  char magic[4] = {0, 0, 0, 0};
+  f.read(magic, 4);
+  REQUIRE(std::string(magic, 4) == "glTF");
+  REQUIRE(r.output.find("8 influences") != std::string::npos);
+  REQUIRE(r.output.find("pruning error") != std::string::npos);
+}
+
+TEST_CASE("editor options: --msaa takes 0..8", "[editor]") {
+  const Run r = run(std::string("\"") + DFM_EDITOR_EXE + "\" --msaa 3x --quit");
+  REQUIRE(r.code == 2);
+  REQUIRE(r.output.find("--msaa") != std::string::npos);
+}

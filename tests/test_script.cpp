@@ -68,6 +68,24 @@ TEST_CASE("script parsing: comments, blank lines, and errors with file and line"
   expect_parse_error("save-frames out/f 1\n", 1, "must be an integer >= 2");
   expect_parse_error("set-key 1 2\n", 1, "usage: set-key [TIME]");
   CHECK_THROWS_WITH(read_script("/nonexistent/s.txt"), Catch::Contains("/nonexistent/s.txt"));
+  expect_parse_error("select 0\nexport-gltf out.obj\n", 2, "writes .glb or .gltf");
+  expect_parse_error("export-gltf out.glb 6\n", 1, "must be 4 or 8");
+  expect_parse_error("export-gltf out.glb 4 x\n", 1, "takes 1..2");
+  CHECK(parse_script("export-gltf a.gltf 8\nexport-gltf b.glb\n", "s.txt").size() == 2);
+}
+
+TEST_CASE("export-gltf goes to the host with the influence count (4 by default)") {
+  Document d;
+  make_posable(d);
+  std::vector<std::pair<std::string, int>> calls;
+  ScriptHost host;
+  host.export_gltf = [&](const std::string& p, int k) { calls.push_back({p, k}); };
+  run_script(d, parse_script("export-gltf a.glb\nexport-gltf b.gltf 8\n", "s.txt"), "s.txt", host);
+  REQUIRE(calls.size() == 2);
+  CHECK(calls[0] == std::make_pair(std::string("a.glb"), 4));
+  CHECK(calls[1] == std::make_pair(std::string("b.gltf"), 8));
+  CHECK_THROWS_WITH(run_script(d, parse_script("export-gltf a.glb\n", "s.txt"), "s.txt"),
+                    Catch::StartsWith("s.txt:1: export-gltf:") && Catch::Contains("needs the editor"));
 }
 
 TEST_CASE("script commands edit the document like the UI") {
@@ -179,4 +197,23 @@ TEST_CASE("save-posed: the skinned pose, then the animation slice between keys")
   CHECK(e.keys().size() == 2);
   CHECK(e.has_weights());
   CHECK(e.time() == 0.4);
+}
+
+TEST_CASE("paint-mask sets the mask within the radius, as one brush stroke") {
+  Document d;
+  d.set_surface(tetra(), "tetra");
+  run_script(d, parse_script("paint-mask 0 0 0 0.5 1\npaint-mask 1 0 0 0.1 0.25\n", "s.txt"), "s.txt");
+  REQUIRE(d.mask().size() == 4);
+  CHECK(d.mask()[0] == 1.0);
+  CHECK(d.mask()[1] == 0.25);
+  CHECK(d.mask()[2] == 0.0);
+  CHECK(d.mask()[3] == 0.0);
+  d.undo();
+  CHECK(d.mask()[1] == 0.0);
+  CHECK(d.mask()[0] == 1.0);
+  CHECK_THROWS_WITH(run_script(d, parse_script("paint-mask 5 5 5 0.1 1\n", "s.txt"), "s.txt"),
+                    Catch::Contains("no surface vertex within"));
+  CHECK_THROWS_WITH(run_script(d, parse_script("paint-mask 0 0 0 0.1 2\n", "s.txt"), "s.txt"),
+                    Catch::Contains("in [0, 1]"));
+  expect_parse_error("paint-mask 0 0 0 0.1\n", 1, "takes 5");
 }

@@ -1,5 +1,9 @@
 #include "app/editor/bind_worker.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <chrono>
 
 #include "core/util/error.h"
@@ -33,6 +37,9 @@ bool BindWorker::start(BindJob job) {
   started_ = now_seconds();
   running_ = true;
   thread_ = std::thread([this, job = std::move(job)] {
+    // The UI thread must win the CPU while a bind runs (no frame over 100 ms): this thread, the
+    // solver threads it starts and the TetGen process inherit a lower priority (Linux: per thread).
+    setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
     BindOutcome out;
     try {
       out = job(

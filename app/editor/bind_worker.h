@@ -4,6 +4,7 @@
 // thread, which then stores it in the document as one undo step.
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "core/bind/bind.h"
 #include "core/scene/document.h"
 
 namespace dfm::editor {
@@ -23,8 +25,7 @@ struct BindProgress {
 struct BindOutcome {
   bool ok = false;
   bool cancelled = false;
-  Eigen::MatrixXd weights;
-  BindStats stats;
+  std::shared_ptr<const BindResult> result;  // when ok: store with apply_bind_result (UI thread)
   std::string error;  // readable message (names the handle or file)
 };
 
@@ -56,8 +57,9 @@ class BindWorker {
   double started_ = 0;
 };
 
-// The bind the editor runs: the document's surface (or tet mesh), rig, mask and bind settings.
-// A snapshot of what it needs is taken on the UI thread, so the document may change meanwhile.
+// The bind the editor runs: dfm::bind_surface / bind_tet_mesh with bind_options(doc) (volume settings
+// and the painted mask), as the CLI and scripts do. A snapshot of the inputs is taken on the UI
+// thread, so the document may change meanwhile (apply_bind_result then refuses a stale result).
 BindJob make_document_bind_job(const Document& doc);
 
 }  // namespace dfm::editor

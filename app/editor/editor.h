@@ -31,6 +31,8 @@ struct EditorOptions {
   std::string ui;          // --ui key=value,...: initial tool / view state (screenshots, tests)
   int play_frames = 0;     // --play-frames N: play the timeline N frames, print frame times
   int width = 1280, height = 800;
+  std::string bind_screenshot;  // --bind-screenshot F.png: a PNG of the window while a script's bind runs
+  int msaa = -1;           // --msaa N: multisample count (-1: 4, or 0 on a software renderer)
 };
 
 enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
@@ -51,6 +53,10 @@ class Editor {
 
   // Public for the script host and tests.
   void render_frame();                       // one full frame (scene + UI), no swap
+  // Milliseconds of the last render_frame's stages when profiling (glFinish between stages).
+  struct FrameStages {
+    double ui = 0, sync = 0, scene = 0, imgui = 0;
+  };
   void save_screenshot(const std::string& path);
   void open_any(const std::string& path);    // scene, mesh, tet mesh, skeleton or cage by extension
   Document& document() { return doc_; }
@@ -99,6 +105,9 @@ class Editor {
   void save_scene_as(const std::string& path);
   void save_posed(const std::string& path);
   void save_frames(const std::string& pattern, int count);
+  // File > Export glTF and `export-gltf`: returns the report as text (also shown in a popup).
+  std::string export_gltf(const std::string& path, int influences);
+  void draw_export_report();
   void select_handle(int handle, bool additive);
 
   EditorOptions opts_;
@@ -148,11 +157,21 @@ class Editor {
   bool brush_visible_ = false;
 
   // timing and messages
+  // UI frames drawn while the last bind ran (the window must stay responsive: each < 100 ms).
+  int bind_frames_ = 0;
+  double bind_frame_max_ms_ = 0, bind_frame_sum_ms_ = 0;
+  int bind_frames_over_100_ = 0;
+  bool profile_stages_ = false;
+  std::optional<Eigen::Vector2d> forced_cursor_;
+  bool frame_selection_after_script_ = false;  // --ui frame=selection  // --ui cursor=XxY: the mouse held there (screenshots)  // render_frame: glFinish after each stage and time it (play-frames)
+  FrameStages stages_;
   std::deque<double> frame_ms_;
   double fps_ = 0;
   std::string status_;
   bool status_error_ = false;
   std::string error_popup_;
+  std::string export_report_;  // shown in the "glTF export" popup until closed
+  int export_influences_ = 4;
   bool quit_prompt_ = false;
   bool should_quit_ = false;
   std::chrono::steady_clock::time_point last_autosave_;

@@ -10,6 +10,8 @@
 #include <cstdio>
 
 #include "app/editor/editor.h"
+
+#include "core/export/export_document.h"
 #include "core/mesh/io.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
@@ -76,6 +78,7 @@ void Editor::draw_ui() {
       else if (what == "save-posed") save_posed(p);
       else if (what == "save-frames") save_frames(p, 24);
       else if (what == "screenshot") save_screenshot(p);
+      else if (what == "export-gltf") export_gltf(p, export_influences_);
       else if (what == "load-skeleton") doc_.load_skeleton(p), files_.add_recent(p);
       else if (what == "load-cage") doc_.load_cage(p), files_.add_recent(p);
     } catch (const std::exception& e) {
@@ -84,6 +87,7 @@ void Editor::draw_ui() {
   }
   draw_quit_prompt();
   draw_error_popup();
+  draw_export_report();
 }
 
 void Editor::draw_menu_bar() {
@@ -108,6 +112,17 @@ void Editor::draw_menu_bar() {
     if (ImGui::MenuItem("Save all frames...", nullptr, false, doc_.has_weights() && doc_.keys().size() >= 2))
       files_.show(FilePanel::Mode::Save, "Save frames (name_####.obj)", "save-frames", "frame.obj");
     if (ImGui::MenuItem("Save screenshot...")) files_.show(FilePanel::Mode::Save, "Save screenshot", "screenshot", "screenshot.png");
+    if (ImGui::BeginMenu("Export glTF", doc_.has_weights())) {
+      // glTF stores 4 joints per set: 8 keeps more of the bind's weights at twice the attribute size.
+      for (int k : {4, 8}) {
+        const std::string label = std::to_string(k) + " influences per vertex (.glb)...";
+        if (ImGui::MenuItem(label.c_str())) {
+          export_influences_ = k;
+          files_.show(FilePanel::Mode::Save, "Export glTF (" + std::to_string(k) + " influences)", "export-gltf", "scene.glb");
+        }
+      }
+      ImGui::EndMenu();
+    }
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) request_quit();
     ImGui::EndMenu();
@@ -312,7 +327,7 @@ void Editor::draw_bind_section() {
     char overlay[96];
     std::snprintf(overlay, sizeof overlay, "%s  %.0f%%", p.stage.c_str(), 100.0 * p.fraction);
     ImGui::ProgressBar(float(p.fraction), ImVec2(-1, 0), overlay);
-    ImGui::TextDisabled("%.1f s", bind_.elapsed_seconds());
+    ImGui::TextDisabled("%.1f s, UI %.0f ms max", bind_.elapsed_seconds(), bind_frame_max_ms_);
     ImGui::SameLine();
     if (ImGui::Button(bind_.cancel_requested() ? "Cancelling..." : "Cancel", ImVec2(-1, 0))) bind_.cancel();
     return;
@@ -325,6 +340,8 @@ void Editor::draw_bind_section() {
     const BindStats& s = doc_.bind_stats();
     ImGui::TextDisabled("%d handles, %d tets, %.2f s", doc_.num_handles(), s.tets, s.seconds);
     for (const auto& n : s.notes) ImGui::TextWrapped("- %s", n.c_str());
+    if (bind_frames_ > 0)
+      ImGui::TextDisabled("UI while binding: %d frames, max %.0f ms", bind_frames_, bind_frame_max_ms_);
   } else {
     ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.35f, 1), "%s", doc_.weights_note().c_str());
   }
@@ -482,9 +499,44 @@ void Editor::draw_error_popup() {
   }
 }
 
+std::string Editor::export_gltf(const std::string& path, int influences) {
+  GltfExportOptions o;
+  o.influences = influences;
+  o.refit = true;
+  o.residual_morph_tolerance = 1e-4;  // as `deform export --residual-morphs`: keys replay exactly
+  const GltfExportReport r = export_document_gltf(doc_, path, o);
+  char buf[512];
+  const double rel = r.bbox_diagonal > 0 ? r.max_prune_error / r.bbox_diagonal : 0.0;
+  std::snprintf(buf, sizeof buf,
+                "%s\n%d vertices, %d triangles, %d joints, %d influences, %d keys\n"
+                "pruning error: %.3g (%.3g%% of the bbox diagonal) at %s\n"
+                "%d vertices refit, %d residual morph targets, max shear %.2g",
+                path.c_str(), r.vertices, r.triangles, r.joints, r.influences, r.keys, r.max_prune_error, 100.0 * rel,
+                r.max_prune_error_key < 0 ? "the current pose" : ("key " + std::to_string(r.max_prune_error_key)).c_str(),
+                r.refit_vertices, r.residual_targets, r.max_shear);
+  std::string text = buf;
+  for (const std::string& n : r.notes) text += "\nnote: " + n;
+  export_report_ = text;
+  status("exported " + path);
+  return text;
+}
+
+void Editor::draw_export_report() {
+  if (!export_report_.empty() && !ImGui::IsPopupOpen("glTF export")) ImGui::OpenPopup("glTF export");
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal("glTF export", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushTextWrapPos(640);
+    ImGui::TextUnformatted(export_report_.c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::Button("OK", ImVec2(120, 0))) export_report_.clear(), ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
 void Editor::start_bind() {
   try {
     if (!bind_.start(make_document_bind_job(doc_))) status("a bind is already running");
+    else bind_frames_ = 0, bind_frame_max_ms_ = 0, bind_frame_sum_ms_ = 0;
   } catch (const std::exception& e) {
     error_popup_ = e.what();
   }

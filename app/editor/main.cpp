@@ -13,7 +13,8 @@ namespace {
 
 void usage(std::FILE* out) {
   std::fprintf(out,
-               "usage: deform-editor [FILE] [--script S.txt] [--screenshot OUT.png] [--quit]\n"
+               "usage: deform-editor [FILE] [--script S.txt] [--screenshot OUT.png] [--quit] [--size WxH] [--ui K=V,...]\n"
+               "                     [--play-frames N] [--msaa N] [--bind-screenshot F.png]\n"
                "  FILE              a scene (.scene.json), a surface (.obj .off .ply .stl) or tet mesh (.mesh)\n"
                "  --script S.txt    run editor commands (see README.md) after loading\n"
                "  --screenshot F    write a PNG of the window after the script\n"
@@ -21,8 +22,11 @@ void usage(std::FILE* out) {
                "  --size WxH        window size (default 1280x800)\n"
                "  --ui K=V,...      initial state: tool=select|point|bone|paint|move|rotate,\n"
                "                    weights=off|selected|all|mask, wireframe=0|1, ortho=0|1, grid=0|1,\n"
-               "                    preset=front|right|top|iso..., sweep=t|x|y|z, vertex=N\n"
+               "                    preset=front|right|top|iso..., sweep=t|x|y|z, vertex=N,\n"
+               "                    cursor=XxY (mouse held there), frame=all|selection\n"
                "  --play-frames N   play the timeline for N frames and print frame times (benchmark)\n"
+               "  --bind-screenshot F  write a PNG of the window while the script's bind runs (progress bar)\n"
+               "  --msaa N          multisample anti-aliasing samples, 0..8 (default 4; 0 on llvmpipe)\n"
                "Without a display, run it under a virtual X server:\n"
                "  xvfb-run -a -s \"-screen 0 1280x1024x24\" deform-editor ...\n");
 }
@@ -50,6 +54,17 @@ int main(int argc, char** argv) {
       opts.screenshot = value("--screenshot");
     } else if (a == "--play-frames") {
       opts.play_frames = std::atoi(value("--play-frames").c_str());
+    } else if (a == "--bind-screenshot") {
+      opts.bind_screenshot = value("--bind-screenshot");
+    } else if (a == "--msaa") {
+      const std::string v = value("--msaa");
+      char* end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (v.empty() || *end || n < 0 || n > 8) {
+        std::fprintf(stderr, "deform-editor: --msaa wants 0..8, got '%s'\n", v.c_str());
+        return 2;
+      }
+      opts.msaa = static_cast<int>(n);
     } else if (a == "--ui") {
       opts.ui = value("--ui");
     } else if (a == "--quit") {

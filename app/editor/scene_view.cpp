@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/anim/bake.h"
+#include "core/anim/interpolate.h"
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
@@ -69,6 +70,7 @@ struct SceneView::Deformer {
   std::uint64_t manifold_sig = 0;
   std::unique_ptr<gl::SlicePass> slice;
   AnimationManifold manifold;
+  KeyTrack track;  // the keys the manifold was baked from (handles follow the animation)
   bool has_manifold = false;
   std::uint64_t pose_sig = 0;
   bool prefer_pose = false;  // the pose was edited after the last time change: show it, not the slice
@@ -82,6 +84,15 @@ std::uint64_t mix_hash(std::uint64_t h, const void* p, size_t n) {
   const unsigned char* b = static_cast<const unsigned char*>(p);
   for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;  // FNV-1a
   return h;
+}
+// The GPU slices in float: a time within float rounding of a baked layer's time IS that layer there,
+// while the slab range is chosen in double. Without snapping, t = 1.6000000000000003 picks only the
+// slab starting at the layer 1.6, whose vertices all compare >= 1.6f on the GPU: an empty slice
+// (playback showed 0 vertices on such frames). Snapped, both slabs are drawn and the lower one cuts.
+double snap_to_layer_time(const std::vector<double>& times, double t) {
+  for (double tk : times)
+    if (static_cast<float>(tk) == static_cast<float>(t)) return tk;
+  return t;
 }
 std::uint64_t pose_hash(std::uint64_t h, const Pose& p) {
   for (const auto& T : p.transforms) h = mix_hash(h, T.matrix().data(), sizeof(double) * 16);
@@ -213,6 +224,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
         return skin(doc.method(), full, p, {}).V;
       });
       d.manifold = build_manifold(layers, rest.F);
+      d.track = track;
       if (!d.slice) d.slice = std::make_unique<gl::SlicePass>();
       d.slice->upload(d.manifold);
       d.has_manifold = true;
@@ -229,6 +241,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     if (slice) {
       SliceAxis axis = SliceAxis::T;
       double value = doc.time();
+      if (s.sweep_axis < 0) value = snap_to_layer_time(d.manifold.times, value);
       if (s.sweep_axis >= 0) {
         axis = static_cast<SliceAxis>(s.sweep_axis);
         const double lo = d.manifold.V.col(s.sweep_axis).minCoeff(), hi = d.manifold.V.col(s.sweep_axis).maxCoeff();
@@ -287,7 +300,9 @@ void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
   const int n = num_handles(rig);
   Pose pose;
   try {
-    pose = doc.pose();
+    // A time slice shows the animation: the handles follow it (the interpolated key poses).
+    const Deformer& d = *deformer_;
+    pose = showing_slice_ && s.sweep_axis < 0 && d.track.size() >= 2 ? sample_track(d.track, doc.time()) : doc.pose();
   } catch (...) {
   }
   const bool posed = !display_is_rest_ && pose.size() == n;

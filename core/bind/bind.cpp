@@ -1,5 +1,6 @@
 #include "core/bind/bind.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -25,6 +26,8 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
   BbwOptions bo;
   bo.exact_partition_of_unity = opts.exact_partition_of_unity;
   bo.shape_mask = opts.shape_mask;
+  if (bo.shape_mask.size() == 0 && opts.vertex_mask.size() && opts.vertex_mask.maxCoeff() > 0)
+    bo.shape_mask = tet_mask_from_user_vertices(volume, opts.vertex_mask);
   bo.tolerance = opts.tolerance;
   bo.threads = opts.threads;
   bo.cancel = opts.cancel;
@@ -66,6 +69,25 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
 }
 
 }  // namespace
+
+Eigen::VectorXd tet_mask_from_user_vertices(const BindVolume& vol, const Eigen::VectorXd& m) {
+  const Eigen::SparseMatrix<double>& A = vol.to_user;  // #user x #tet vertices
+  if (m.size() != A.rows())
+    throw Error("shape mask has " + std::to_string(m.size()) + " values for " + std::to_string(A.rows()) +
+                " mesh vertices");
+  if (A.cols() != vol.tets.num_vertices())
+    throw Error("bind volume: the map to the user's vertices has " + std::to_string(A.cols()) + " columns for " +
+                std::to_string(vol.tets.num_vertices()) + " tet vertices");
+  Eigen::VectorXd per_vertex = Eigen::VectorXd::Zero(A.cols());
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it)
+      if (it.value() > 0) per_vertex[it.col()] = std::max(per_vertex[it.col()], m[it.row()]);
+  const Eigen::MatrixXi& T = vol.tets.T;
+  Eigen::VectorXd rho(T.rows());
+  for (int t = 0; t < T.rows(); ++t)
+    rho[t] = 0.25 * (per_vertex[T(t, 0)] + per_vertex[T(t, 1)] + per_vertex[T(t, 2)] + per_vertex[T(t, 3)]);
+  return rho;
+}
 
 void weight_statistics(const Eigen::MatrixXd& W, BindReport& r) {
   if (W.size() == 0) return;

@@ -19,6 +19,9 @@ struct BindOptions {
   VolumeOptions volume;
   bool exact_partition_of_unity = false;
   Eigen::VectorXd shape_mask;  // per-tet rho of the bind volume (only with a tet-mesh input), or empty
+  // Per user-vertex rho (e.g. the editor's painted mask, scaled), or empty; used when shape_mask is
+  // empty: mapped onto the volume once it is built (tet_mask_from_user_vertices).
+  Eigen::VectorXd vertex_mask;
   double tolerance = 1e-6;     // KKT residual, weight units
   int threads = 2;
   // (stage, fraction of the whole bind in [0, 1]); stages: "meshing", "assembly", "factorization",
@@ -49,6 +52,10 @@ BindResult bind_surface(const TriMesh& surface, const Rig& rig, const BindOption
 BindResult bind_tet_mesh(const TetMesh& tets, const Rig& rig, const BindOptions& opts = {});
 // The weights stage alone, on a volume already built.
 BindResult bind_on_volume(BindVolume volume, const BindOptions& opts = {});
+
+// Per-vertex values on the user's vertices -> per-tet rho on `volume`: a tet vertex takes the largest
+// value of the user vertices mapped onto it (to_user), a tet the mean of its four vertices.
+Eigen::VectorXd tet_mask_from_user_vertices(const BindVolume& volume, const Eigen::VectorXd& vertex_values);
 
 // Weight statistics used in the report (min, max, max |row sum - 1|, fraction of exact zeros).
 void weight_statistics(const Eigen::MatrixXd& W, BindReport& report);

@@ -7,13 +7,18 @@ namespace dfm {
 BindOptions bind_options(const Document& doc) {
   BindOptions o;
   o.volume = doc.bind_settings().volume;
-  if (doc.has_tets() && doc.mask().size() == doc.surface().num_vertices() && doc.mask().maxCoeff() > 0) {
+  const Eigen::VectorXd& mask = doc.mask();
+  if (mask.size() != doc.surface().num_vertices() || mask.size() == 0 || mask.maxCoeff() <= 0) return o;
+  if (doc.has_tets()) {
     const TetMesh& t = doc.tets();
     Eigen::VectorXd per_vertex = Eigen::VectorXd::Zero(t.num_vertices());
-    for (int i = 0; i < doc.surface().num_vertices(); ++i) per_vertex[doc.data().surface_to_tet[i]] = doc.mask()[i];
+    for (int i = 0; i < doc.surface().num_vertices(); ++i) per_vertex[doc.data().surface_to_tet[i]] = kPaintedMaskRho * mask[i];
     o.shape_mask.resize(t.num_tets());
     for (int k = 0; k < t.num_tets(); ++k)
       o.shape_mask[k] = 0.25 * (per_vertex[t.T(k, 0)] + per_vertex[t.T(k, 1)] + per_vertex[t.T(k, 2)] + per_vertex[t.T(k, 3)]);
+  } else {
+    // The volume is built inside the bind; the mask is mapped onto it there.
+    o.vertex_mask = kPaintedMaskRho * mask;
   }
   return o;
 }
@@ -44,7 +49,10 @@ void run_bind_blocking(Document& doc, const BindOptions& extra) {
   BindOptions o = extra;
   const BindOptions from_doc = bind_options(doc);
   o.volume = from_doc.volume;
-  if (o.shape_mask.size() == 0) o.shape_mask = from_doc.shape_mask;
+  if (o.shape_mask.size() == 0 && o.vertex_mask.size() == 0) {
+    o.shape_mask = from_doc.shape_mask;
+    o.vertex_mask = from_doc.vertex_mask;
+  }
   const BindResult r = doc.has_tets() ? bind_tet_mesh(doc.tets(), doc.rig(), o) : bind_surface(doc.surface(), doc.rig(), o);
   apply_bind_result(doc, r);
 }

@@ -8,8 +8,13 @@
 
 namespace dfm {
 
-// Volume options from the document; for a tet-mesh input, the painted mask as per-tet rho (mean of
-// the tet's surface-vertex mask values, interior vertices 0).
+// rho of a fully painted vertex (mask 1): painted tets ~1000x stiffer than the biharmonic term, so
+// they move nearly rigidly (bbw.h scales rho to be unitless; 1 would barely show).
+constexpr double kPaintedMaskRho = 1e3;
+
+// Volume options from the document, and the painted mask (scaled by kPaintedMaskRho): for a tet-mesh
+// input as per-tet rho (mean of the tet's surface-vertex values, interior vertices 0), for a surface
+// input as vertex_mask (mapped onto the TetGen volume inside the bind).
 BindOptions bind_options(const Document& doc);
 // Weights on the surface vertices (rows picked through surface_to_tet for a tet input) + stats.
 void apply_bind_result(Document& doc, const BindResult& result);

@@ -52,6 +52,8 @@ const std::map<std::string, Spec>& specs() {
       {"save-frames", {1, 2, 0, "save-frames PREFIX [COUNT]"}},
       {"save-scene", {1, 1, 0, "save-scene FILE.scene.json"}},
       {"screenshot", {1, 1, 0, "screenshot OUT.png"}},
+      {"paint-mask", {5, 5, -1, "paint-mask X Y Z RADIUS VALUE"}},
+      {"export-gltf", {1, 2, 0, "export-gltf OUT.glb|OUT.gltf [4|8]"}},
       {"quit", {0, 0, 0, "quit"}},
   };
   return s;
@@ -156,6 +158,12 @@ std::vector<ScriptLine> parse_script(const std::string& text, const std::string&
       if (!parse_number(l.words[2], c) || c < 2 || c != std::floor(c) || c > 100000)
         throw file_error(name, line, "frame count '" + l.words[2] + "' must be an integer >= 2");
     }
+    if (l.words[0] == "export-gltf") {
+      if (!ends_with(l.words[1], ".glb") && !ends_with(l.words[1], ".gltf"))
+        throw file_error(name, line, "export-gltf writes .glb or .gltf, got '" + l.words[1] + "'");
+      if (nargs == 2 && l.words[2] != "4" && l.words[2] != "8")
+        throw file_error(name, line, "influences per vertex must be 4 or 8, got '" + l.words[2] + "'");
+    }
     out.push_back(std::move(l));
   }
   return out;
@@ -258,6 +266,20 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
       } else if (cmd == "screenshot") {
         if (!host.screenshot) throw Error("screenshots need the editor (no renderer here)");
         host.screenshot(l.words[1]);
+      } else if (cmd == "paint-mask") {
+        // The brush's document operation: every surface vertex within RADIUS of the point gets VALUE.
+        const Eigen::Vector3d c(num(l, 1), num(l, 2), num(l, 3));
+        const double r = num(l, 4), value = num(l, 5);
+        if (r <= 0) throw Error("radius must be > 0");
+        if (value < 0 || value > 1) throw Error("mask values are in [0, 1], got " + l.words[5]);
+        std::vector<int> verts;
+        for (int i = 0; i < doc.surface().num_vertices(); ++i)
+          if ((doc.surface().V.row(i).transpose() - c).norm() <= r) verts.push_back(i);
+        if (verts.empty()) throw Error("no surface vertex within " + l.words[4] + " of the point");
+        doc.paint_mask(verts, std::vector<double>(verts.size(), value));
+      } else if (cmd == "export-gltf") {
+        if (!host.export_gltf) throw Error("glTF export needs the editor (or `deform export`)");
+        host.export_gltf(l.words[1], l.words.size() > 2 ? std::stoi(l.words[2]) : 4);
       } else if (cmd == "quit") {
         res.quit = true;
       }

@@ -27,6 +27,9 @@ struct ScriptHost {
   // bind: compute weights for doc (the editor runs its worker and waits). Empty -> run_bind_blocking()
   // (core/scene/bind_document.h).
   std::function<void(Document& doc)> bind;
+  // export-gltf OUT.glb [4|8]: write the document as glTF with that many influences per vertex
+  // (the editor calls export_document_gltf; core/scene cannot depend on core/export).
+  std::function<void(const std::string& path, int influences)> export_gltf;
   // Called after each command (the editor redraws; tests may record).
   std::function<void(const ScriptLine&)> after_command;
 };

@@ -14,3 +14,7 @@ if(DFM_BUILD_EDITOR)
   target_compile_definitions(test_editor_gl PRIVATE DFM_EDITOR_EXE="$<TARGET_FILE:deform-editor>")
   add_dependencies(test_editor_gl deform-editor)
 endif()
+
+# The editor's bind job (worker thread, same core call as the CLI, painted mask) without a window.
+dfm_test(test_editor_bind SOURCES test_editor_bind.cpp ${PROJECT_SOURCE_DIR}/app/editor/bind_job.cpp
+         ${PROJECT_SOURCE_DIR}/app/editor/bind_worker.cpp LIBS dfm_scene TIMEOUT 300)
