@@ -14,6 +14,27 @@
 
 namespace dfm {
 
+namespace {
+
+// A CHOLMOD view (no copy) of a symmetric matrix given by its lower triangle in compressed columns.
+cholmod_sparse cholmod_lower_view(int n, int* p, int* i, double* x) {
+  cholmod_sparse cs{};
+  cs.nrow = cs.ncol = static_cast<size_t>(n);
+  cs.nzmax = static_cast<size_t>(p[n]);
+  cs.p = p;
+  cs.i = i;
+  cs.x = x;
+  cs.stype = -1;  // symmetric, lower triangle used
+  cs.itype = CHOLMOD_INT;
+  cs.xtype = CHOLMOD_REAL;
+  cs.dtype = CHOLMOD_DOUBLE;
+  cs.sorted = 1;
+  cs.packed = 1;
+  return cs;
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------------------------------------- SpdSolver
 
 struct SpdSolver::Impl {
@@ -36,18 +57,8 @@ SpdSolver::~SpdSolver() { delete impl_; }
 void SpdSolver::factorize(const Eigen::SparseMatrix<double>& A0) {
   Eigen::SparseMatrix<double> A = A0;  // compressed copy CHOLMOD can view
   A.makeCompressed();
-  cholmod_sparse cs{};
-  cs.nrow = cs.ncol = static_cast<size_t>(A.rows());
-  cs.nzmax = static_cast<size_t>(A.nonZeros());
-  cs.p = A.outerIndexPtr();
-  cs.i = A.innerIndexPtr();
-  cs.x = A.valuePtr();
-  cs.stype = -1;  // symmetric, lower triangle used
-  cs.itype = CHOLMOD_INT;
-  cs.xtype = CHOLMOD_REAL;
-  cs.dtype = CHOLMOD_DOUBLE;
-  cs.sorted = 1;
-  cs.packed = 1;
+  cholmod_sparse cs =
+      cholmod_lower_view(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr());
   cholmod_common& c = impl_->c;
   if (impl_->L) cholmod_free_factor(&impl_->L, &c);
   // Small systems: AMD alone (METIS costs more than it saves). Large: let CHOLMOD pick AMD or METIS.
@@ -128,18 +139,8 @@ std::vector<int> fill_reducing_ordering(const Eigen::SparseMatrix<double>& H0) {
   c.error_handler = nullptr;
   c.nmethods = 1;
   c.method[0].ordering = CHOLMOD_AMD;
-  cholmod_sparse cs{};
-  cs.nrow = cs.ncol = static_cast<size_t>(H.rows());
-  cs.nzmax = static_cast<size_t>(H.nonZeros());
-  cs.p = H.outerIndexPtr();
-  cs.i = H.innerIndexPtr();
-  cs.x = H.valuePtr();
-  cs.stype = -1;
-  cs.itype = CHOLMOD_INT;
-  cs.xtype = CHOLMOD_REAL;
-  cs.dtype = CHOLMOD_DOUBLE;
-  cs.sorted = 1;
-  cs.packed = 1;
+  cholmod_sparse cs =
+      cholmod_lower_view(static_cast<int>(H.rows()), H.outerIndexPtr(), H.innerIndexPtr(), H.valuePtr());
   cholmod_factor* L = cholmod_analyze(&cs, &c);
   if (!L) {
     cholmod_finish(&c);
@@ -196,18 +197,7 @@ class FaceSolver {
       Ap_[k + 1] = static_cast<int>(Ai_.size());
     }
     for (int v : vars_) loc_[v] = -1;
-    cholmod_sparse A{};
-    A.nrow = A.ncol = static_cast<size_t>(nf);
-    A.nzmax = Ai_.size();
-    A.p = Ap_.data();
-    A.i = Ai_.data();
-    A.x = Ax_.data();
-    A.stype = -1;
-    A.itype = CHOLMOD_INT;
-    A.xtype = CHOLMOD_REAL;
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = 1;
-    A.packed = 1;
+    cholmod_sparse A = cholmod_lower_view(nf, Ap_.data(), Ai_.data(), Ax_.data());
     if (L_) cholmod_free_factor(&L_, &c_);
     L_ = cholmod_analyze(&A, &c_);
     if (!L_) throw Error("sparse Cholesky: analysis failed (out of memory?)");
