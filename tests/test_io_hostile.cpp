@@ -1,16 +1,21 @@
 // Hostile input: every reader gives a dfm::Error naming the file, the problem and (where it applies) the
 // line or byte offset; nothing crashes, hangs or allocates what the file cannot hold.
 // Zero-area faces and zero-volume tets are accepted (mesh_info reports them), not errors.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/mesh/io.h"
+#include "core/scene/scene_file.h"
 #include "core/util/error.h"
+#include "tests/fuzz/fuzz_scene_fixture.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
@@ -24,6 +29,13 @@ fs::path dir() {
     fs::create_directories(p);
     return p;
   }();
+  static const bool cleanup = [] {  // registered after d exists, so it runs before d is destroyed
+    return std::atexit([] {
+             std::error_code ec;
+             fs::remove_all(d, ec);
+           }) == 0;
+  }();
+  (void)cleanup;
   return d;
 }
 
@@ -242,4 +254,92 @@ TEST_CASE("points: wrong field counts and non-numbers", "[io][hostile]") {
 TEST_CASE("unknown extensions name the file", "[io][hostile]") {
   require_error(surface(put("x.foo", "v 0 0 0\n")), {"x.foo", "unknown surface extension"});
   require_error(tet(put("x.bar", "")), {"x.bar", "unknown tet mesh extension"});
+}
+
+// Every reader, the same hostile paths and bytes: a missing file, a folder, a pipe (which would block a
+// naive reader forever), an empty file, binary garbage, a NUL in the middle, a lone huge number and a
+// file cut off after one byte. Each must give a dfm::Error naming the file (and never hang or crash);
+// the one exception is an empty points file, which is a valid list of 0 points.
+TEST_CASE("every reader: missing, folder, pipe, empty, garbage, NUL, huge number, one byte", "[io][hostile]") {
+  struct Reader {
+    const char* ext;
+    std::function<void(const std::string&)> read;
+    std::string valid;  // a small valid file (the scene: its start), cut to one byte / NUL-patched below
+  };
+  const std::vector<Reader> readers = {
+      {"obj", [](const std::string& p) { read_surface(p); }, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"},
+      {"off", [](const std::string& p) { read_surface(p); }, "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"ply", [](const std::string& p) { read_surface(p); },
+       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+      {"stl", [](const std::string& p) { read_surface(p); },
+       "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n"},
+      {"mesh", [](const std::string& p) { read_tet_mesh(p); },
+       "MeshVersionFormatted 1\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n"},
+      {"node", [](const std::string& p) { read_tet_mesh(p); }, "4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n"},
+      {"dmat", [](const std::string& p) { read_dmat(p); }, "1 2\n1\n2\n"},
+      {"tgf", [](const std::string& p) { read_tgf(p); }, "1 0 0 0\n2 1 0 0\n#\n1 2\n"},
+      {"xyz", [](const std::string& p) { read_points(p); }, "1 2 3\n"},
+      {"scene.json", [](const std::string& p) { read_scene(p); }, "{\"format\": \"deform-scene\", \"version\": 1}"},
+  };
+  const std::string garbage("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\xff\xfe\xfd\x00\x01", 21);
+  int cases = 0;
+  for (const Reader& r : readers) {
+    const std::string e = r.ext;
+    INFO(e);
+    require_error([&] { r.read((dir() / ("missing." + e)).string()); }, {"missing." + e, "no such file"});
+    fs::create_directories(dir() / ("folder." + e));
+    require_error([&] { r.read((dir() / ("folder." + e)).string()); }, {"folder." + e, "directory"});
+    const fs::path fifo = dir() / ("fifo." + e);
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    require_error([&] { r.read(fifo.string()); }, {"fifo." + e, "pipe"});
+    if (e == "xyz")  // an empty points file is 0 points (a rig without point handles saves one)
+      CHECK(read_points(put("hempty.xyz", "")).rows() == 0);
+    else
+      require_error([&] { r.read(put("hempty." + e, "")); }, {"hempty." + e});
+    require_error([&] { r.read(put("garbage." + e, garbage)); }, {"garbage." + e});
+    std::string nul = r.valid;
+    nul[nul.size() / 2] = '\0';
+    require_error([&] { r.read(put("nul." + e, nul)); }, {"nul." + e});
+    require_error([&] { r.read(put("bignum." + e, "1e999999 99999999999999999999 -1\n")); }, {"bignum." + e});
+    require_error([&] { r.read(put("onebyte." + e, r.valid.substr(0, 1))); }, {"onebyte." + e});
+    cases += 8;
+  }
+  CHECK(cases == 80);
+}
+
+// Scene files (the JSON; tests/test_scene_file.cpp has the format's own cases): shapes, self-joined
+// pseudo-edges and a sidecar that is a folder or a pipe.
+TEST_CASE("scene: wrong empty shapes, self pseudo-edge, sidecar not a regular file", "[io][hostile][scene]") {
+  const fs::path d = dir() / "scene";
+  fs::create_directories(d);
+  const std::string good = (d / "good.scene.json").string();
+  write_scene(good, fuzz::fixed_scene());
+  REQUIRE(read_scene(good).rig.points.size() == 2);
+  std::ifstream in(good);
+  const nlohmann::json j0 = nlohmann::json::parse(in);
+  auto edited = [&](const std::string& name, const std::function<void(nlohmann::json&)>& f) {
+    nlohmann::json j = j0;
+    f(j);
+    std::ofstream((d / name).string()) << j.dump(1);
+    return (d / name).string();
+  };
+  auto scene = [](const std::string& p) { return [p] { read_scene(p); }; };
+  // A 0 x 5 surface would pass for "empty" while every consumer assumes 3 columns.
+  require_error(scene(edited("shape.scene.json", [](nlohmann::json& j) {
+                  j["surface"]["N"]["rows"] = 0;
+                  j["surface"]["N"]["cols"] = 5;
+                })),
+                {"shape.scene.json", "'surface.N' has 5 columns, expected 3"});
+  require_error(scene(edited("self.scene.json", [](nlohmann::json& j) { j["rig"]["pseudo_edges"][0] = {1, 1}; })),
+                {"self.scene.json", "joins a point to itself"});
+  require_error(scene(edited("big.scene.json", [](nlohmann::json& j) { j["bind_stats"]["tets"] = 2147483648ll; })),
+                {"big.scene.json", "'bind_stats.tets' = 2147483648 is out of range"});
+  // The sidecar named by the JSON is a folder, then a pipe (opening a pipe would block forever).
+  fs::create_directories(d / "folder.bin");
+  require_error(scene(edited("dirbin.scene.json", [](nlohmann::json& j) { j["sidecar"]["file"] = "folder.bin"; })),
+                {"folder.bin", "not a regular file"});
+  REQUIRE(::mkfifo((d / "pipe.bin").c_str(), 0600) == 0);
+  require_error(scene(edited("pipebin.scene.json", [](nlohmann::json& j) { j["sidecar"]["file"] = "pipe.bin"; })),
+                {"pipe.bin", "not a regular file"});
 }

@@ -1,6 +1,7 @@
 #include "core/scene/scene_file.h"
 
 #include <cmath>
+#include <climits>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -175,6 +176,10 @@ class SceneReader {
     const long long size = integer(field(sc, "bytes", "sidecar"), "sidecar.bytes", 0, (1ll << 40));
     const std::string sum = string(field(sc, "fnv1a64", "sidecar"), "sidecar.fnv1a64");
     blob_path_ = (std::filesystem::path(json_dir) / name).string();
+    std::error_code sec;
+    const auto st = std::filesystem::status(blob_path_, sec);
+    if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))  // a folder or a pipe would hang or fail obscurely
+      throw file_error(blob_path_, 0, "sidecar is not a regular file");
     std::ifstream in(blob_path_, std::ios::binary);
     if (!in) fail("cannot open its sidecar '" + blob_path_ + "'");
     std::error_code ec;
@@ -198,7 +203,8 @@ class SceneReader {
     const long long off = integer(field(ref, "offset", ctx), ctx + ".offset", 0, (1ll << 40));
     const long long rows = integer(field(ref, "rows", ctx), ctx + ".rows", 0, (1ll << 31) - 1);
     const long long nc = integer(field(ref, "cols", ctx), ctx + ".cols", 0, (1ll << 31) - 1);
-    if (cols >= 0 && nc != cols && rows > 0)
+    // An empty array may be 0 x 0 (never set) or 0 x cols; any other shape is wrong.
+    if (cols >= 0 && nc != cols && (rows > 0 || nc != 0))
       fail("'" + ctx + "' has " + std::to_string(nc) + " columns, expected " + std::to_string(cols));
     const long long n = rows * nc;  // < 2^62
     if (off % static_cast<long long>(sizeof(Scalar)) != 0) fail("'" + ctx + "' offset is misaligned");
@@ -324,11 +330,14 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   j["sidecar"] = {{"file", std::filesystem::path(sidecar).filename().string()},
                   {"bytes", blob.bytes().size()},
                   {"fnv1a64", hex64(fnv1a64(blob.bytes()))}};
-  // Sidecar first: a crash between the two leaves the old JSON, whose checksum then rejects the new
-  // sidecar with a clear message instead of silently mixing two saves.
-  write_file_atomic(sidecar, [&](std::ostream& o) { o.write(blob.bytes().data(), blob.bytes().size()); }, true);
+  // Both files are written to temps before either replaces its previous version, so a full disk or a
+  // refused folder leaves the previous scene loadable. Sidecar renamed first: a crash between the two
+  // renames leaves the old JSON, whose checksum then rejects the new sidecar with a clear message
+  // instead of silently mixing two saves.
   const std::string text = j.dump(1) + "\n";
-  write_file_atomic(json_path, [&](std::ostream& o) { o << text; });
+  write_files_atomic(
+      {{sidecar, [&](std::ostream& o) { o.write(blob.bytes().data(), blob.bytes().size()); }, true},
+       {json_path, [&](std::ostream& o) { o << text; }, false}});
 }
 
 SceneData read_scene(const std::string& path) {
@@ -429,8 +438,9 @@ SceneData read_scene(const std::string& path) {
   for (size_t i = 0; i < pe.size(); ++i) {
     const std::string c = "rig.pseudo_edges[" + std::to_string(i) + "]";
     R.array(pe[i], c, 2);
-    s.rig.pseudo_edges.push_back({static_cast<int>(R.integer(pe[i][0], c, 0, np - 1)),
-                                  static_cast<int>(R.integer(pe[i][1], c, 0, np - 1))});
+    const int a = static_cast<int>(R.integer(pe[i][0], c, 0, np - 1)), b = static_cast<int>(R.integer(pe[i][1], c, 0, np - 1));
+    if (a == b) R.fail("'" + c + "' joins a point to itself");
+    s.rig.pseudo_edges.push_back({a, b});
   }
 
   s.pose = R.params(R.field(j, "pose", "scene"), s.rig, "pose");
@@ -467,8 +477,8 @@ SceneData read_scene(const std::string& path) {
   const json& st = R.field(j, "bind_stats", "scene");
   s.bind_stats.seconds = R.number(R.field(st, "seconds", "bind_stats"), "bind_stats.seconds");
   s.bind_stats.tet_vertices =
-      static_cast<int>(R.integer(R.field(st, "tet_vertices", "bind_stats"), "bind_stats.tet_vertices", 0, 1ll << 31));
-  s.bind_stats.tets = static_cast<int>(R.integer(R.field(st, "tets", "bind_stats"), "bind_stats.tets", 0, 1ll << 31));
+      static_cast<int>(R.integer(R.field(st, "tet_vertices", "bind_stats"), "bind_stats.tet_vertices", 0, INT_MAX));
+  s.bind_stats.tets = static_cast<int>(R.integer(R.field(st, "tets", "bind_stats"), "bind_stats.tets", 0, INT_MAX));
   const json& notes = R.array(R.field(st, "notes", "bind_stats"), "bind_stats.notes");
   for (const json& n : notes) s.bind_stats.notes.push_back(R.string(n, "bind_stats.notes[]"));
 

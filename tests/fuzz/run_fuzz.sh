@@ -9,19 +9,29 @@
 set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
-READERS="obj off ply stl mesh tetgen dmat tgf points"
+READERS="obj off ply stl mesh tetgen dmat tgf points scene"
 CXX=${FUZZ_CXX:-$(command -v clang++-14 || command -v clang++ || true)}
 
 build() {
   out=$1
   [ -n "$CXX" ] || { echo "run_fuzz.sh: clang++ not found (apt-get install clang-14 libclang-rt-14-dev)" >&2; exit 1; }
   mkdir -p "$out/obj"
-  flags="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT -I/usr/include/eigen3"
+  flags="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT -isystem /usr/include/eigen3"
   objs=""
-  for src in "$ROOT"/core/util/*.cpp "$ROOT"/core/mesh/*.cpp "$ROOT"/core/rig/rig.cpp "$ROOT"/core/rig/rig_io.cpp; do
+  # The scene reader needs rig/ and skin/ (handle counts, skin method names) but not bind/ or the GL.
+  for src in "$ROOT"/core/util/*.cpp "$ROOT"/core/mesh/*.cpp "$ROOT"/core/rig/*.cpp "$ROOT"/core/skin/*.cpp \
+             "$ROOT"/core/scene/scene_file.cpp; do
     o="$out/obj/$(basename "$src" .cpp).o"
-    if [ ! -f "$o" ] || [ "$src" -nt "$o" ] || [ "$ROOT/core/mesh/io_parse.h" -nt "$o" ]; then
-      "$CXX" $flags -fsanitize=fuzzer-no-link,address,undefined -c "$src" -o "$o"
+    # Rebuilt when the source or any header it includes (its -MM dependency list) is newer.
+    if [ ! -f "$o.d" ]; then "$CXX" $flags -MM -MT "$o" "$src" > "$o.d"; fi
+    stale=0
+    [ -f "$o" ] || stale=1
+    for dep in $(sed -e 's/^[^:]*://' -e 's/\\$//' "$o.d"); do
+      [ "$stale" = 1 ] && break
+      [ "$dep" -nt "$o" ] && stale=1
+    done
+    if [ "$stale" = 1 ]; then
+      "$CXX" $flags -fsanitize=fuzzer-no-link,address,undefined -MMD -MF "$o.d" -c "$src" -o "$o"
     fi
     objs="$objs $o"
   done
