@@ -102,7 +102,7 @@ class Editor {
   void draw_timeline();
   // actions
   void start_bind();
-  void save_scene_as(const std::string& path);
+  bool save_scene_as(const std::string& path);  // false: failed, reported in the UI
   void save_posed(const std::string& path);
   void save_frames(const std::string& pattern, int count);
   // File > Export glTF and `export-gltf`: returns the report as text (also shown in a popup).

@@ -472,8 +472,7 @@ void Editor::draw_quit_prompt() {
       if (doc_.path().empty()) {
         files_.show(FilePanel::Mode::Save, "Save scene as", "save-scene", "scene.scene.json");
       } else {
-        save_scene_as(doc_.path());
-        should_quit_ = true;
+        should_quit_ = save_scene_as(doc_.path());
       }
       quit_prompt_ = false;
       ImGui::CloseCurrentPopup();
@@ -542,11 +541,20 @@ void Editor::start_bind() {
   }
 }
 
-void Editor::save_scene_as(const std::string& path) {
-  sync_camera_to_doc();
-  doc_.save_scene(path);
+bool Editor::save_scene_as(const std::string& path) {
+  // A failed save (full disk, no permission) leaves the previous file intact (atomic save) and the
+  // scene in memory: say what failed and let the user pick another place.
+  try {
+    sync_camera_to_doc();
+    doc_.save_scene(path);
+  } catch (const std::exception& e) {
+    error_popup_ = std::string("The scene was not saved; it is still open here.\n") + e.what();
+    status(std::string("save failed: ") + e.what(), true);
+    return false;
+  }
   files_.add_recent(path);
   status("saved " + path);
+  return true;
 }
 
 void Editor::save_posed(const std::string& path) {
