@@ -3,9 +3,11 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "core/util/error.h"
 
@@ -28,7 +30,14 @@ void acquire_glfw() {
     if ((!display || !*display) && (!wayland || !*wayland))
       throw Error("no display found (DISPLAY is not set): run under a virtual X server, e.g. "
                   "xvfb-run -a -s \"-screen 0 1280x1024x24\" <command>");
-    if (!glfwInit())
+    // A busy virtual X server (Xvfb beside CPU-heavy work) now and then refuses a connection that
+    // succeeds a moment later: retry briefly before calling the display unreachable.
+    bool ok = false;
+    for (int attempt = 0; attempt < 5 && !ok; ++attempt) {
+      if (attempt > 0) std::this_thread::sleep_for(std::chrono::milliseconds(250 * attempt));
+      ok = glfwInit() == GLFW_TRUE;
+    }
+    if (!ok)
       throw Error("cannot initialise GLFW (" + g_last_error +
                   "): is a display reachable? Without one, run under xvfb-run -a <command>");
   }
