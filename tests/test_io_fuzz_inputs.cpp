@@ -16,20 +16,15 @@
 #include "core/scene/scene_file.h"
 #include "core/util/error.h"
 #include "tests/fuzz/fuzz_scene_fixture.h"
+#include "tests/file_bytes.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void spill(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
+using dfm::test::slurp;
+using dfm::test::spill;
 
 // Feeds `bytes` to `reader` the way tests/fuzz/fuzz_reader.cpp does.
 void read_as(const std::string& reader, const std::string& bytes, const fs::path& tmp) {

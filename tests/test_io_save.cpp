@@ -27,6 +27,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "tests/fuzz/fuzz_scene_fixture.h"
+#include "tests/file_bytes.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
@@ -34,13 +35,8 @@ using Catch::Contains;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-void spill(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary) << s; }
+using dfm::test::slurp;
+using dfm::test::spill;
 
 struct TempDir {
   fs::path dir;
