@@ -9,15 +9,13 @@ BindOptions bind_options(const Document& doc) {
   o.volume = doc.bind_settings().volume;
   const Eigen::VectorXd& mask = doc.mask();
   if (mask.size() != doc.surface().num_vertices() || mask.size() == 0 || mask.maxCoeff() <= 0) return o;
+  // The bind maps a per-user-vertex mask onto its volume (tet_mask_from_user_vertices). A tet input's
+  // user vertices are its tet vertices: the painted boundary values go to theirs, interior ones stay 0.
   if (doc.has_tets()) {
-    const TetMesh& t = doc.tets();
-    Eigen::VectorXd per_vertex = Eigen::VectorXd::Zero(t.num_vertices());
-    for (int i = 0; i < doc.surface().num_vertices(); ++i) per_vertex[doc.data().surface_to_tet[i]] = kPaintedMaskRho * mask[i];
-    o.shape_mask.resize(t.num_tets());
-    for (int k = 0; k < t.num_tets(); ++k)
-      o.shape_mask[k] = 0.25 * (per_vertex[t.T(k, 0)] + per_vertex[t.T(k, 1)] + per_vertex[t.T(k, 2)] + per_vertex[t.T(k, 3)]);
+    o.vertex_mask = Eigen::VectorXd::Zero(doc.tets().num_vertices());
+    for (int i = 0; i < doc.surface().num_vertices(); ++i)
+      o.vertex_mask[doc.data().surface_to_tet[i]] = kPaintedMaskRho * mask[i];
   } else {
-    // The volume is built inside the bind; the mask is mapped onto it there.
     o.vertex_mask = kPaintedMaskRho * mask;
   }
   return o;
@@ -49,10 +47,7 @@ void run_bind_blocking(Document& doc, const BindOptions& extra) {
   BindOptions o = extra;
   const BindOptions from_doc = bind_options(doc);
   o.volume = from_doc.volume;
-  if (o.shape_mask.size() == 0 && o.vertex_mask.size() == 0) {
-    o.shape_mask = from_doc.shape_mask;
-    o.vertex_mask = from_doc.vertex_mask;
-  }
+  if (o.shape_mask.size() == 0 && o.vertex_mask.size() == 0) o.vertex_mask = from_doc.vertex_mask;
   const BindResult r = doc.has_tets() ? bind_tet_mesh(doc.tets(), doc.rig(), o) : bind_surface(doc.surface(), doc.rig(), o);
   apply_bind_result(doc, r);
 }

@@ -12,9 +12,9 @@ namespace dfm {
 // they move nearly rigidly (bbw.h scales rho to be unitless; 1 would barely show).
 constexpr double kPaintedMaskRho = 1e3;
 
-// Volume options from the document, and the painted mask (scaled by kPaintedMaskRho): for a tet-mesh
-// input as per-tet rho (mean of the tet's surface-vertex values, interior vertices 0), for a surface
-// input as vertex_mask (mapped onto the TetGen volume inside the bind).
+// Volume options from the document, and the painted mask (scaled by kPaintedMaskRho) as vertex_mask,
+// which the bind maps onto its volume: per surface vertex for a surface input, per tet vertex for a
+// tet-mesh input (boundary vertices painted, interior ones 0).
 BindOptions bind_options(const Document& doc);
 // Weights on the surface vertices (rows picked through surface_to_tet for a tet input) + stats.
 void apply_bind_result(Document& doc, const BindResult& result);
