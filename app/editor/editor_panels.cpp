@@ -485,18 +485,25 @@ void Editor::draw_quit_prompt() {
   }
 }
 
-void Editor::draw_error_popup() {
-  if (!error_popup_.empty() && !ImGui::IsPopupOpen("Error")) ImGui::OpenPopup("Error");
+namespace {
+
+// A centred modal showing `text` while it is non-empty; OK clears it.
+void message_popup(const char* title, std::string& text, float wrap) {
+  if (!text.empty() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
   ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  ImGui::SetNextWindowSizeConstraints(ImVec2(320, 0), ImVec2(640, 400));
-  if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::PushTextWrapPos(600);
-    ImGui::TextUnformatted(error_popup_.c_str());
+  ImGui::SetNextWindowSizeConstraints(ImVec2(320, 0), ImVec2(wrap + 40, 400));
+  if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushTextWrapPos(wrap);
+    ImGui::TextUnformatted(text.c_str());
     ImGui::PopTextWrapPos();
-    if (ImGui::Button("OK", ImVec2(120, 0))) error_popup_.clear(), ImGui::CloseCurrentPopup();
+    if (ImGui::Button("OK", ImVec2(120, 0))) text.clear(), ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
 }
+
+}  // namespace
+
+void Editor::draw_error_popup() { message_popup("Error", error_popup_, 600); }
 
 std::string Editor::export_gltf(const std::string& path, int influences) {
   GltfExportOptions o;
@@ -520,17 +527,7 @@ std::string Editor::export_gltf(const std::string& path, int influences) {
   return text;
 }
 
-void Editor::draw_export_report() {
-  if (!export_report_.empty() && !ImGui::IsPopupOpen("glTF export")) ImGui::OpenPopup("glTF export");
-  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  if (ImGui::BeginPopupModal("glTF export", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::PushTextWrapPos(640);
-    ImGui::TextUnformatted(export_report_.c_str());
-    ImGui::PopTextWrapPos();
-    if (ImGui::Button("OK", ImVec2(120, 0))) export_report_.clear(), ImGui::CloseCurrentPopup();
-    ImGui::EndPopup();
-  }
-}
+void Editor::draw_export_report() { message_popup("glTF export", export_report_, 640); }
 
 void Editor::start_bind() {
   try {
