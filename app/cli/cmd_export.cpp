@@ -134,10 +134,9 @@ int run(const dfm::cli::Args& args) {
   } else {
     if (weights.empty()) throw dfm::cli::UsageError("--weights W.dmat is required with a mesh INPUT");
     load_mesh_input(input, weights, skeleton, poses, points, key_seconds, in);
+    in.name = std::filesystem::path(input).stem().string();  // a scene is named by gltf_input_from_document
+    if (in.name.empty()) in.name = "mesh";
   }
-  in.name = std::filesystem::path(input).stem().string();
-  if (scene && std::filesystem::path(in.name).extension() == ".scene") in.name = std::filesystem::path(in.name).stem().string();
-  if (in.name.empty()) in.name = "mesh";
 
   if (morph_frames > 0) {
     if (in.keys.size() < 2) throw dfm::Error("export: --morph-frames needs at least two keys to bake between");
