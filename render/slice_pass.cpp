@@ -52,6 +52,12 @@ void SlicePass::upload(const AnimationManifold& m) {
 
 int SlicePass::slice(SliceAxis axis, double value) {
   const int a = static_cast<int>(axis);
+  // The GPU compares in float: a time within float rounding of a layer's time IS that layer there, while
+  // the slab range is chosen in double. Unsnapped, t = 1.6000000000000003 picks only the slab starting
+  // at the layer 1.6, whose vertices all compare >= 1.6f: an empty slice. Snapped, both slabs are drawn.
+  if (axis == SliceAxis::T)
+    for (double tk : meta_.times)
+      if (static_cast<float>(tk) == static_cast<float>(value)) value = tk;
   std::pair<int, int> range = axis == SliceAxis::T ? slice_tet_range(meta_, axis, value) : std::pair<int, int>{0, num_tets_};
   last_tets_ = range.second - range.first;
   triangles_ = 0;

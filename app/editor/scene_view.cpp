@@ -85,15 +85,6 @@ std::uint64_t mix_hash(std::uint64_t h, const void* p, size_t n) {
   for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;  // FNV-1a
   return h;
 }
-// The GPU slices in float: a time within float rounding of a baked layer's time IS that layer there,
-// while the slab range is chosen in double. Without snapping, t = 1.6000000000000003 picks only the
-// slab starting at the layer 1.6, whose vertices all compare >= 1.6f on the GPU: an empty slice
-// (playback showed 0 vertices on such frames). Snapped, both slabs are drawn and the lower one cuts.
-double snap_to_layer_time(const std::vector<double>& times, double t) {
-  for (double tk : times)
-    if (static_cast<float>(tk) == static_cast<float>(t)) return tk;
-  return t;
-}
 std::uint64_t pose_hash(std::uint64_t h, const Pose& p) {
   for (const auto& T : p.transforms) h = mix_hash(h, T.matrix().data(), sizeof(double) * 16);
   return h;
@@ -241,7 +232,6 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     if (slice) {
       SliceAxis axis = SliceAxis::T;
       double value = doc.time();
-      if (s.sweep_axis < 0) value = snap_to_layer_time(d.manifold.times, value);
       if (s.sweep_axis >= 0) {
         axis = static_cast<SliceAxis>(s.sweep_axis);
         const double lo = d.manifold.V.col(s.sweep_axis).minCoeff(), hi = d.manifold.V.col(s.sweep_axis).maxCoeff();
