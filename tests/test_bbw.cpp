@@ -15,6 +15,7 @@
 #include "core/bind/numeric_threads.h"
 #include "core/bind/fem.h"
 #include "core/bind/qp.h"
+#include "core/bind/sparse_kdk.h"
 #include "core/util/error.h"
 #include "tests/weights_test_meshes.h"
 
@@ -179,12 +180,55 @@ TEST_CASE("principal_submatrix picks rows and columns in the given order", "[qp]
   }
 }
 
+TEST_CASE("symmetric_kdk equals Eigen's K * D * K; bad sizes are errors", "[bbw]") {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> N(0, 1);
+  std::uniform_real_distribution<double> U(0.1, 2.0);
+  for (int n : {1, 7, 40}) {
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j <= i; ++j)
+        if (i == j || (i * 7 + j * 3) % 5 == 0) A(i, j) = A(j, i) = N(rng);
+    const Eigen::SparseMatrix<double> K = A.sparseView();
+    Eigen::VectorXd d(n);
+    for (int i = 0; i < n; ++i) d(i) = U(rng);
+    const Eigen::SparseMatrix<double> Q = symmetric_kdk(K, d);
+    const Eigen::MatrixXd ref = A * d.asDiagonal() * A;
+    REQUIRE((Eigen::MatrixXd(Q) - ref).cwiseAbs().maxCoeff() < 1e-12 * std::max(1.0, ref.cwiseAbs().maxCoeff()));
+    for (int j = 0; j < Q.outerSize(); ++j)
+      for (int p = Q.outerIndexPtr()[j] + 1; p < Q.outerIndexPtr()[j + 1]; ++p)
+        REQUIRE(Q.innerIndexPtr()[p - 1] < Q.innerIndexPtr()[p]);
+  }
+  // The bilaplacian of a real tet mesh against Eigen's general product.
+  const TetMesh m = test::cube_grid(4, 3, 3, 0.25);
+  const Eigen::SparseMatrix<double> K = cotangent_stiffness(m.V, m.T);
+  const Eigen::VectorXd minv = lumped_mass(m.V, m.T).cwiseInverse();
+  const Eigen::SparseMatrix<double> ref = K * minv.asDiagonal() * K;
+  const Eigen::SparseMatrix<double> Q = symmetric_kdk(K, minv);
+  // Every stored entry of Eigen's product is stored here too (the grid's right angles make some exact
+  // zeros, which this keeps as structural entries).
+  REQUIRE(Q.nonZeros() >= ref.nonZeros());
+  REQUIRE((Eigen::MatrixXd(Q) - Eigen::MatrixXd(ref)).cwiseAbs().maxCoeff() < 1e-12 * Eigen::MatrixXd(ref).cwiseAbs().maxCoeff());
+  REQUIRE_THROWS_AS(symmetric_kdk(K, Eigen::VectorXd::Ones(3)), Error);
+  REQUIRE_THROWS_AS(symmetric_kdk(Eigen::SparseMatrix<double>(3, 4), Eigen::VectorXd::Ones(3)), Error);
+}
+
 TEST_CASE("numeric threads: one BLAS thread after single_threaded_numerics", "[qp]") {
   single_threaded_numerics();
   // Only checkable where the linked BLAS reports its thread count (OpenBLAS does).
   using GetInt = int (*)();
   if (void* f = dlsym(RTLD_DEFAULT, "openblas_get_num_threads")) REQUIRE(reinterpret_cast<GetInt>(f)() == 1);
   if (void* f = dlsym(RTLD_DEFAULT, "omp_get_max_active_levels")) REQUIRE(reinterpret_cast<GetInt>(f)() == 0);
+  // The program's GOMP_parallel (numeric_threads.cpp) is the one every library binds to, not libgomp's;
+  // and a factorization through it still solves.
+  REQUIRE(dlsym(RTLD_DEFAULT, "GOMP_parallel") == reinterpret_cast<void*>(&GOMP_parallel));
+  const TetMesh m = test::cube_grid(6, 6, 6, 1.0 / 6);
+  Eigen::SparseMatrix<double> A = cotangent_stiffness(m.V, m.T);
+  for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += 1.0;
+  SpdSolver chol;
+  chol.factorize(A);
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(A.rows(), -1, 1);
+  REQUIRE((A * chol.solve(A * x) - A * x).norm() < 1e-10 * (A * x).norm());
 }
 
 namespace {

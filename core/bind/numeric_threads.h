@@ -6,6 +6,9 @@
 //  - Debian's CHOLMOD (SuiteSparse 5.12) opens an OpenMP team of a hard-coded 4 threads
 //    (num_threads(CHOLMOD_OMP_NUM_THREADS), deaf to OMP_NUM_THREADS) around every supernode: 1.35M
 //    futex calls and ~3 s of system time per hand solve. Max active levels 0 makes each team 1 thread.
+//  - even a one-thread team costs libgomp a team allocation and a futex wake system call; CHOLMOD opens
+//    one per supernode (200K system calls per hand.mesh bind): this library defines GOMP_parallel
+//    itself (below), running each region's body once on the calling thread.
 // The solver parallelizes over handles instead. The functions are looked up at run time (dlsym), so
 // this works with whatever BLAS / OpenMP runtime is linked and is a no-op without one. Nothing else in
 // the program uses OpenMP or threaded BLAS.
@@ -15,3 +18,7 @@ namespace dfm {
 void single_threaded_numerics();
 
 }  // namespace dfm
+
+// GCC's entry point for `#pragma omp parallel`, defined by this library so that it takes precedence over
+// libgomp's in every library of the process (see numeric_threads.cpp).
+extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags);

@@ -25,9 +25,13 @@ struct BoxQPOptions {
   // Fill-reducing permutation of H (fill_reducing_ordering), shared by every face solve of every QP on H.
   // Null: computed once per call.
   const std::vector<int>* ordering = nullptr;
-  // Projected Gauss-Seidel sweeps after each PDAS face solve (0 = plain PDAS). On hand.mesh + 20 bones
-  // 20 sweeps cut the face solves from 357 to 96 and the CPU time 2.3x (bench_bind).
+  // Projected Gauss-Seidel sweeps after each PDAS face solve (0 = plain PDAS): the larger of
+  // smoothing_sweeps and smoothing_sweeps_per_free times the face's size. The sweeps carry the support
+  // front many rings per face; how many pay for themselves grows with the face (its factorization costs
+  // ~n^2 in 3-D, a sweep ~n): hand.mesh's faces (~4K variables) are best at ~20 sweeps (357 -> 96 face
+  // solves), armadillo's (~40K) at ~250 (188 -> 79). Deterministic, unlike a time budget.
   int smoothing_sweeps = 20;
+  double smoothing_sweeps_per_free = 0.006;
 };
 
 struct BoxQPResult {
