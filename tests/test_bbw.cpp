@@ -1,10 +1,12 @@
 #include <catch2/catch.hpp>
+#include <SuiteSparse_config.h>
 
 #include <dlfcn.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -12,6 +14,7 @@
 
 #include "core/bind/bbw.h"
 #include "core/bind/bbw_exact.h"
+#include "core/bind/cholmod_memory.h"
 #include "core/bind/numeric_threads.h"
 #include "core/bind/fem.h"
 #include "core/bind/qp.h"
@@ -211,6 +214,47 @@ TEST_CASE("symmetric_kdk equals Eigen's K * D * K; bad sizes are errors", "[bbw]
   REQUIRE((Eigen::MatrixXd(Q) - Eigen::MatrixXd(ref)).cwiseAbs().maxCoeff() < 1e-12 * Eigen::MatrixXd(ref).cwiseAbs().maxCoeff());
   REQUIRE_THROWS_AS(symmetric_kdk(K, Eigen::VectorXd::Ones(3)), Error);
   REQUIRE_THROWS_AS(symmetric_kdk(Eigen::SparseMatrix<double>(3, 4), Eigen::VectorXd::Ones(3)), Error);
+}
+
+TEST_CASE("CHOLMOD block cache: a freed large block serves the next request it fits, zeroed for calloc", "[qp]") {
+  install_cholmod_block_cache();
+  release_cholmod_block_cache();
+  auto* mal = SuiteSparse_config.malloc_func;
+  auto* cal = SuiteSparse_config.calloc_func;
+  auto* fre = SuiteSparse_config.free_func;
+  char* a = static_cast<char*>(mal(6u << 20));
+  REQUIRE(a != nullptr);
+  std::memset(a, 0x5a, 6u << 20);
+  fre(a);
+  char* b = static_cast<char*>(mal(5u << 20));  // fits: the same block back
+  REQUIRE(b == a);
+  fre(b);
+  char* c = static_cast<char*>(cal(1u << 20, 4));  // 4 MB, zeroed although the block was dirty
+  REQUIRE(c == a);
+  REQUIRE(std::all_of(c, c + (4u << 20), [](char v) { return v == 0; }));
+  char* d = static_cast<char*>(mal(64u << 20));  // does not fit: a fresh block
+  REQUIRE(d != c);
+  std::memset(d, 1, 64u << 20);
+  fre(d);
+  fre(c);
+  char* e = static_cast<char*>(mal(1u << 20));  // a quarter of the smallest cached block is too wasteful
+  REQUIRE(e != c);
+  REQUIRE(e != d);
+  fre(e);
+  void* small = mal(100);  // small blocks are plain malloc
+  fre(small);
+  release_cholmod_block_cache();
+  // Factorizations through the cache still solve, repeatedly (the blocks are reused between them).
+  const TetMesh m = test::cube_grid(10, 10, 10, 0.1);
+  Eigen::SparseMatrix<double> A = cotangent_stiffness(m.V, m.T);
+  for (int i = 0; i < A.rows(); ++i) A.coeffRef(i, i) += 1.0;
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(A.rows(), -1, 1);
+  for (int round = 0; round < 3; ++round) {
+    SpdSolver chol;
+    chol.factorize(A);
+    REQUIRE((chol.solve(A * x) - x).norm() < 1e-9 * x.norm());
+  }
+  release_cholmod_block_cache();
 }
 
 TEST_CASE("numeric threads: one BLAS thread after single_threaded_numerics", "[qp]") {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/bind/bbw_exact.h"
+#include "core/bind/cholmod_memory.h"
 #include "core/bind/numeric_threads.h"
 #include "core/bind/fem.h"
 #include "core/bind/qp.h"
@@ -59,6 +60,10 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
                             const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
   validate(V, b, bc);
   single_threaded_numerics();  // we run one QP per thread; see numeric_threads.h
+  install_cholmod_block_cache();
+  struct ReleaseCache {  // the calling thread's cached blocks, however this returns
+    ~ReleaseCache() { release_cholmod_block_cache(); }
+  } release_cache;
   BbwStats stats;
   auto progress = [&](const char* stage, double f) {
     if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
@@ -99,6 +104,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     X0 = chol.solve(-G);
     ordering = chol.permutation();
   }
+  release_cholmod_block_cache();  // the whole-matrix factor's blocks: faces are smaller
   stats.factorization_seconds = seconds_since(t0);
 
   // ---- bounded solves
@@ -118,18 +124,30 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     std::vector<std::string> errors;
     std::mutex mu;
     int next = 0, finished = 0;
+    // Largest first (by the first face, X0's positive support; a face costs ~its size squared), so the
+    // last handles to finish are small ones and neither thread idles long at the end.
+    std::vector<int> order(m);
+    std::vector<long> support(m, 0);
+    for (int j = 0; j < m; ++j) {
+      order[j] = j;
+      for (int k = 0; k < nf; ++k) support[j] += X0(k, j) > 0.0;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return support[a] > support[b]; });
     BoxQPOptions qo;
     qo.tolerance = opts.tolerance;
     qo.cancel = opts.cancel;
     qo.ordering = &ordering;
     auto worker = [&] {
       single_threaded_numerics();
+      struct ReleaseCache {
+        ~ReleaseCache() { release_cholmod_block_cache(); }
+      } release_cache;
       for (;;) {
         int j;
         {
           std::lock_guard<std::mutex> lock(mu);
           if (next >= m || !errors.empty()) return;
-          j = next++;
+          j = order[next++];
         }
         try {
           BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, X0.col(j), qo);
