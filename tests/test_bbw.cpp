@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -147,7 +148,8 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
     // Both with the ordering computed inside and with a shared one; from the bound-free start and from lo.
     const Eigen::VectorXd x_free = Eigen::VectorXd(Hd.llt().solve(-g));
     const BoxQPResult a = solve_box_qp(H, g, lo, hi, x_free, o);
-    o.ordering = &ordering;
+    const OrderedLower ordered = ordered_lower(H, ordering);
+    o.ordered = &ordered;
     const BoxQPResult b = solve_box_qp(H, g, lo, hi, {}, o);
     // Plain PDAS (no Gauss-Seidel sweeps between faces) reaches the same minimizer.
     o.smoothing_sweeps = 0;
@@ -162,8 +164,24 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
     REQUIRE(a.num_free > 0);
   }
   std::vector<int> wrong(n - 1);
+  std::iota(wrong.begin(), wrong.end(), 0);
+  REQUIRE_THROWS_AS(ordered_lower(H, wrong), Error);
+  wrong.push_back(0);  // right size, a repeated variable
+  REQUIRE_THROWS_AS(ordered_lower(H, wrong), Error);
+  // The ordered lower triangle reproduces H.
+  const OrderedLower L = ordered_lower(H, ordering);
+  Eigen::MatrixXd back = Eigen::MatrixXd::Zero(n, n);
+  for (int c = 0; c < n; ++c)
+    for (int p = L.colptr[c]; p < L.colptr[c + 1]; ++p) {
+      REQUIRE(L.rows[p] >= c);
+      if (p > L.colptr[c]) REQUIRE(L.rows[p - 1] < L.rows[p]);
+      back(L.perm[L.rows[p]], L.perm[c]) = back(L.perm[c], L.perm[L.rows[p]]) = L.values[p];
+    }
+  REQUIRE((back - Hd).cwiseAbs().maxCoeff() == 0.0);
   BoxQPOptions bad;
-  bad.ordering = &wrong;
+  const OrderedLower small = ordered_lower(principal_submatrix(H, Eigen::VectorXi::LinSpaced(n - 1, 0, n - 2)),
+                                           fill_reducing_ordering(principal_submatrix(H, Eigen::VectorXi::LinSpaced(n - 1, 0, n - 2))));
+  bad.ordered = &small;
   REQUIRE_THROWS_AS(solve_box_qp(H, Eigen::VectorXd::Zero(n), lo, hi, {}, bad), Error);
 }
 

@@ -96,13 +96,13 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   progress("factorization", 0.1);
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X0;
-  std::vector<int> ordering;  // Q_ff's fill-reducing ordering, reused by every face solve of every handle
+  OrderedLower ordered;  // Q_ff in its fill-reducing order, read by every face solve of every handle
   {
     SpdSolver chol;
     chol.factorize(Qff);
     stats.factor_nonzeros = chol.factor_nonzeros();
     X0 = chol.solve(-G);
-    ordering = chol.permutation();
+    ordered = ordered_lower(Qff, chol.permutation());
   }
   release_cholmod_block_cache();  // the whole-matrix factor's blocks: faces are smaller
   stats.factorization_seconds = seconds_since(t0);
@@ -136,7 +136,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     BoxQPOptions qo;
     qo.tolerance = opts.tolerance;
     qo.cancel = opts.cancel;
-    qo.ordering = &ordering;
+    qo.ordered = &ordered;
     auto worker = [&] {
       single_threaded_numerics();
       struct ReleaseCache {

@@ -164,6 +164,34 @@ std::vector<int> fill_reducing_ordering(const Eigen::SparseMatrix<double>& H0) {
   return perm;
 }
 
+OrderedLower ordered_lower(const Eigen::SparseMatrix<double>& H, std::vector<int> perm) {
+  const int n = static_cast<int>(H.rows());
+  if (H.cols() != n || static_cast<int>(perm.size()) != n)
+    throw Error("box QP: the ordering does not match the matrix");
+  std::vector<int> pos(n, -1);
+  for (int k = 0; k < n; ++k) {
+    if (perm[k] < 0 || perm[k] >= n || pos[perm[k]] >= 0) throw Error("box QP: the ordering is not a permutation");
+    pos[perm[k]] = k;
+  }
+  OrderedLower L;
+  L.perm = std::move(perm);
+  L.colptr.assign(n + 1, 0);
+  for (int c = 0; c < n; ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, L.perm[c]); it; ++it) L.colptr[c + 1] += pos[it.row()] >= c;
+  for (int c = 0; c < n; ++c) L.colptr[c + 1] += L.colptr[c];
+  L.rows.resize(L.colptr[n]);
+  L.values.resize(L.colptr[n]);
+  std::vector<std::pair<int, double>> col;
+  for (int c = 0; c < n; ++c) {
+    col.clear();
+    for (Eigen::SparseMatrix<double>::InnerIterator it(H, L.perm[c]); it; ++it)
+      if (pos[it.row()] >= c) col.emplace_back(pos[it.row()], it.value());
+    std::sort(col.begin(), col.end());
+    for (size_t k = 0; k < col.size(); ++k) L.rows[L.colptr[c] + k] = col[k].first, L.values[L.colptr[c] + k] = col[k].second;
+  }
+  return L;
+}
+
 namespace {
 
 // Factorizes and solves principal submatrices H_FF (the faces of the box) in the elimination order of a
@@ -171,10 +199,7 @@ namespace {
 // that order (no triplets, no AMD per face), into buffers reused across iterations.
 class FaceSolver {
  public:
-  // The lower triangle of H in elimination positions (row pos >= column pos), each column's rows sorted,
-  // built once: a face is then read off it by dropping bound positions, which keeps the rows sorted
-  // (the free positions are renumbered in increasing order), so no per-face sort or transpose.
-  FaceSolver(const Eigen::SparseMatrix<double>& H, const std::vector<int>& perm) : perm_(perm) {
+  explicit FaceSolver(const OrderedLower& H) : H_(H) {
     cholmod_start(&c_);
     c_.print = 0;
     c_.error_handler = nullptr;
@@ -184,19 +209,7 @@ class FaceSolver {
     // The shared ordering is already a postorder of the whole matrix's elimination tree (a face's tree
     // is near one): skipping CHOLMOD's own postordering saves its transposes, 3% of hand's solve.
     c_.postorder = 0;
-    const int n = static_cast<int>(H.rows());
-    std::vector<int> pos(n);
-    for (int k = 0; k < n; ++k) pos[perm[k]] = k;
-    Hp_.assign(n + 1, 0);
-    for (int c = 0; c < n; ++c) {
-      col_.clear();
-      for (Eigen::SparseMatrix<double>::InnerIterator it(H, perm[c]); it; ++it)
-        if (pos[it.row()] >= c) col_.emplace_back(pos[it.row()], it.value());
-      std::sort(col_.begin(), col_.end());
-      for (const auto& e : col_) Hi_.push_back(e.first), Hx_.push_back(e.second);
-      Hp_[c + 1] = static_cast<int>(Hi_.size());
-    }
-    loc_.assign(n, -1);
+    loc_.assign(H.perm.size(), -1);
   }
   ~FaceSolver() {
     if (L_) cholmod_free_factor(&L_, &c_);
@@ -210,6 +223,10 @@ class FaceSolver {
   // status[i] == 0: variable i is in the face. rhs: full-length; returns x_F = H_FF^-1 rhs_F scattered
   // into out (entries outside F untouched).
   void solve(const std::vector<signed char>& status, const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
+    const std::vector<int>& perm_ = H_.perm;
+    const int* Hp_ = H_.colptr.data();
+    const int* Hi_ = H_.rows.data();
+    const double* Hx_ = H_.values.data();
     const int n = static_cast<int>(perm_.size());
     int nf = 0;
     for (int c = 0; c < n; ++c) loc_[c] = status[perm_[c]] == 0 ? nf++ : -1;
@@ -249,12 +266,11 @@ class FaceSolver {
   }
 
  private:
-  const std::vector<int>& perm_;
+  const OrderedLower& H_;
   cholmod_common c_;
   cholmod_factor* L_ = nullptr;
-  std::vector<int> Hp_, Hi_, loc_, Ap_, Ai_;
-  std::vector<double> Hx_, Ax_;
-  std::vector<std::pair<int, double>> col_;
+  std::vector<int> loc_, Ap_, Ai_;
+  std::vector<double> Ax_;
   Eigen::VectorXd b_;
 };
 
@@ -343,11 +359,11 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
   };
   // Minimizer over the free variables with the others at their bounds.
-  std::vector<int> own_ordering;
-  if (!opts.ordering) own_ordering = fill_reducing_ordering(H);
-  const std::vector<int>& ordering = opts.ordering ? *opts.ordering : own_ordering;
-  if (static_cast<int>(ordering.size()) != n) throw Error("box QP: the ordering does not match the matrix");
-  FaceSolver face(H, ordering);
+  OrderedLower own;
+  if (!opts.ordered) own = ordered_lower(H, fill_reducing_ordering(H));
+  const OrderedLower& ordered = opts.ordered ? *opts.ordered : own;
+  if (static_cast<int>(ordered.perm.size()) != n) throw Error("box QP: the ordering does not match the matrix");
+  FaceSolver face(ordered);
   Eigen::VectorXd xa(n), r(n);
   auto solve_face = [&](Eigen::VectorXd& out) {
     bool any_free = false;

@@ -17,14 +17,25 @@
 
 namespace dfm {
 
+// The lower triangle of a symmetric H in the elimination order perm (perm[k] = the variable eliminated
+// k-th): entry (r, c) of column c is H(perm[r], perm[c]) for r >= c, rows sorted. A face is read off it by
+// dropping the bound positions, which keeps it sorted and in elimination order.
+struct OrderedLower {
+  std::vector<int> perm;
+  std::vector<int> colptr, rows;
+  std::vector<double> values;
+};
+// Throws dfm::Error if perm is not a permutation of H's rows.
+OrderedLower ordered_lower(const Eigen::SparseMatrix<double>& H, std::vector<int> perm);
+
 struct BoxQPOptions {
   double tolerance = 1e-6;     // KKT residual to stop at (see box_qp_kkt_residual)
   int max_pdas_iterations = 60;
   int max_iterations = 2000;   // PDAS + fallback together
   const std::atomic<bool>* cancel = nullptr;  // polled once per iteration; throws dfm::Error("cancelled")
-  // Fill-reducing permutation of H (fill_reducing_ordering), shared by every face solve of every QP on H.
-  // Null: computed once per call.
-  const std::vector<int>* ordering = nullptr;
+  // H's lower triangle in a fill-reducing order (ordered_lower), shared by every face solve of every QP
+  // on H (and by concurrent solver threads). Null: built once per call with an AMD ordering.
+  const OrderedLower* ordered = nullptr;
   // Projected Gauss-Seidel sweeps after each PDAS face solve (0 = plain PDAS): the larger of
   // smoothing_sweeps and smoothing_sweeps_per_free times the face's size. The sweeps carry the support
   // front many rings per face; how many pay for themselves grows with the face (its factorization costs
