@@ -223,20 +223,20 @@ class FaceSolver {
   // status[i] == 0: variable i is in the face. rhs: full-length; returns x_F = H_FF^-1 rhs_F scattered
   // into out (entries outside F untouched).
   void solve(const std::vector<signed char>& status, const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
-    const std::vector<int>& perm_ = H_.perm;
-    const int* Hp_ = H_.colptr.data();
-    const int* Hi_ = H_.rows.data();
-    const double* Hx_ = H_.values.data();
-    const int n = static_cast<int>(perm_.size());
+    const std::vector<int>& perm = H_.perm;
+    const int* hp = H_.colptr.data();
+    const int* hi = H_.rows.data();
+    const double* hx = H_.values.data();
+    const int n = static_cast<int>(perm.size());
     int nf = 0;
-    for (int c = 0; c < n; ++c) loc_[c] = status[perm_[c]] == 0 ? nf++ : -1;
+    for (int c = 0; c < n; ++c) loc_[c] = status[perm[c]] == 0 ? nf++ : -1;
     Ap_.assign(nf + 1, 0);
     Ai_.clear();
     Ax_.clear();
     for (int c = 0, k = 0; c < n; ++c) {
       if (loc_[c] < 0) continue;
-      for (int p = Hp_[c]; p < Hp_[c + 1]; ++p)
-        if (loc_[Hi_[p]] >= 0) Ai_.push_back(loc_[Hi_[p]]), Ax_.push_back(Hx_[p]);
+      for (int p = hp[c]; p < hp[c + 1]; ++p)
+        if (loc_[hi[p]] >= 0) Ai_.push_back(loc_[hi[p]]), Ax_.push_back(hx[p]);
       Ap_[++k] = static_cast<int>(Ai_.size());
     }
     cholmod_sparse A = cholmod_lower_view(nf, Ap_.data(), Ai_.data(), Ax_.data());
@@ -250,7 +250,7 @@ class FaceSolver {
     if (c_.status < 0) throw Error("sparse Cholesky: factorization failed (out of memory?)");
     b_.resize(nf);
     for (int c = 0; c < n; ++c)
-      if (loc_[c] >= 0) b_(loc_[c]) = rhs(perm_[c]);
+      if (loc_[c] >= 0) b_(loc_[c]) = rhs(perm[c]);
     cholmod_dense bd{};
     bd.nrow = bd.nzmax = bd.d = static_cast<size_t>(nf);
     bd.ncol = 1;
@@ -261,7 +261,7 @@ class FaceSolver {
     if (!X) throw Error("sparse Cholesky: solve failed (out of memory?)");
     const double* xv = static_cast<const double*>(X->x);
     for (int c = 0; c < n; ++c)
-      if (loc_[c] >= 0) out(perm_[c]) = xv[loc_[c]];
+      if (loc_[c] >= 0) out(perm[c]) = xv[loc_[c]];
     cholmod_free_dense(&X, &c_);
   }
 
