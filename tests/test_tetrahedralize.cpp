@@ -2,7 +2,9 @@
 // volume, failures reported with TetGen's message, temporary folders cleaned up.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <filesystem>
+#include <string>
 #include <set>
 
 #include "core/bind/tetrahedralize.h"
@@ -17,6 +19,26 @@ using dfm::test::enclosed_volume;
 using dfm::test::tet_mesh_volume;
 
 namespace {
+
+// A temporary folder of this test's own as TMPDIR while it lives, so counting TetGen's folders is not
+// disturbed by other tests running TetGen at the same time (ctest -j).
+struct PrivateTmp {
+  std::string dir, old;
+  bool had_old = false;
+  PrivateTmp() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "dfm-test-tmp-XXXXXX").string();
+    REQUIRE(mkdtemp(tmpl.data()) != nullptr);
+    dir = tmpl;
+    if (const char* o = std::getenv("TMPDIR")) old = o, had_old = true;
+    setenv("TMPDIR", dir.c_str(), 1);
+  }
+  ~PrivateTmp() {
+    if (had_old) setenv("TMPDIR", old.c_str(), 1);
+    else unsetenv("TMPDIR");
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+};
 
 int temp_folders() {
   int n = 0;
@@ -47,6 +69,7 @@ TEST_CASE("cube with an inner segment and point: conforming, ordered, positive, 
   plc.F = cube.F;
   plc.E.resize(1, 2);
   plc.E << 8, 9;
+  PrivateTmp tmp;
   const int before = temp_folders();
   TetgenResult r = tetrahedralize(plc, "pq1.414Y");
   REQUIRE(temp_folders() == before);
@@ -87,6 +110,7 @@ TEST_CASE("self-intersecting facets: dfm::Error carrying TetGen's message, folde
   TriMesh b = box_mesh(Eigen::Vector3d(0.5, 0.5, 0.5), Eigen::Vector3d(1.5, 1.5, 1.5));
   TriMesh both = dfm::test::concat(a, b);
   Plc plc{both.V, both.F, {}};
+  PrivateTmp tmp;
   const int before = temp_folders();
   try {
     tetrahedralize(plc, "pq1.414Y");
