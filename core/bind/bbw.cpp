@@ -61,9 +61,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   validate(V, b, bc);
   single_threaded_numerics();  // we run one QP per thread; see numeric_threads.h
   install_cholmod_block_cache();
-  struct ReleaseCache {  // the calling thread's cached blocks, however this returns
-    ~ReleaseCache() { release_cholmod_block_cache(); }
-  } release_cache;
+  const CholmodBlockCacheScope release_cache;
   BbwStats stats;
   auto progress = [&](const char* stage, double f) {
     if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
@@ -139,9 +137,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     qo.ordered = &ordered;
     auto worker = [&] {
       single_threaded_numerics();
-      struct ReleaseCache {
-        ~ReleaseCache() { release_cholmod_block_cache(); }
-      } release_cache;
+      const CholmodBlockCacheScope release_cache;
       for (;;) {
         int j;
         {

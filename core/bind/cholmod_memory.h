@@ -13,4 +13,12 @@ void install_cholmod_block_cache();
 // Frees the calling thread's cached blocks (a thread's cache is also freed when the thread ends).
 void release_cholmod_block_cache();
 
+// Releases the calling thread's cached blocks when it goes out of scope, however the scope is left.
+struct CholmodBlockCacheScope {
+  CholmodBlockCacheScope() = default;
+  CholmodBlockCacheScope(const CholmodBlockCacheScope&) = delete;
+  CholmodBlockCacheScope& operator=(const CholmodBlockCacheScope&) = delete;
+  ~CholmodBlockCacheScope() { release_cholmod_block_cache(); }
+};
+
 }  // namespace dfm
