@@ -80,7 +80,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     if (fmap[i] == 0) fmap[i] = static_cast<int>(free_list.size()), free_list.push_back(i);
   const Eigen::VectorXi f = Eigen::Map<Eigen::VectorXi>(free_list.data(), free_list.size());
   const int nf = static_cast<int>(f.size());
-  const Eigen::SparseMatrix<double> Qff = principal_submatrix(Q, f);
+  Eigen::SparseMatrix<double> Qff = principal_submatrix(Q, f);
   // Linear term g_j = Q_fb bc_j for every handle at once.
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nf, m);
   for (int k = 0; k < b.size(); ++k)
@@ -94,15 +94,32 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   progress("factorization", 0.1);
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X0;
-  OrderedLower ordered;  // Q_ff in its fill-reducing order, read by every face solve of every handle
+  std::vector<int> perm;
   {
     SpdSolver chol;
     chol.factorize(Qff);
     stats.factor_nonzeros = chol.factor_nonzeros();
     X0 = chol.solve(-G);
-    ordered = ordered_lower(Qff, chol.permutation());
+    perm = chol.permutation();
   }
   release_cholmod_block_cache();  // the whole-matrix factor's blocks: faces are smaller
+  // From here on the free variables are renumbered in the factorization's (nested-dissection) order:
+  // a vertex's neighbours then sit close to it in memory, which makes the Gauss-Seidel sweeps and
+  // products with Q_ff (most of the bounded solve's time outside the factorizations) 2x faster than in
+  // TetGen's order, and every face is already in elimination order.
+  {
+    const Eigen::VectorXi p = Eigen::Map<const Eigen::VectorXi>(perm.data(), nf);
+    Qff = principal_submatrix(Qff, p);
+    Eigen::MatrixXd tmp(nf, m);
+    for (int k = 0; k < nf; ++k) tmp.row(k) = G.row(perm[k]);
+    G.swap(tmp);
+    for (int k = 0; k < nf; ++k) tmp.row(k) = X0.row(perm[k]);
+    X0.swap(tmp);
+  }
+  std::vector<int> identity(nf);
+  for (int k = 0; k < nf; ++k) identity[k] = k;
+  // Q_ff's lower triangle, read by every face solve of every handle.
+  const OrderedLower ordered = ordered_lower(Qff, std::move(identity));
   stats.factorization_seconds = seconds_since(t0);
 
   // ---- bounded solves
@@ -179,13 +196,13 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
                 std::to_string(stats.kkt_residual) + ")");
 
   Eigen::MatrixXd W(n, m);
-  for (int k = 0; k < nf; ++k) W.row(f(k)) = X.row(k);
+  for (int k = 0; k < nf; ++k) W.row(f(perm[k])) = X.row(k);
   for (int k = 0; k < b.size(); ++k) W.row(b(k)) = bc.row(k);
   if (!opts.exact_partition_of_unity && opts.normalize_rows) {
     // Default mode: normalize rows. A row of all zeros (every handle's weight hit the bound there) takes
     // the clipped bound-free solution instead, which sums to 1 before clipping.
     for (int k = 0; k < nf; ++k) {
-      const int i = f(k);
+      const int i = f(perm[k]);
       double s = W.row(i).sum();
       if (s <= 1e-12) {
         W.row(i) = X0.row(k).cwiseMax(0.0).cwiseMin(1.0);
