@@ -151,10 +151,16 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
     const OrderedLower ordered = ordered_lower(H, ordering);
     o.ordered = &ordered;
     const BoxQPResult b = solve_box_qp(H, g, lo, hi, {}, o);
-    // Plain PDAS (no Gauss-Seidel sweeps between faces) reaches the same minimizer.
+    // Plain Gauss-Seidel sweeps (no over-relaxation) and strongly over-relaxed ones reach the same minimizer.
+    o.smoothing_relaxation = 1.0;
+    const BoxQPResult d = solve_box_qp(H, g, lo, hi, x_free, o);
+    o.smoothing_relaxation = 1.9;
+    const BoxQPResult e = solve_box_qp(H, g, lo, hi, x_free, o);
+    // Plain PDAS (no sweeps between faces) too.
+    o.smoothing_relaxation = 1.6;
     o.smoothing_sweeps = 0;
     const BoxQPResult c = solve_box_qp(H, g, lo, hi, x_free, o);
-    for (const BoxQPResult* r : {&a, &b, &c}) {
+    for (const BoxQPResult* r : {&a, &b, &c, &d, &e}) {
       REQUIRE(r->converged);
       REQUIRE(r->kkt_residual <= 1e-10);
       REQUIRE((r->x - x).cwiseAbs().maxCoeff() < 1e-6);
@@ -183,6 +189,11 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
                                            fill_reducing_ordering(principal_submatrix(H, Eigen::VectorXi::LinSpaced(n - 1, 0, n - 2))));
   bad.ordered = &small;
   REQUIRE_THROWS_AS(solve_box_qp(H, Eigen::VectorXd::Zero(n), lo, hi, {}, bad), Error);
+  for (double omega : {0.0, 2.0, -1.0}) {  // outside (0, 2) the sweeps could raise the objective
+    BoxQPOptions o;
+    o.smoothing_relaxation = omega;
+    REQUIRE_THROWS_AS(solve_box_qp(H, Eigen::VectorXd::Zero(n), lo, hi, {}, o), Error);
+  }
 }
 
 TEST_CASE("principal_submatrix picks rows and columns in the given order", "[qp]") {

@@ -280,13 +280,15 @@ uint64_t hash_status(const std::vector<signed char>& st) {
   return h;
 }
 
-// Projected Gauss-Seidel on a work set: a sweep visits, in index order, only the variables whose
-// neighbours moved by more than `threshold` in the previous sweep (starting from those with a KKT step
-// above it). Each update is an exact 1-D minimization on the box, so the objective never increases.
+// Projected successive over-relaxation on a work set: a sweep visits, in index order, only the variables
+// whose neighbours moved by more than `threshold` in the previous sweep (starting from those with a KKT
+// step above it). Each update moves x_i by omega times its exact 1-D minimizing step, clipped to the box:
+// for 0 < omega < 2 the 1-D quadratic is lower there than at x_i and the clipped point lies between the
+// two, so the objective never increases.
 // The work set is a byte map scanned over the range it spans (no sorting of work lists).
 void projected_gauss_seidel(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g,
                             const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd& hd,
-                            int sweeps, double threshold, Eigen::VectorXd& x) {
+                            int sweeps, double omega, double threshold, Eigen::VectorXd& x) {
   const int n = static_cast<int>(x.size());
   const int* hp = H.outerIndexPtr();
   const int* hi_ = H.innerIndexPtr();
@@ -307,7 +309,7 @@ void projected_gauss_seidel(const Eigen::SparseMatrix<double>& H, const Eigen::V
       cur[i] = 0;
       double gi = g(i);
       for (int p = hp[i]; p < hp[i + 1]; ++p) gi += hx[p] * x(hi_[p]);
-      const double xi = std::min(std::max(x(i) - gi / hd(i), lo(i)), hi(i));
+      const double xi = std::min(std::max(x(i) - omega * gi / hd(i), lo(i)), hi(i));
       const double d = xi - x(i);
       x(i) = xi;
       if (std::abs(d) > threshold) {
@@ -349,6 +351,8 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
   if (H.rows() != n || H.cols() != n || lo.size() != n || hi.size() != n || (x0.size() != 0 && x0.size() != n))
     throw Error("box QP: inconsistent sizes");
   if ((lo.array() > hi.array()).any()) throw Error("box QP: a lower bound exceeds its upper bound");
+  if (!(opts.smoothing_relaxation > 0 && opts.smoothing_relaxation < 2))
+    throw Error("box QP: the smoothing relaxation factor must lie in (0, 2)");
   BoxQPResult res;
   // status: -1 at lower bound, +1 at upper bound, 0 free.
   std::vector<signed char> st(n, 0);
@@ -416,7 +420,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
       x = x.cwiseMax(lo).cwiseMin(hi);
       const int sweeps =
           std::max(opts.smoothing_sweeps, static_cast<int>(opts.smoothing_sweeps_per_free * face.last_size()));
-      projected_gauss_seidel(H, g, lo, hi, hd, sweeps, 0.1 * opts.tolerance, x);
+      projected_gauss_seidel(H, g, lo, hi, hd, sweeps, opts.smoothing_relaxation, 0.1 * opts.tolerance, x);
       if (box_qp_kkt_residual(H, g, lo, hi, x) <= opts.tolerance) {
         done = true;
         break;

@@ -43,6 +43,11 @@ struct BoxQPOptions {
   // solves), armadillo's (~40K) at ~250 (188 -> 79). Deterministic, unlike a time budget.
   int smoothing_sweeps = 20;
   double smoothing_sweeps_per_free = 0.006;
+  // Over-relaxation factor of the sweeps, in (0, 2) (1 = plain Gauss-Seidel). Over-relaxing carries the
+  // smooth, far-reaching part of a correction further per sweep: measured, 1.6 takes hand.mesh from 96 to
+  // 74 face solves and armadillo from 82 to 66; near 1.8 PDAS starts to revisit active sets and falls
+  // back to the slow monotone method on some handles.
+  double smoothing_relaxation = 1.6;
 };
 
 struct BoxQPResult {
