@@ -280,6 +280,51 @@ uint64_t hash_status(const std::vector<signed char>& st) {
   return h;
 }
 
+// grad = H x + g for a symmetric H stored in full: column i is read as row i, so each entry is a gather
+// (a dot product), not Eigen's scatter of x_i times column i.
+void gradient(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& x,
+              Eigen::VectorXd& grad) {
+  const int n = static_cast<int>(x.size());
+  const int* hp = H.outerIndexPtr();
+  const int* hi = H.innerIndexPtr();
+  const double* hx = H.valuePtr();
+  grad.resize(n);
+  for (int i = 0; i < n; ++i) {
+    double s = g(i);
+    for (int p = hp[i]; p < hp[i + 1]; ++p) s += hx[p] * x(hi[p]);
+    grad(i) = s;
+  }
+}
+
+// grad += H (y - x) where y differs from x in a few entries (a sparse update of the gradient).
+void update_gradient(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                     Eigen::VectorXd& grad) {
+  const int* hp = H.outerIndexPtr();
+  const int* hi = H.innerIndexPtr();
+  const double* hx = H.valuePtr();
+  for (int j = 0; j < x.size(); ++j) {
+    const double d = y(j) - x(j);
+    if (d != 0.0)
+      for (int p = hp[j]; p < hp[j + 1]; ++p) grad(hi[p]) += hx[p] * d;
+  }
+}
+
+// Natural residual in the Jacobi metric (see box_qp_kkt_residual) from the gradient at x; hd > 0.
+double kkt_residual_from_gradient(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd& hd,
+                                  const Eigen::VectorXd& x, const Eigen::VectorXd& grad) {
+  double r = 0;
+  for (int i = 0; i < x.size(); ++i) {
+    // How far one diagonal Newton step, projected on the box, would move x_i. Zero iff stationary
+    // (free), or the gradient points out of the box (at a bound).
+    const double step = std::min(std::max(x(i) - grad(i) / hd(i), lo(i)), hi(i));
+    double v = std::abs(step - x(i));
+    if (x(i) < lo(i)) v = std::max(v, lo(i) - x(i));
+    if (x(i) > hi(i)) v = std::max(v, x(i) - hi(i));
+    r = std::max(r, v);
+  }
+  return r;
+}
+
 // Projected successive over-relaxation on a work set: a sweep visits, in index order, only the variables
 // whose neighbours moved by more than `threshold` in the previous sweep (starting from those with a KKT
 // step above it). Each update moves x_i by omega times its exact 1-D minimizing step, clipped to the box:
@@ -288,15 +333,15 @@ uint64_t hash_status(const std::vector<signed char>& st) {
 // The work set is a byte map scanned over the range it spans (no sorting of work lists).
 void projected_gauss_seidel(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g,
                             const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd& hd,
-                            int sweeps, double omega, double threshold, Eigen::VectorXd& x) {
+                            const Eigen::VectorXd& grad, int sweeps, double omega, double threshold,
+                            Eigen::VectorXd& x) {
   const int n = static_cast<int>(x.size());
   const int* hp = H.outerIndexPtr();
   const int* hi_ = H.innerIndexPtr();
   const double* hx = H.valuePtr();
   std::vector<char> cur(n, 0), next(n, 0);
   int first = n, last = -1;
-  {
-    const Eigen::VectorXd grad = H * x + g;
+  {  // grad: the gradient at the incoming x
     for (int i = 0; i < n; ++i) {
       const double step = std::min(std::max(x(i) - grad(i) / hd(i), lo(i)), hi(i)) - x(i);
       if (std::abs(step) > threshold) cur[i] = 1, first = std::min(first, i), last = i;
@@ -329,20 +374,14 @@ void projected_gauss_seidel(const Eigen::SparseMatrix<double>& H, const Eigen::V
 
 double box_qp_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
                            const Eigen::VectorXd& hi, const Eigen::VectorXd& x) {
-  const Eigen::VectorXd grad = H * x + g;
+  if (H.rows() != x.size() || H.cols() != x.size() || g.size() != x.size() || lo.size() != x.size() ||
+      hi.size() != x.size())
+    throw Error("box QP: inconsistent sizes");
   const Eigen::VectorXd d = H.diagonal();
-  double r = 0;
-  for (int i = 0; i < x.size(); ++i) {
-    if (!(d(i) > 0)) throw Error("box QP: the matrix has a non-positive diagonal entry");
-    // Natural residual in the Jacobi metric: how far one diagonal Newton step, projected on the box,
-    // would move x_i. Zero iff stationary (free), or the gradient points out of the box (at a bound).
-    const double step = std::min(std::max(x(i) - grad(i) / d(i), lo(i)), hi(i));
-    double v = std::abs(step - x(i));
-    if (x(i) < lo(i)) v = std::max(v, lo(i) - x(i));
-    if (x(i) > hi(i)) v = std::max(v, x(i) - hi(i));
-    r = std::max(r, v);
-  }
-  return r;
+  if (!(d.array() > 0).all()) throw Error("box QP: the matrix has a non-positive diagonal entry");
+  Eigen::VectorXd grad;
+  gradient(H, g, x, grad);
+  return kkt_residual_from_gradient(lo, hi, d, x, grad);
 }
 
 BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
@@ -368,6 +407,9 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
   const OrderedLower& ordered = opts.ordered ? *opts.ordered : own;
   if (static_cast<int>(ordered.perm.size()) != n) throw Error("box QP: the ordering does not match the matrix");
   FaceSolver face(ordered);
+  const int* hp = H.outerIndexPtr();
+  const int* hi_ = H.innerIndexPtr();
+  const double* hx = H.valuePtr();
   Eigen::VectorXd xa(n), r(n);
   auto solve_face = [&](Eigen::VectorXd& out) {
     bool any_free = false;
@@ -378,19 +420,23 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     out = xa;
     ++res.iterations;
     if (!any_free) return;
-    r.noalias() = H * xa;
-    r = -(r + g);
+    r = -g;  // -(H xa + g), H xa summed over xa's nonzeros only (most bound variables sit at 0)
+    for (int j = 0; j < n; ++j)
+      if (xa(j) != 0.0)
+        for (int p = hp[j]; p < hp[j + 1]; ++p) r(hi_[p]) -= hx[p] * xa(j);
     face.solve(st, r, out);
   };
 
   const Eigen::VectorXd hd = H.diagonal();
+  if (!(hd.array() > 0).all()) throw Error("box QP: the matrix has a non-positive diagonal entry");
+  Eigen::VectorXd grad, xc;
   // ---- primal-dual active set
   std::unordered_set<uint64_t> seen;
   bool done = false;
   for (int it = 0; it < opts.max_pdas_iterations && !done; ++it) {
     check_cancel();
     solve_face(x);
-    const Eigen::VectorXd grad = H * x + g;
+    gradient(H, g, x, grad);
     const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
     int changes = 0;
     for (int i = 0; i < n; ++i) {
@@ -408,7 +454,10 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     }
     // The tail of PDAS moves a few variables with tiny multipliers: stop as soon as the clipped iterate
     // is a KKT point to the tolerance (checked exactly, not estimated).
-    if (changes == 0 || box_qp_kkt_residual(H, g, lo, hi, x.cwiseMax(lo).cwiseMin(hi)) <= opts.tolerance) {
+    xc = x.cwiseMax(lo).cwiseMin(hi);
+    update_gradient(H, x, xc, grad);  // now the gradient at xc
+    x.swap(xc);
+    if (changes == 0 || kkt_residual_from_gradient(lo, hi, hd, x, grad) <= opts.tolerance) {
       done = true;
       break;
     }
@@ -417,11 +466,11 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     // Gauss-Seidel sweeps, confined to where the iterate still moves, carry that front many rings for
     // the cost of a fraction of one factorization; the next face is read off the swept iterate.
     if (opts.smoothing_sweeps > 0) {
-      x = x.cwiseMax(lo).cwiseMin(hi);
       const int sweeps =
           std::max(opts.smoothing_sweeps, static_cast<int>(opts.smoothing_sweeps_per_free * face.last_size()));
-      projected_gauss_seidel(H, g, lo, hi, hd, sweeps, opts.smoothing_relaxation, 0.1 * opts.tolerance, x);
-      if (box_qp_kkt_residual(H, g, lo, hi, x) <= opts.tolerance) {
+      projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, 0.1 * opts.tolerance, x);
+      gradient(H, g, x, grad);
+      if (kkt_residual_from_gradient(lo, hi, hd, x, grad) <= opts.tolerance) {
         done = true;
         break;
       }
@@ -458,7 +507,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
         }
         continue;
       }
-      const Eigen::VectorXd grad = H * x + g;
+      gradient(H, g, x, grad);
       const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
       int released = 0;
       for (int i = 0; i < n; ++i)
