@@ -56,6 +56,9 @@ void print(const char* name, const dfm::BindResult& r, double cpu) {
   std::printf("  solver: %d free-set solves (worst handle %d, fallback %d), KKT residual %.2e, factor nnz %ld\n",
               p.bbw.iterations_total, p.bbw.iterations_max, p.bbw.fallback_iterations, p.bbw.kkt_residual,
               p.bbw.factor_nonzeros);
+  if (p.bbw.multilevel)
+    std::printf("  multilevel start: coarse level built and solved in %.3f s (part of the bounded solve)\n",
+                p.bbw.multilevel_seconds);
   std::printf("  weights: min %.3g max %.3g max|rowsum-1| %.2e exact zeros %.1f%%\n", p.min_weight, p.max_weight,
               p.max_row_sum_error, 100 * p.zero_fraction);
   std::printf("  ratio bounded solve / bound-free baseline (factorization + solve): %.1fx\n",

@@ -23,6 +23,9 @@ struct BbwOptions {
   Eigen::VectorXd shape_mask;
   double tolerance = 1e-6;     // KKT residual in weight units (box_qp_kkt_residual / exact_pou_kkt_residual)
   int threads = 2;
+  // Volumes with at least this many vertices start their bounded solves from the weights of a coarser
+  // mesh of the same domain (coarse_level.h); 0 = always from the bound-free solution.
+  int multilevel_min_vertices = 20000;
   // Called from the calling thread and the solver threads (serialized); fraction of the whole solve in
   // [0, 1]: assembly 0, factorization 0.1, solve 0.3 .. 1. May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
@@ -40,6 +43,8 @@ struct BbwStats {
   bool converged = false;
   long factor_nonzeros = 0;
   int rows_renormalized_from_zero = 0;  // default mode: vertices where every weight was 0
+  bool multilevel = false;              // the bounded solves started from a coarse level's weights
+  double multilevel_seconds = 0;        // building and solving the coarse level (part of solve_seconds)
 };
 
 // V, T: positively oriented tets. b: constrained vertex indices (distinct). bc: #b x #handles.

@@ -1,0 +1,169 @@
+#include "core/bind/coarse_level.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "core/bind/tetrahedralize.h"
+#include "core/bind/winding_bvh.h"
+#include "core/mesh/mesh_info.h"
+
+namespace dfm {
+namespace {
+
+// Vertex neighbours in the tet graph, compressed rows, sorted and without duplicates.
+void tet_graph(int n, const Eigen::MatrixXi& T, std::vector<int>& ptr, std::vector<int>& adj) {
+  std::vector<std::vector<int>> nb(n);
+  for (int t = 0; t < T.rows(); ++t)
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 4; ++c)
+        if (a != c) nb[T(t, a)].push_back(T(t, c));
+  ptr.assign(n + 1, 0);
+  adj.clear();
+  for (int v = 0; v < n; ++v) {
+    std::sort(nb[v].begin(), nb[v].end());
+    nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
+    adj.insert(adj.end(), nb[v].begin(), nb[v].end());
+    ptr[v + 1] = static_cast<int>(adj.size());
+  }
+}
+
+int find_root(std::vector<int>& parent, int v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+}  // namespace
+
+bool build_coarse_level(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
+                        const Eigen::MatrixXd& bc, CoarseLevel& out, int min_vertices) {
+  const int n = static_cast<int>(V.rows());
+  if (n < min_vertices || T.rows() == 0 || b.size() == 0) return false;
+  std::vector<int> ptr, adj;
+  tet_graph(n, T, ptr, adj);
+
+  // Constrained vertices first (all of them), then a maximal independent set of the rest.
+  std::vector<char> selected(n, 0);
+  for (int k = 0; k < b.size(); ++k) selected[b(k)] = 1;
+  for (int v = 0; v < n; ++v) {
+    if (selected[v]) continue;
+    bool free_of_selected = true;
+    for (int p = ptr[v]; p < ptr[v + 1] && free_of_selected; ++p) free_of_selected = !selected[adj[p]];
+    if (free_of_selected) selected[v] = 1;
+  }
+  std::vector<int> points;  // fine index of each point handed to TetGen
+  for (int v = 0; v < n; ++v)
+    if (selected[v]) points.push_back(v);
+  if (static_cast<int>(points.size()) < 8 || 4 * points.size() > static_cast<size_t>(n)) return false;
+
+  Plc plc;
+  plc.V.resize(static_cast<int>(points.size()), 3);
+  for (size_t k = 0; k < points.size(); ++k) plc.V.row(static_cast<int>(k)) = V.row(points[k]);
+  TetgenResult del;
+  try {
+    del = tetrahedralize(plc, "Q");
+  } catch (const std::exception&) {
+    return false;
+  }
+  const Eigen::MatrixXd& Vd = del.mesh.V;
+  const Eigen::MatrixXi& Td = del.mesh.T;
+
+  // Carve: keep well-shaped tets whose centroid is inside the fine domain.
+  const Eigen::MatrixXi boundary = tet_boundary_faces(T);
+  const WindingTree tree = build_winding_tree(V, boundary);
+  Eigen::MatrixXd centroids(Td.rows(), 3);
+  for (int t = 0; t < Td.rows(); ++t)
+    centroids.row(t) = 0.25 * (Vd.row(Td(t, 0)) + Vd.row(Td(t, 1)) + Vd.row(Td(t, 2)) + Vd.row(Td(t, 3)));
+  WindingAccuracy acc;
+  acc.node_tolerance = 1e-2;  // only |w| > 1/2 matters: far looser than the default, 3x faster
+  const Eigen::VectorXd wn = winding_numbers(tree, centroids, acc);
+  std::vector<char> keep(Td.rows(), 0);
+  for (int t = 0; t < Td.rows(); ++t) {
+    Eigen::Matrix3d J;
+    for (int c = 0; c < 3; ++c) J.col(c) = (Vd.row(Td(t, c + 1)) - Vd.row(Td(t, 0))).transpose();
+    const double scale = J.colwise().norm().maxCoeff();
+    // Slivers would make the coarse stiffness matrix needlessly ill-conditioned; a hole is harmless here.
+    keep[t] = std::abs(wn(t)) > 0.5 && J.determinant() > 1e-6 * scale * scale * scale;
+  }
+
+  // Constrained Delaunay vertices; parts without one would leave the coarse energy singular.
+  const int nd = static_cast<int>(Vd.rows());
+  std::vector<int> fine_of(nd, -1);  // Delaunay vertex -> fine vertex
+  for (size_t k = 0; k < points.size(); ++k)
+    if (del.input_to_tet(static_cast<int>(k)) >= 0) fine_of[del.input_to_tet(static_cast<int>(k))] = points[k];
+  std::vector<int> bc_row(n, -1);
+  for (int k = 0; k < b.size(); ++k) bc_row[b(k)] = k;
+  std::vector<int> parent(nd);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int t = 0; t < Td.rows(); ++t)
+    if (keep[t])
+      for (int c = 1; c < 4; ++c) parent[find_root(parent, Td(t, c))] = find_root(parent, Td(t, 0));
+  std::vector<char> anchored(nd, 0), used(nd, 0);
+  for (int t = 0; t < Td.rows(); ++t)
+    if (keep[t])
+      for (int c = 0; c < 4; ++c) used[Td(t, c)] = 1;
+  for (int d = 0; d < nd; ++d)
+    if (used[d] && fine_of[d] >= 0 && bc_row[fine_of[d]] >= 0) anchored[find_root(parent, d)] = 1;
+
+  std::vector<int> coarse_of(nd, -1);  // Delaunay vertex -> coarse vertex
+  int nc = 0, nt = 0;
+  for (int t = 0; t < Td.rows(); ++t) {
+    keep[t] = keep[t] && anchored[find_root(parent, Td(t, 0))];
+    if (!keep[t]) continue;
+    ++nt;
+    for (int c = 0; c < 4; ++c)
+      if (coarse_of[Td(t, c)] < 0) coarse_of[Td(t, c)] = nc++;
+  }
+  if (nt == 0) return false;
+  CoarseLevel cl;
+  cl.V.resize(nc, 3);
+  for (int d = 0; d < nd; ++d)
+    if (coarse_of[d] >= 0) cl.V.row(coarse_of[d]) = Vd.row(d);
+  cl.T.resize(nt, 4);
+  for (int t = 0, k = 0; t < Td.rows(); ++t)
+    if (keep[t]) {
+      for (int c = 0; c < 4; ++c) cl.T(k, c) = coarse_of[Td(t, c)];
+      ++k;
+    }
+  std::vector<int> coarse_of_fine(n, -1);
+  for (int d = 0; d < nd; ++d)
+    if (coarse_of[d] >= 0 && fine_of[d] >= 0) coarse_of_fine[fine_of[d]] = coarse_of[d];
+  std::vector<int> cb;
+  std::vector<int> rows;
+  for (int k = 0; k < b.size(); ++k)
+    if (coarse_of_fine[b(k)] >= 0) cb.push_back(coarse_of_fine[b(k)]), rows.push_back(k);
+  cl.b = Eigen::Map<Eigen::VectorXi>(cb.data(), static_cast<int>(cb.size()));
+  cl.bc.resize(static_cast<int>(rows.size()), bc.cols());
+  for (size_t k = 0; k < rows.size(); ++k) cl.bc.row(static_cast<int>(k)) = bc.row(rows[k]);
+  for (int j = 0; j < bc.cols(); ++j)
+    if (cl.bc.rows() == 0 || cl.bc.col(j).maxCoeff() <= 0) return false;  // a handle lost on this level
+
+  // Interpolation: a coarse vertex is itself; any other vertex has a selected neighbour (maximality),
+  // unless carving dropped them all (then its row stays empty: a start of 0 there).
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int v = 0; v < n; ++v) {
+    if (coarse_of_fine[v] >= 0) {
+      trip.emplace_back(v, coarse_of_fine[v], 1.0);
+      continue;
+    }
+    double wsum = 0;
+    const size_t first = trip.size();
+    for (int p = ptr[v]; p < ptr[v + 1]; ++p) {
+      const int u = adj[p];
+      if (coarse_of_fine[u] < 0) continue;
+      const double w = 1.0 / std::max((V.row(v) - V.row(u)).norm(), 1e-300);
+      trip.emplace_back(v, coarse_of_fine[u], w);
+      wsum += w;
+    }
+    for (size_t k = first; k < trip.size(); ++k) trip[k] = Eigen::Triplet<double>(v, trip[k].col(), trip[k].value() / wsum);
+  }
+  cl.P.resize(n, nc);
+  cl.P.setFromTriplets(trip.begin(), trip.end());
+  out = std::move(cl);
+  return true;
+}
+
+}  // namespace dfm
