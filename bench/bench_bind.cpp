@@ -57,7 +57,7 @@ void print(const char* name, const dfm::BindResult& r, double cpu) {
               p.bbw.iterations_total, p.bbw.iterations_max, p.bbw.fallback_iterations, p.bbw.kkt_residual,
               p.bbw.factor_nonzeros);
   if (p.bbw.multilevel)
-    std::printf("  multilevel start: coarse level built and solved in %.3f s (part of the bounded solve)\n",
+    std::printf("  multilevel start: coarse level built and solved in %.3f s (on a second thread, alongside assembly and ordering)\n",
                 p.bbw.multilevel_seconds);
   std::printf("  weights: min %.3g max %.3g max|rowsum-1| %.2e exact zeros %.1f%%\n", p.min_weight, p.max_weight,
               p.max_row_sum_error, 100 * p.zero_fraction);

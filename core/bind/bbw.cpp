@@ -1,8 +1,8 @@
 #include "core/bind/bbw.h"
 
-#include <algorithm>
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -72,6 +72,45 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   };
   const int n = static_cast<int>(V.rows()), m = static_cast<int>(bc.cols());
 
+  // ---- on large meshes, a coarse level of the same domain (coarse_level.h), built and solved on a
+  // thread of its own while this one assembles and orders Q: its weights, carried to this mesh, start
+  // the bounded solves. Only an accelerator: if it cannot be built, the bound-free solution starts them.
+  struct CoarseStart {
+    bool ok = false;
+    CoarseLevel level;
+    Eigen::MatrixXd W;
+    double seconds = 0;
+  } coarse;
+  std::thread coarse_thread;
+  struct Joiner {  // joins on every path out of here, exceptions included
+    std::thread& t;
+    ~Joiner() {
+      if (t.joinable()) t.join();
+    }
+  } join_coarse{coarse_thread};
+  if (!opts.exact_partition_of_unity && opts.multilevel_min_vertices > 0 && n >= opts.multilevel_min_vertices) {
+    coarse_thread = std::thread([&] {
+      const auto tc = std::chrono::steady_clock::now();
+      try {
+        single_threaded_numerics();
+        const CholmodBlockCacheScope release;
+        if (build_coarse_level(V, T, b, bc, coarse.level, opts.multilevel_min_vertices)) {
+          BbwOptions co;
+          co.normalize_rows = false;
+          co.tolerance = std::max(opts.tolerance, 1e-5);  // a start, not the answer
+          co.threads = 1;                                 // the other core assembles and orders meanwhile
+          co.cancel = opts.cancel;
+          co.multilevel_min_vertices = 0;
+          coarse.W = bbw_weights(coarse.level.V, coarse.level.T, coarse.level.b, coarse.level.bc, co);
+          coarse.ok = true;
+        }
+      } catch (const std::exception&) {
+        coarse.ok = false;  // cancellation is reported by this thread's own progress checks
+      }
+      coarse.seconds = seconds_since(tc);
+    });
+  }
+
   // ---- assembly
   progress("assembly", 0.0);
   auto t0 = std::chrono::steady_clock::now();
@@ -92,18 +131,25 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   Q = Eigen::SparseMatrix<double>();  // only Q_ff from here on: 47 MB less at armadillo's peak
   stats.assembly_seconds = seconds_since(t0);
 
-  // ---- one factorization of Q_ff shared by every handle: the bound-free biharmonic solutions, the
-  // starting point of every bounded solve (often nearly feasible).
+  // ---- a fill-reducing ordering of Q_ff, restricted to every face of every handle; without a coarse
+  // level also one factorization shared by every handle: the bound-free biharmonic solutions start the
+  // bounded solves (often nearly feasible).
   progress("factorization", 0.1);
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X0;
   std::vector<int> perm;
   {
     SpdSolver chol;
-    chol.factorize(Qff);
+    chol.analyze(Qff);
     stats.factor_nonzeros = chol.factor_nonzeros();
-    X0 = chol.solve(-G);
     perm = chol.permutation();
+    if (coarse_thread.joinable()) coarse_thread.join();
+    progress("factorization", 0.2);
+    stats.multilevel_seconds = coarse.seconds;
+    if (!coarse.ok) {
+      chol.factorize(Qff);
+      X0 = chol.solve(-G);
+    }
   }
   release_cholmod_block_cache();  // the whole-matrix factor's blocks: faces are smaller
   // From here on the free variables are renumbered in the factorization's (nested-dissection) order:
@@ -116,47 +162,30 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     Eigen::MatrixXd tmp(nf, m);
     for (int k = 0; k < nf; ++k) tmp.row(k) = G.row(perm[k]);
     G.swap(tmp);
-    for (int k = 0; k < nf; ++k) tmp.row(k) = X0.row(perm[k]);
-    X0.swap(tmp);
+    if (X0.size()) {
+      for (int k = 0; k < nf; ++k) tmp.row(k) = X0.row(perm[k]);
+      X0.swap(tmp);
+    }
   }
-  std::vector<int> identity(nf);
-  for (int k = 0; k < nf; ++k) identity[k] = k;
-  // Q_ff's lower triangle, read by every face solve of every handle.
-  const OrderedLower ordered = ordered_lower(Qff, std::move(identity));
   stats.factorization_seconds = seconds_since(t0);
 
   // ---- bounded solves
   progress("solve", 0.3);
   t0 = std::chrono::steady_clock::now();
-  // Starting points: on large meshes the weights of a coarser mesh of the same domain (see
-  // coarse_level.h) carried to this one, else the bound-free solution clipped to the box.
+  // Starting points: the coarse level's weights carried to this mesh, else the bound-free solution
+  // clipped to the box.
   Eigen::MatrixXd start;
-  if (!opts.exact_partition_of_unity && opts.multilevel_min_vertices > 0) {
-    CoarseLevel coarse;
-    bool ok = false;
-    try {
-      ok = build_coarse_level(V, T, b, bc, coarse, opts.multilevel_min_vertices);
-    } catch (const std::exception&) {
-      ok = false;  // only an accelerator: the bound-free start still works
-    }
-    if (ok) {
-      BbwOptions co;
-      co.normalize_rows = false;
-      co.tolerance = std::max(opts.tolerance, 1e-5);
-      co.threads = opts.threads;
-      co.cancel = opts.cancel;
-      co.multilevel_min_vertices = 0;
-      const Eigen::MatrixXd Wc = bbw_weights(coarse.V, coarse.T, coarse.b, coarse.bc, co);
-      const Eigen::MatrixXd Wf = coarse.P * Wc;
+  if (coarse.ok) {
+    {
+      const Eigen::MatrixXd Wf = coarse.level.P * coarse.W;
       start.resize(nf, m);
       for (int k = 0; k < nf; ++k) start.row(k) = Wf.row(f(perm[k])).cwiseMax(0.0).cwiseMin(1.0);
       // Values under 1e-4 are within the coarse solve's accuracy; starting them at the bound keeps the
       // first faces (and the bind's peak memory: armadillo 606 -> 579 MB) smaller at no extra faces.
       start = (start.array() < 1e-4).select(0.0, start);
       stats.multilevel = true;
-      X0 = Eigen::MatrixXd();  // the start replaces it, also as the fallback for all-zero rows below
     }
-    stats.multilevel_seconds = seconds_since(t0);
+    coarse = CoarseStart();
     // The coarse level's memory is free again but the C library keeps it mapped; hand it back before
     // the fine solves reach the bind's peak.
     malloc_trim(0);
@@ -188,7 +217,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     BoxQPOptions qo;
     qo.tolerance = opts.tolerance;
     qo.cancel = opts.cancel;
-    qo.ordered = &ordered;
+    qo.in_elimination_order = true;  // every face is read off Q_ff's lower part, shared by both threads
     auto worker = [&] {
       single_threaded_numerics();
       const CholmodBlockCacheScope release_cache;

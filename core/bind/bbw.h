@@ -44,7 +44,8 @@ struct BbwStats {
   long factor_nonzeros = 0;
   int rows_renormalized_from_zero = 0;  // default mode: vertices where every weight was 0
   bool multilevel = false;              // the bounded solves started from a coarse level's weights
-  double multilevel_seconds = 0;        // building and solving the coarse level (part of solve_seconds)
+  double multilevel_seconds = 0;        // building and solving the coarse level (on its own thread,
+                                        // alongside assembly and ordering)
 };
 
 // V, T: positively oriented tets. b: constrained vertex indices (distinct). bc: #b x #handles.

@@ -40,6 +40,7 @@ cholmod_sparse cholmod_lower_view(int n, int* p, int* i, double* x) {
 struct SpdSolver::Impl {
   mutable cholmod_common c;
   cholmod_factor* L = nullptr;
+  bool numeric = false;  // L holds a numeric factorization (not only the symbolic analysis)
   Impl() {
     cholmod_start(&c);
     c.print = 0;
@@ -54,13 +55,14 @@ struct SpdSolver::Impl {
 SpdSolver::SpdSolver() : impl_(new Impl) {}
 SpdSolver::~SpdSolver() { delete impl_; }
 
-void SpdSolver::factorize(const Eigen::SparseMatrix<double>& A0) {
+void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0) {
   Eigen::SparseMatrix<double> A = A0;  // compressed copy CHOLMOD can view
   A.makeCompressed();
   cholmod_sparse cs =
       cholmod_lower_view(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr());
   cholmod_common& c = impl_->c;
   if (impl_->L) cholmod_free_factor(&impl_->L, &c);
+  impl_->numeric = false;
   // Small systems: AMD alone (METIS costs more than it saves). Large: let CHOLMOD pick AMD or METIS.
   if (A.rows() < 20000) {
     c.nmethods = 1;
@@ -71,7 +73,18 @@ void SpdSolver::factorize(const Eigen::SparseMatrix<double>& A0) {
   c.supernodal = CHOLMOD_AUTO;
   impl_->L = cholmod_analyze(&cs, &c);
   if (!impl_->L) throw Error("sparse Cholesky: analysis failed (out of memory?)");
+}
+
+void SpdSolver::factorize(const Eigen::SparseMatrix<double>& A0) {
+  // Reuses a symbolic analysis of a matrix of the same size and pattern (analyze), else makes one.
+  if (!impl_->L || impl_->numeric || static_cast<long>(impl_->L->n) != A0.rows()) analyze(A0);
+  Eigen::SparseMatrix<double> A = A0;
+  A.makeCompressed();
+  cholmod_sparse cs =
+      cholmod_lower_view(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr());
+  cholmod_common& c = impl_->c;
   cholmod_factorize(&cs, impl_->L, &c);
+  impl_->numeric = true;
   if (c.status == CHOLMOD_NOT_POSDEF || impl_->L->minor < impl_->L->n)
     throw Error("sparse Cholesky: matrix is not positive definite (is every connected part of the volume "
                 "constrained by a handle?)");
@@ -79,7 +92,7 @@ void SpdSolver::factorize(const Eigen::SparseMatrix<double>& A0) {
 }
 
 Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& B0) const {
-  if (!impl_->L) throw Error("SpdSolver::solve before factorize");
+  if (!impl_->L || !impl_->numeric) throw Error("SpdSolver::solve before factorize");
   Eigen::MatrixXd B = B0;
   cholmod_dense bd{};
   bd.nrow = static_cast<size_t>(B.rows());
@@ -97,7 +110,7 @@ Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& B0) const {
 }
 
 std::vector<int> SpdSolver::permutation() const {
-  if (!impl_->L) throw Error("SpdSolver::permutation before factorize");
+  if (!impl_->L) throw Error("SpdSolver::permutation before analyze or factorize");
   const int* p = static_cast<const int*>(impl_->L->Perm);
   return std::vector<int>(p, p + impl_->L->n);
 }
@@ -194,12 +207,24 @@ OrderedLower ordered_lower(const Eigen::SparseMatrix<double>& H, std::vector<int
 
 namespace {
 
+// The lower triangle of H in elimination order: column c holds the entries begin[c] .. end[c] of rows
+// (elimination positions >= c, sorted) and values; variable perm[c] (c when perm is null) is eliminated
+// c-th. Views either an OrderedLower or H itself when H is already in elimination order.
+struct LowerView {
+  int n = 0;
+  const int* perm = nullptr;
+  const int* begin = nullptr;
+  const int* end = nullptr;
+  const int* rows = nullptr;
+  const double* values = nullptr;
+};
+
 // Factorizes and solves principal submatrices H_FF (the faces of the box) in the elimination order of a
 // fixed ordering of H: the lower triangle of H_FF is gathered straight into CHOLMOD's column format in
 // that order (no triplets, no AMD per face), into buffers reused across iterations.
 class FaceSolver {
  public:
-  explicit FaceSolver(const OrderedLower& H) : H_(H) {
+  explicit FaceSolver(const LowerView& H) : H_(H) {
     cholmod_start(&c_);
     c_.print = 0;
     c_.error_handler = nullptr;
@@ -209,7 +234,7 @@ class FaceSolver {
     // The shared ordering is already a postorder of the whole matrix's elimination tree (a face's tree
     // is near one): skipping CHOLMOD's own postordering saves its transposes, 3% of hand's solve.
     c_.postorder = 0;
-    loc_.assign(H.perm.size(), -1);
+    loc_.assign(H.n, -1);
   }
   ~FaceSolver() {
     if (L_) cholmod_free_factor(&L_, &c_);
@@ -223,19 +248,19 @@ class FaceSolver {
   // status[i] == 0: variable i is in the face. rhs: full-length; returns x_F = H_FF^-1 rhs_F scattered
   // into out (entries outside F untouched).
   void solve(const std::vector<signed char>& status, const Eigen::VectorXd& rhs, Eigen::VectorXd& out) {
-    const std::vector<int>& perm = H_.perm;
-    const int* hp = H_.colptr.data();
-    const int* hi = H_.rows.data();
-    const double* hx = H_.values.data();
-    const int n = static_cast<int>(perm.size());
+    const int* perm = H_.perm;
+    const int* hi = H_.rows;
+    const double* hx = H_.values;
+    const int n = H_.n;
+    auto var = [perm](int c) { return perm ? perm[c] : c; };
     int nf = 0;
-    for (int c = 0; c < n; ++c) loc_[c] = status[perm[c]] == 0 ? nf++ : -1;
+    for (int c = 0; c < n; ++c) loc_[c] = status[var(c)] == 0 ? nf++ : -1;
     Ap_.assign(nf + 1, 0);
     Ai_.clear();
     Ax_.clear();
     for (int c = 0, k = 0; c < n; ++c) {
       if (loc_[c] < 0) continue;
-      for (int p = hp[c]; p < hp[c + 1]; ++p)
+      for (int p = H_.begin[c]; p < H_.end[c]; ++p)
         if (loc_[hi[p]] >= 0) Ai_.push_back(loc_[hi[p]]), Ax_.push_back(hx[p]);
       Ap_[++k] = static_cast<int>(Ai_.size());
     }
@@ -250,7 +275,7 @@ class FaceSolver {
     if (c_.status < 0) throw Error("sparse Cholesky: factorization failed (out of memory?)");
     b_.resize(nf);
     for (int c = 0; c < n; ++c)
-      if (loc_[c] >= 0) b_(loc_[c]) = rhs(perm[c]);
+      if (loc_[c] >= 0) b_(loc_[c]) = rhs(var(c));
     cholmod_dense bd{};
     bd.nrow = bd.nzmax = bd.d = static_cast<size_t>(nf);
     bd.ncol = 1;
@@ -261,12 +286,12 @@ class FaceSolver {
     if (!X) throw Error("sparse Cholesky: solve failed (out of memory?)");
     const double* xv = static_cast<const double*>(X->x);
     for (int c = 0; c < n; ++c)
-      if (loc_[c] >= 0) out(perm[c]) = xv[loc_[c]];
+      if (loc_[c] >= 0) out(var(c)) = xv[loc_[c]];
     cholmod_free_dense(&X, &c_);
   }
 
  private:
-  const OrderedLower& H_;
+  const LowerView H_;
   cholmod_common c_;
   cholmod_factor* L_ = nullptr;
   std::vector<int> loc_, Ap_, Ai_;
@@ -402,14 +427,31 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
   };
   // Minimizer over the free variables with the others at their bounds.
-  OrderedLower own;
-  if (!opts.ordered) own = ordered_lower(H, fill_reducing_ordering(H));
-  const OrderedLower& ordered = opts.ordered ? *opts.ordered : own;
-  if (static_cast<int>(ordered.perm.size()) != n) throw Error("box QP: the ordering does not match the matrix");
-  FaceSolver face(ordered);
   const int* hp = H.outerIndexPtr();
   const int* hi_ = H.innerIndexPtr();
   const double* hx = H.valuePtr();
+  OrderedLower own;
+  std::vector<int> diagonal;  // where each column's lower part starts, when H is read directly
+  LowerView view;
+  view.n = n;
+  if (opts.in_elimination_order && H.isCompressed()) {
+    diagonal.resize(n);
+    for (int c = 0; c < n; ++c) diagonal[c] = static_cast<int>(std::lower_bound(hi_ + hp[c], hi_ + hp[c + 1], c) - hi_);
+    view.begin = diagonal.data();
+    view.end = hp + 1;
+    view.rows = hi_;
+    view.values = hx;
+  } else {
+    if (!opts.ordered) own = ordered_lower(H, fill_reducing_ordering(H));
+    const OrderedLower& ordered = opts.ordered ? *opts.ordered : own;
+    if (static_cast<int>(ordered.perm.size()) != n) throw Error("box QP: the ordering does not match the matrix");
+    view.perm = ordered.perm.data();
+    view.begin = ordered.colptr.data();
+    view.end = ordered.colptr.data() + 1;
+    view.rows = ordered.rows.data();
+    view.values = ordered.values.data();
+  }
+  FaceSolver face(view);
   Eigen::VectorXd xa(n), r(n);
   auto solve_face = [&](Eigen::VectorXd& out) {
     bool any_free = false;

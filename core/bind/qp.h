@@ -36,6 +36,9 @@ struct BoxQPOptions {
   // H's lower triangle in a fill-reducing order (ordered_lower), shared by every face solve of every QP
   // on H (and by concurrent solver threads). Null: built once per call with an AMD ordering.
   const OrderedLower* ordered = nullptr;
+  // H's own variable order is already a fill-reducing one (H was renumbered by it, rows sorted, H
+  // compressed): faces are read straight off H's lower part, no OrderedLower copy; `ordered` is ignored.
+  bool in_elimination_order = false;
   // Projected Gauss-Seidel sweeps after each PDAS face solve (0 = plain PDAS): the larger of
   // smoothing_sweeps and smoothing_sweeps_per_free times the face's size. The sweeps carry the support
   // front many rings per face; how many pay for themselves grows with the face (its factorization costs
@@ -77,6 +80,9 @@ class SpdSolver {
   ~SpdSolver();
   SpdSolver(const SpdSolver&) = delete;
   SpdSolver& operator=(const SpdSolver&) = delete;
+  // Fill-reducing ordering and symbolic factorization only (permutation() and factor_nonzeros() are
+  // then available); a later factorize of a matrix with this pattern reuses it.
+  void analyze(const Eigen::SparseMatrix<double>& A);
   // Throws dfm::Error if A is not numerically positive definite.
   void factorize(const Eigen::SparseMatrix<double>& A);
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
