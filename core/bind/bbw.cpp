@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -80,14 +81,17 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     CoarseLevel level;
     Eigen::MatrixXd W;
     double seconds = 0;
+    std::atomic<bool> stop{false}, done{false};
   } coarse;
   std::thread coarse_thread;
-  struct Joiner {  // joins on every path out of here, exceptions included
+  struct Joiner {  // stops and joins on every path out of here, exceptions (cancel) included
     std::thread& t;
+    std::atomic<bool>& stop;
     ~Joiner() {
+      stop = true;
       if (t.joinable()) t.join();
     }
-  } join_coarse{coarse_thread};
+  } join_coarse{coarse_thread, coarse.stop};
   if (!opts.exact_partition_of_unity && opts.multilevel_min_vertices > 0 && n >= opts.multilevel_min_vertices) {
     coarse_thread = std::thread([&] {
       const auto tc = std::chrono::steady_clock::now();
@@ -99,15 +103,16 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
           co.normalize_rows = false;
           co.tolerance = std::max(opts.tolerance, 1e-5);  // a start, not the answer
           co.threads = 1;                                 // the other core assembles and orders meanwhile
-          co.cancel = opts.cancel;
+          co.cancel = &coarse.stop;
           co.multilevel_min_vertices = 0;
           coarse.W = bbw_weights(coarse.level.V, coarse.level.T, coarse.level.b, coarse.level.bc, co);
           coarse.ok = true;
         }
       } catch (const std::exception&) {
-        coarse.ok = false;  // cancellation is reported by this thread's own progress checks
+        coarse.ok = false;  // stopped, or failed: the bound-free start instead
       }
       coarse.seconds = seconds_since(tc);
+      coarse.done = true;
     });
   }
 
@@ -143,7 +148,20 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     chol.analyze(Qff);
     stats.factor_nonzeros = chol.factor_nonzeros();
     perm = chol.permutation();
-    if (coarse_thread.joinable()) coarse_thread.join();
+    if (coarse_thread.joinable()) {
+      // A coarse level normally finishes about when the ordering does. One that is not done after
+      // twice this thread's own work so far (a badly shaped coarse mesh can make its QPs slow) is
+      // stopped: the bound-free start then costs one numeric factorization instead.
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(
+                                                                  2 * (stats.assembly_seconds + seconds_since(t0)));
+      while (!coarse.done && std::chrono::steady_clock::now() < deadline) {
+        if (opts.cancel && opts.cancel->load()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      }
+      if (!coarse.done) coarse.stop = true;
+      coarse_thread.join();
+      if (!coarse.done || coarse.stop) coarse.ok = false;
+    }
     progress("factorization", 0.2);
     stats.multilevel_seconds = coarse.seconds;
     if (!coarse.ok) {
@@ -185,7 +203,8 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       start = (start.array() < 1e-4).select(0.0, start);
       stats.multilevel = true;
     }
-    coarse = CoarseStart();
+    coarse.level = CoarseLevel();
+    coarse.W = Eigen::MatrixXd();
     // The coarse level's memory is free again but the C library keeps it mapped; hand it back before
     // the fine solves reach the bind's peak.
     malloc_trim(0);
