@@ -150,10 +150,10 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     perm = chol.permutation();
     if (coarse_thread.joinable()) {
       // A coarse level normally finishes about when the ordering does. One that is not done after
-      // twice this thread's own work so far (a badly shaped coarse mesh can make its QPs slow) is
-      // stopped: the bound-free start then costs one numeric factorization instead.
-      const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(
-                                                                  2 * (stats.assembly_seconds + seconds_since(t0)));
+      // twice this thread's own work so far, and at least 2 s (a badly shaped coarse mesh can make its
+      // QPs slow), is stopped: the bound-free start then costs one numeric factorization instead.
+      const double wait = std::max(2.0, 2 * (stats.assembly_seconds + seconds_since(t0)));
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait);
       while (!coarse.done && std::chrono::steady_clock::now() < deadline) {
         if (opts.cancel && opts.cancel->load()) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
