@@ -86,6 +86,9 @@ int run(const dfm::cli::Args& args) {
   std::printf("times [s]: meshing %.3f, assembly %.3f, factorization %.3f, solve %.3f, total %.3f\n",
               rep.meshing_seconds, rep.assembly_seconds, rep.factorization_seconds, rep.solve_seconds,
               rep.total_seconds);
+  if (rep.bbw.multilevel)
+    std::printf("multilevel start: coarse level built and solved in %.3f s, alongside assembly and factorization\n",
+                rep.bbw.multilevel_seconds);
   std::printf("solver: %s, %d free-set solves (worst handle %d, fallback %d), KKT residual %.3g (weight units)\n",
               exact ? "exact partition of unity" : "per handle + row normalization", rep.bbw.iterations_total,
               rep.bbw.iterations_max, rep.bbw.fallback_iterations, rep.bbw.kkt_residual);

@@ -34,7 +34,8 @@ struct BbwOptions {
 
 struct BbwStats {
   double assembly_seconds = 0;       // K, M, Q
-  double factorization_seconds = 0;  // shared factorization + bound-free solve
+  double factorization_seconds = 0;  // ordering (+ shared factorization and bound-free solve when no
+                                     // coarse level starts the solves), waiting for the coarse level
   double solve_seconds = 0;          // bounded QPs
   int iterations_total = 0;          // free-set solves over all handles
   int iterations_max = 0;            // the worst handle

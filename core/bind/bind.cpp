@@ -30,6 +30,7 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
     bo.shape_mask = tet_mask_from_user_vertices(volume, opts.vertex_mask);
   bo.tolerance = opts.tolerance;
   bo.threads = opts.threads;
+  bo.multilevel_min_vertices = opts.multilevel_min_vertices;
   bo.cancel = opts.cancel;
   if (opts.progress)
     bo.progress = [&](const std::string& stage, double f) {

@@ -24,6 +24,8 @@ struct BindOptions {
   Eigen::VectorXd vertex_mask;
   double tolerance = 1e-6;     // KKT residual, weight units
   int threads = 2;
+  // Volumes with at least this many vertices start the weight solves from a coarse level (bbw.h).
+  int multilevel_min_vertices = 20000;
   // (stage, fraction of the whole bind in [0, 1]); stages: "meshing", "assembly", "factorization",
   // "solve", "mapping", "done". May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
