@@ -160,7 +160,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       }
       if (!coarse.done) coarse.stop = true;
       coarse_thread.join();
-      if (!coarse.done || coarse.stop) coarse.ok = false;
+      if (coarse.stop) coarse.ok = false;  // stopped late: its result may be partial
     }
     progress("factorization", 0.2);
     stats.multilevel_seconds = coarse.seconds;
@@ -194,15 +194,13 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   // clipped to the box.
   Eigen::MatrixXd start;
   if (coarse.ok) {
-    {
-      const Eigen::MatrixXd Wf = coarse.level.P * coarse.W;
-      start.resize(nf, m);
-      for (int k = 0; k < nf; ++k) start.row(k) = Wf.row(f(perm[k])).cwiseMax(0.0).cwiseMin(1.0);
-      // Values under 1e-4 are within the coarse solve's accuracy; starting them at the bound keeps the
-      // first faces (and the bind's peak memory: armadillo 606 -> 579 MB) smaller at no extra faces.
-      start = (start.array() < 1e-4).select(0.0, start);
-      stats.multilevel = true;
-    }
+    const Eigen::MatrixXd Wf = coarse.level.P * coarse.W;
+    start.resize(nf, m);
+    for (int k = 0; k < nf; ++k) start.row(k) = Wf.row(f(perm[k])).cwiseMax(0.0).cwiseMin(1.0);
+    // Values under 1e-4 are within the coarse solve's accuracy; starting them at the bound keeps the
+    // first faces (and the bind's peak memory: armadillo 606 -> 579 MB) smaller at no extra faces.
+    start = (start.array() < 1e-4).select(0.0, start);
+    stats.multilevel = true;
     coarse.level = CoarseLevel();
     coarse.W = Eigen::MatrixXd();
     // The coarse level's memory is free again but the C library keeps it mapped; hand it back before
