@@ -126,6 +126,7 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
   std::vector<int> sorted = ordering;
   std::sort(sorted.begin(), sorted.end());
   for (int i = 0; i < n; ++i) REQUIRE(sorted[i] == i);
+  int dropped = 0;
   for (int trial = 0; trial < 4; ++trial) {
     Eigen::VectorXd g(n);
     for (int i = 0; i < n; ++i) g(i) = 0.2 * N(rng);
@@ -156,11 +157,23 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
     const BoxQPResult d = solve_box_qp(H, g, lo, hi, x_free, o);
     o.smoothing_relaxation = 1.9;
     const BoxQPResult e = solve_box_qp(H, g, lo, hi, x_free, o);
-    // Plain PDAS (no sweeps between faces) too.
+    // Sweeps that skip every move below the face's KKT residual (any relative threshold), with and
+    // without sweeps before the first face.
     o.smoothing_relaxation = 1.6;
+    o.smoothing_threshold_relative = 1.0;
+    const BoxQPResult f = solve_box_qp(H, g, lo, hi, x_free, o);
+    o.presmoothing_sweeps_per_variable = 0.5;
+    const BoxQPResult h = solve_box_qp(H, g, lo, hi, x_free, o);
+    o.smoothing_threshold_relative = 0;
+    const BoxQPResult k = solve_box_qp(H, g, lo, hi, x_free, o);
+    // Skipping that much makes PDAS revisit active sets here: the path that drops the sweeps is taken
+    // (and still converges, checked below).
+    dropped += f.sweeps_dropped;
+    o.presmoothing_sweeps_per_variable = 0;
+    // Plain PDAS (no sweeps between faces) too.
     o.smoothing_sweeps = 0;
     const BoxQPResult c = solve_box_qp(H, g, lo, hi, x_free, o);
-    for (const BoxQPResult* r : {&a, &b, &c, &d, &e}) {
+    for (const BoxQPResult* r : {&a, &b, &c, &d, &e, &f, &h, &k}) {
       REQUIRE(r->converged);
       REQUIRE(r->kkt_residual <= 1e-10);
       REQUIRE((r->x - x).cwiseAbs().maxCoeff() < 1e-6);
@@ -182,6 +195,7 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
     REQUIRE((x.array() == 0).count() > 0);
     REQUIRE(a.num_free > 0);
   }
+  REQUIRE(dropped > 0);
   std::vector<int> wrong(n - 1);
   std::iota(wrong.begin(), wrong.end(), 0);
   REQUIRE_THROWS_AS(ordered_lower(H, wrong), Error);

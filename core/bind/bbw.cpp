@@ -105,6 +105,11 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
           co.threads = 1;                                 // the other core assembles and orders meanwhile
           co.cancel = &coarse.stop;
           co.multilevel_min_vertices = 0;
+          // Delaunay-of-a-subset tets are often badly shaped: with sweeps that skip small moves, or
+          // sweeps before the first face, PDAS needed 2-3x the faces on armadillo's coarse level (or
+          // cycled); full sweeps between faces only, there.
+          co.smoothing_threshold_relative = 0;
+          co.presmoothing_sweeps_per_variable = 0;
           coarse.W = bbw_weights(coarse.level.V, coarse.level.T, coarse.level.b, coarse.level.bc, co);
           coarse.ok = true;
         }
@@ -235,6 +240,8 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     qo.tolerance = opts.tolerance;
     qo.cancel = opts.cancel;
     qo.in_elimination_order = true;  // every face is read off Q_ff's lower part, shared by both threads
+    qo.smoothing_threshold_relative = opts.smoothing_threshold_relative;
+    qo.presmoothing_sweeps_per_variable = opts.presmoothing_sweeps_per_variable;
     auto worker = [&] {
       single_threaded_numerics();
       const CholmodBlockCacheScope release_cache;

@@ -26,6 +26,9 @@ struct BbwOptions {
   // Volumes with at least this many vertices start their bounded solves from the weights of a coarser
   // mesh of the same domain (coarse_level.h); 0 = always from the bound-free solution.
   int multilevel_min_vertices = 20000;
+  // BoxQPOptions::smoothing_threshold_relative and presmoothing_sweeps_per_variable of the bounded solves.
+  double smoothing_threshold_relative = 0.01;
+  double presmoothing_sweeps_per_variable = 0.001;
   // Called from the calling thread and the solver threads (serialized); fraction of the whole solve in
   // [0, 1]: assembly 0, factorization 0.1, solve 0.3 .. 1. May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;

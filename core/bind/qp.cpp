@@ -475,6 +475,19 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
   // ---- primal-dual active set
   std::unordered_set<uint64_t> seen;
   bool done = false;
+  bool sweeping = opts.smoothing_sweeps > 0;
+  // Sweeps from the start before the first face: a start carried from a coarser mesh is smooth on the
+  // coarse scale but off on the fine one, which is what the sweeps fix first (multigrid's smoothing after
+  // prolongation), so the first face is read off a better active set.
+  if (sweeping && x0.size() && opts.presmoothing_sweeps_per_variable > 0) {
+    x = x.cwiseMax(lo).cwiseMin(hi);
+    gradient(H, g, x, grad);
+    const int sweeps = std::max(opts.smoothing_sweeps, static_cast<int>(opts.presmoothing_sweeps_per_variable * n));
+    const double threshold = std::max(0.1 * opts.tolerance, opts.smoothing_threshold_relative *
+                                                                kkt_residual_from_gradient(lo, hi, hd, x, grad));
+    projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
+    for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
+  }
   for (int it = 0; it < opts.max_pdas_iterations && !done; ++it) {
     check_cancel();
     solve_face(x);
@@ -499,7 +512,8 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     xc = x.cwiseMax(lo).cwiseMin(hi);
     update_gradient(H, x, xc, grad);  // now the gradient at xc
     x.swap(xc);
-    if (changes == 0 || kkt_residual_from_gradient(lo, hi, hd, x, grad) <= opts.tolerance) {
+    const double kkt = kkt_residual_from_gradient(lo, hi, hd, x, grad);
+    if (changes == 0 || kkt <= opts.tolerance) {
       done = true;
       break;
     }
@@ -507,10 +521,11 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     // 2-ring stencil), so the support creeps outwards a ring or two per factorization. A few projected
     // Gauss-Seidel sweeps, confined to where the iterate still moves, carry that front many rings for
     // the cost of a fraction of one factorization; the next face is read off the swept iterate.
-    if (opts.smoothing_sweeps > 0) {
+    if (sweeping) {
       const int sweeps =
           std::max(opts.smoothing_sweeps, static_cast<int>(opts.smoothing_sweeps_per_free * face.last_size()));
-      projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, 0.1 * opts.tolerance, x);
+      const double threshold = std::max(0.1 * opts.tolerance, opts.smoothing_threshold_relative * kkt);
+      projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
       gradient(H, g, x, grad);
       if (kkt_residual_from_gradient(lo, hi, hd, x, grad) <= opts.tolerance) {
         done = true;
@@ -518,7 +533,14 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
       }
       for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
     }
-    if (!seen.insert(hash_status(st)).second) break;  // cycling: go monotone
+    if (!seen.insert(hash_status(st)).second) {
+      // Cycling. The sweeps move the active set by other rules than PDAS's own: first try without them
+      // (plain PDAS from here, locally fast), and go monotone if that cycles too.
+      if (!sweeping) break;
+      sweeping = false;
+      res.sweeps_dropped = true;
+      seen.clear();
+    }
   }
 
   // ---- monotone fallback: primal active set with a ratio test (objective strictly decreases).
