@@ -133,4 +133,29 @@ TEST_CASE("bbw from the multilevel start reaches the same minimizer as from the 
   REQUIRE((Wp - Wm).cwiseAbs().maxCoeff() < 1e-5);
   REQUIRE(Wm.minCoeff() >= 0);
   REQUIRE((Wm.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-12);
+  // The coarse level stopped as soon as the first solver has nothing to do: the handles it had not
+  // handed over start from the bound-free solution (factorized in the renumbered order), same minimizer.
+  BbwOptions impatient = multilevel;
+  impatient.multilevel_patience_seconds = 0;
+  impatient.threads = 1;
+  BbwStats si;
+  const Eigen::MatrixXd Wi = bbw_weights(m.V, m.T, b, bc, impatient, &si);
+  REQUIRE(si.converged);
+  REQUIRE(si.multilevel_handles < 4);
+  REQUIRE((Wp - Wi).cwiseAbs().maxCoeff() < 1e-5);
+  REQUIRE((Wi.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-12);
+  // Each handle is reported once, as soon as it is solved, with its own (unnormalized) minimizer.
+  BbwOptions raw = multilevel;
+  raw.normalize_rows = false;
+  Eigen::MatrixXd reported = Eigen::MatrixXd::Constant(m.V.rows(), 4, -1);
+  std::vector<int> calls(4, 0);
+  raw.handle_solved = [&](int j, const Eigen::VectorXd& w) {
+    REQUIRE(j >= 0);
+    REQUIRE(j < 4);
+    ++calls[j];
+    reported.col(j) = w;
+  };
+  const Eigen::MatrixXd Wr = bbw_weights(m.V, m.T, b, bc, raw);
+  REQUIRE(calls == std::vector<int>(4, 1));
+  REQUIRE((reported - Wr).cwiseAbs().maxCoeff() == 0.0);
 }

@@ -87,8 +87,8 @@ int run(const dfm::cli::Args& args) {
               rep.meshing_seconds, rep.assembly_seconds, rep.factorization_seconds, rep.solve_seconds,
               rep.total_seconds);
   if (rep.bbw.multilevel)
-    std::printf("multilevel start: coarse level built and solved in %.3f s, alongside assembly and factorization\n",
-                rep.bbw.multilevel_seconds);
+    std::printf("multilevel start for %d of %d handles: coarse level built and solved in %.3f s on a second thread\n",
+                rep.bbw.multilevel_handles, rep.handles, rep.bbw.multilevel_seconds);
   std::printf("solver: %s, %d free-set solves (worst handle %d, fallback %d), KKT residual %.3g (weight units)\n",
               exact ? "exact partition of unity" : "per handle + row normalization", rep.bbw.iterations_total,
               rep.bbw.iterations_max, rep.bbw.fallback_iterations, rep.bbw.kkt_residual);

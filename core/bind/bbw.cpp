@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
+#include <functional>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -75,49 +77,97 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
 
   // ---- on large meshes, a coarse level of the same domain (coarse_level.h), built and solved on a
   // thread of its own while this one assembles and orders Q: its weights, carried to this mesh, start
-  // the bounded solves. Only an accelerator: if it cannot be built, the bound-free solution starts them.
-  struct CoarseStart {
-    bool ok = false;
+  // the bounded solves. Each handle's coarse weights are handed over as soon as they are solved, so this
+  // thread starts on the fine solves right after its ordering instead of waiting for the last coarse
+  // handle; the coarse thread joins the fine solves when it is done. Only an accelerator: handles it has
+  // no weights for (it could not be built, failed, or was stopped) start from the bound-free solution.
+  const bool multilevel =
+      !opts.exact_partition_of_unity && opts.multilevel_min_vertices > 0 && n >= opts.multilevel_min_vertices;
+  struct Shared {
+    std::mutex mu;
+    std::condition_variable cv;
+    // Coarse level (written by the coarse thread; P before the first handle is handed over).
     CoarseLevel level;
-    Eigen::MatrixXd W;
-    double seconds = 0;
-    std::atomic<bool> stop{false}, done{false};
-  } coarse;
+    Eigen::MatrixXd Wc;                // coarse weights, a column per handle as it is solved
+    std::vector<int> coarse_solved;    // handles in the order their coarse weights arrived
+    bool coarse_done = false;          // the coarse thread will hand over nothing more
+    double coarse_seconds = 0;
+    std::atomic<bool> coarse_stop{false};
+    // Fine solves.
+    bool fine_ready = false;           // Q_ff, G, ordering in place: the coarse thread may join
+    bool abandon = false;              // an error or cancel: every thread leaves
+    std::vector<char> taken;
+    bool x0_ready = false, x0_busy = false;
+    std::vector<std::string> errors;
+    int finished = 0;
+  } sh;
+  sh.taken.assign(m, 0);
   std::thread coarse_thread;
   struct Joiner {  // stops and joins on every path out of here, exceptions (cancel) included
     std::thread& t;
-    std::atomic<bool>& stop;
+    Shared& sh;
     ~Joiner() {
-      stop = true;
+      {
+        std::lock_guard<std::mutex> lock(sh.mu);
+        sh.abandon = true;
+        sh.coarse_stop = true;
+      }
+      sh.cv.notify_all();
       if (t.joinable()) t.join();
     }
-  } join_coarse{coarse_thread, coarse.stop};
-  if (!opts.exact_partition_of_unity && opts.multilevel_min_vertices > 0 && n >= opts.multilevel_min_vertices) {
+  } join_coarse{coarse_thread, sh};
+  std::function<void()> fine_worker;  // set once the fine solves can start (below)
+
+  if (multilevel) {
     coarse_thread = std::thread([&] {
       const auto tc = std::chrono::steady_clock::now();
       try {
         single_threaded_numerics();
         const CholmodBlockCacheScope release;
-        if (build_coarse_level(V, T, b, bc, coarse.level, opts.multilevel_min_vertices)) {
+        CoarseLevel level;
+        if (build_coarse_level(V, T, b, bc, level, opts.multilevel_min_vertices)) {
+          {
+            std::lock_guard<std::mutex> lock(sh.mu);
+            sh.level = std::move(level);
+            sh.Wc = Eigen::MatrixXd::Zero(sh.level.V.rows(), m);
+          }
           BbwOptions co;
           co.normalize_rows = false;
           co.tolerance = std::max(opts.tolerance, 1e-5);  // a start, not the answer
           co.threads = 1;                                 // the other core assembles and orders meanwhile
-          co.cancel = &coarse.stop;
+          co.cancel = &sh.coarse_stop;
           co.multilevel_min_vertices = 0;
           // Delaunay-of-a-subset tets are often badly shaped: with sweeps that skip small moves, or
           // sweeps before the first face, PDAS needed 2-3x the faces on armadillo's coarse level (or
           // cycled); full sweeps between faces only, there.
           co.smoothing_threshold_relative = 0;
           co.presmoothing_sweeps_per_variable = 0;
-          coarse.W = bbw_weights(coarse.level.V, coarse.level.T, coarse.level.b, coarse.level.bc, co);
-          coarse.ok = true;
+          co.handle_solved = [&](int j, const Eigen::VectorXd& w) {
+            {
+              std::lock_guard<std::mutex> lock(sh.mu);
+              sh.Wc.col(j) = w;
+              sh.coarse_solved.push_back(j);
+            }
+            sh.cv.notify_all();
+          };
+          bbw_weights(sh.level.V, sh.level.T, sh.level.b, sh.level.bc, co);
         }
       } catch (const std::exception&) {
-        coarse.ok = false;  // stopped, or failed: the bound-free start instead
+        // Stopped, or failed: the handles without coarse weights start from the bound-free solution.
       }
-      coarse.seconds = seconds_since(tc);
-      coarse.done = true;
+      {
+        std::lock_guard<std::mutex> lock(sh.mu);
+        sh.coarse_done = true;
+        sh.coarse_seconds = seconds_since(tc);
+      }
+      sh.cv.notify_all();
+      malloc_trim(0);  // the coarse solve's memory, back to the system before the fine solves peak
+      // Then one of the fine solvers.
+      std::unique_lock<std::mutex> lock(sh.mu);
+      sh.cv.wait(lock, [&] { return sh.fine_ready || sh.abandon; });
+      if (sh.abandon || opts.threads < 2) return;
+      lock.unlock();
+      fine_worker();
     });
   }
 
@@ -153,23 +203,8 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     chol.analyze(Qff);
     stats.factor_nonzeros = chol.factor_nonzeros();
     perm = chol.permutation();
-    if (coarse_thread.joinable()) {
-      // A coarse level normally finishes about when the ordering does. One that is not done after
-      // twice this thread's own work so far, and at least 2 s (a badly shaped coarse mesh can make its
-      // QPs slow), is stopped: the bound-free start then costs one numeric factorization instead.
-      const double wait = std::max(2.0, 2 * (stats.assembly_seconds + seconds_since(t0)));
-      const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait);
-      while (!coarse.done && std::chrono::steady_clock::now() < deadline) {
-        if (opts.cancel && opts.cancel->load()) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-      }
-      if (!coarse.done) coarse.stop = true;
-      coarse_thread.join();
-      if (coarse.stop) coarse.ok = false;  // stopped late: its result may be partial
-    }
     progress("factorization", 0.2);
-    stats.multilevel_seconds = coarse.seconds;
-    if (!coarse.ok) {
+    if (!multilevel) {
       chol.factorize(Qff);
       X0 = chol.solve(-G);
     }
@@ -190,33 +225,19 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       X0.swap(tmp);
     }
   }
+  // The ordering's workspace and the matrix before renumbering are free again, but the C library keeps
+  // them mapped: hand them back before the face solves reach the bind's peak (armadillo: peak 612 -> 582-590 MB).
+  malloc_trim(0);
   stats.factorization_seconds = seconds_since(t0);
 
   // ---- bounded solves
   progress("solve", 0.3);
   t0 = std::chrono::steady_clock::now();
-  // Starting points: the coarse level's weights carried to this mesh, else the bound-free solution
-  // clipped to the box.
-  Eigen::MatrixXd start;
-  if (coarse.ok) {
-    const Eigen::MatrixXd Wf = coarse.level.P * coarse.W;
-    start.resize(nf, m);
-    for (int k = 0; k < nf; ++k) start.row(k) = Wf.row(f(perm[k])).cwiseMax(0.0).cwiseMin(1.0);
-    // Values under 1e-4 are within the coarse solve's accuracy; starting them at the bound keeps the
-    // first faces (and the bind's peak memory: armadillo 606 -> 579 MB) smaller at no extra faces.
-    start = (start.array() < 1e-4).select(0.0, start);
-    stats.multilevel = true;
-    coarse.level = CoarseLevel();
-    coarse.W = Eigen::MatrixXd();
-    // The coarse level's memory is free again but the C library keeps it mapped; hand it back before
-    // the fine solves reach the bind's peak.
-    malloc_trim(0);
-  }
-  const Eigen::MatrixXd& x_start = start.size() ? start : X0;
-  Eigen::MatrixXd X(nf, m);
+  Eigen::MatrixXd X(nf, m), start(nf, m);  // start: each handle's starting point (row fallback below)
   if (opts.exact_partition_of_unity) {
     ExactPouResult r = solve_exact_pou(Qff, G, X0, opts.tolerance, opts.cancel);
     X = r.X;
+    start = X0;
     stats.iterations_total = stats.iterations_max = r.iterations;
     stats.fallback_iterations = r.fallback_iterations;
     stats.kkt_residual = r.kkt_residual;
@@ -224,52 +245,155 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   } else {
     const Eigen::VectorXd lo = Eigen::VectorXd::Zero(nf), hi = Eigen::VectorXd::Ones(nf);
     std::vector<BoxQPResult> results(m);
-    std::vector<std::string> errors;
-    std::mutex mu;
-    int next = 0, finished = 0;
-    // Largest first (by the first face, the start's positive support; a face costs ~its size squared), so the
-    // last handles to finish are small ones and neither thread idles long at the end.
-    std::vector<int> order(m);
-    std::vector<long> support(m, 0);
-    for (int j = 0; j < m; ++j) {
-      order[j] = j;
-      for (int k = 0; k < nf; ++k) support[j] += x_start(k, j) > 0.0;
+    std::vector<char> from_coarse(m, 0);
+    // Handles started from the bound-free solution go largest first (by its positive support; a face costs
+    // ~its size squared), so the last to finish are small ones and neither thread idles long at the end.
+    // Coarse-started ones go in the order the coarse level solved them, itself largest first.
+    std::vector<int> x0_order;
+    auto order_by_support = [&] {
+      std::vector<long> support(m, 0);
+      x0_order.resize(m);
+      for (int j = 0; j < m; ++j) {
+        x0_order[j] = j;
+        for (int k = 0; k < nf; ++k) support[j] += X0(k, j) > 0.0;
+      }
+      std::stable_sort(x0_order.begin(), x0_order.end(), [&](int a, int c) { return support[a] > support[c]; });
+    };
+    if (X0.size()) {
+      order_by_support();
+      sh.x0_ready = true;
     }
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return support[a] > support[b]; });
+    // A coarse level that has not handed over a handle for this long while this thread had nothing else
+    // to do is stopped (a badly shaped coarse mesh can make its QPs slow): the remaining handles then
+    // start from the bound-free solution, which costs one numeric factorization.
+    const double patience = opts.multilevel_patience_seconds >= 0
+                                ? opts.multilevel_patience_seconds
+                                : std::max(2.0, 2 * (stats.assembly_seconds + stats.factorization_seconds));
+    const std::thread::id main_thread = std::this_thread::get_id();
     BoxQPOptions qo;
     qo.tolerance = opts.tolerance;
     qo.cancel = opts.cancel;
     qo.in_elimination_order = true;  // every face is read off Q_ff's lower part, shared by both threads
     qo.smoothing_threshold_relative = opts.smoothing_threshold_relative;
     qo.presmoothing_sweeps_per_variable = opts.presmoothing_sweeps_per_variable;
-    auto worker = [&] {
-      single_threaded_numerics();
-      const CholmodBlockCacheScope release_cache;
+    auto cancelled = [&] { return opts.cancel && opts.cancel->load(); };
+    // The next handle to solve and its start (false: none left, or give up). Called with the lock held.
+    auto next_handle = [&](std::unique_lock<std::mutex>& lock, int& j, bool& coarse_start) {
+      double idle = 0;
       for (;;) {
-        int j;
-        {
-          std::lock_guard<std::mutex> lock(mu);
-          if (next >= m || !errors.empty()) return;
-          j = order[next++];
+        if (sh.abandon || !sh.errors.empty()) return false;
+        if (cancelled()) {
+          sh.errors.push_back("cancelled");
+          sh.cv.notify_all();
+          return false;
         }
-        try {
-          BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, x_start.col(j), qo);
-          std::lock_guard<std::mutex> lock(mu);
-          results[j] = std::move(r);
-          ++finished;
-          if (opts.progress) opts.progress("solve", 0.3 + 0.7 * double(finished) / m);
-        } catch (const std::exception& e) {
-          std::lock_guard<std::mutex> lock(mu);
-          errors.push_back(e.what());
+        for (int c : sh.coarse_solved)
+          if (!sh.taken[c]) return j = c, coarse_start = true, true;
+        if (std::find(sh.taken.begin(), sh.taken.end(), 0) == sh.taken.end()) return false;
+        if (sh.x0_ready) {
+          for (int c : x0_order)
+            if (!sh.taken[c]) return j = c, coarse_start = false, true;
+        }
+        if (sh.coarse_done && !sh.x0_busy) {
+          // The coarse level has no more to give: the bound-free start for the remaining handles. Q_ff is
+          // in elimination order already.
+          sh.x0_busy = true;
+          lock.unlock();
+          try {
+            SpdSolver chol;
+            chol.analyze(Qff, /*in_elimination_order=*/true);
+            chol.factorize(Qff);
+            X0 = chol.solve(-G);
+            order_by_support();
+          } catch (const std::exception& e) {
+            lock.lock();
+            sh.errors.push_back(e.what());
+            sh.cv.notify_all();
+            return false;
+          }
+          lock.lock();
+          sh.x0_ready = true;
+          sh.cv.notify_all();
+          continue;
+        }
+        const auto tw = std::chrono::steady_clock::now();
+        sh.cv.wait_for(lock, std::chrono::milliseconds(10));
+        if (std::this_thread::get_id() == main_thread && !sh.coarse_done) {
+          idle += seconds_since(tw);
+          if (idle >= patience) sh.coarse_stop = true;
         }
       }
     };
-    const int nthreads = std::max(1, std::min(opts.threads, m));
+    fine_worker = [&] {
+      single_threaded_numerics();
+      const CholmodBlockCacheScope release_cache;
+      Eigen::VectorXd x_start(nf), w;
+      for (;;) {
+        int j = -1;
+        bool coarse_start = false;
+        {
+          std::unique_lock<std::mutex> lock(sh.mu);
+          if (!next_handle(lock, j, coarse_start)) return;
+          sh.taken[j] = 1;
+        }
+        try {
+          if (coarse_start) {
+            // The coarse weights carried to this mesh. Values under 1e-4 are within the coarse solve's
+            // accuracy; starting them at the bound keeps the first faces (and the bind's peak memory:
+            // armadillo 606 -> 579 MB) smaller at no extra faces.
+            w = sh.level.P * sh.Wc.col(j);
+            for (int k = 0; k < nf; ++k) {
+              const double v = std::min(std::max(w(f(perm[k])), 0.0), 1.0);
+              x_start(k) = v < 1e-4 ? 0.0 : v;
+            }
+          } else {
+            x_start = X0.col(j);
+          }
+          start.col(j) = x_start;
+          BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, x_start, qo);
+          std::lock_guard<std::mutex> lock(sh.mu);
+          if (opts.handle_solved) {
+            Eigen::VectorXd full(n);
+            for (int k = 0; k < nf; ++k) full(f(perm[k])) = r.x(k);
+            for (int k = 0; k < b.size(); ++k) full(b(k)) = bc(k, j);
+            opts.handle_solved(j, full);
+          }
+          results[j] = std::move(r);
+          from_coarse[j] = coarse_start;
+          ++sh.finished;
+          if (opts.progress) opts.progress("solve", 0.3 + 0.7 * double(sh.finished) / m);
+        } catch (const std::exception& e) {
+          std::lock_guard<std::mutex> lock(sh.mu);
+          sh.errors.push_back(e.what());
+          sh.cv.notify_all();
+        }
+      }
+    };
     std::vector<std::thread> pool;
-    for (int t = 1; t < nthreads; ++t) pool.emplace_back(worker);
-    worker();
+    // With a coarse level, its thread is the second solver once it is done; else a thread of our own.
+    if (!multilevel)
+      for (int t = 1; t < std::min(opts.threads, m); ++t) pool.emplace_back(fine_worker);
+    {
+      std::lock_guard<std::mutex> lock(sh.mu);
+      sh.fine_ready = true;
+    }
+    sh.cv.notify_all();
+    fine_worker();
     for (auto& th : pool) th.join();
-    if (!errors.empty()) throw Error(errors.front() == "cancelled" ? "cancelled" : "bind: " + errors.front());
+    if (coarse_thread.joinable()) {
+      {
+        std::lock_guard<std::mutex> lock(sh.mu);
+        if (!sh.errors.empty()) sh.abandon = true;
+        sh.coarse_stop = true;  // it has nothing left to start: every handle is taken
+      }
+      sh.cv.notify_all();
+      coarse_thread.join();
+    }
+    stats.multilevel_seconds = sh.coarse_seconds;
+    if (!sh.errors.empty()) {
+      const bool was_cancelled = std::find(sh.errors.begin(), sh.errors.end(), "cancelled") != sh.errors.end();
+      throw Error(was_cancelled ? "cancelled" : "bind: " + sh.errors.front());
+    }
     stats.converged = true;
     for (int j = 0; j < m; ++j) {
       X.col(j) = results[j].x;
@@ -278,7 +402,9 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       stats.fallback_iterations += results[j].fallback_iterations;
       stats.kkt_residual = std::max(stats.kkt_residual, results[j].kkt_residual);
       stats.converged = stats.converged && results[j].converged;
+      stats.multilevel_handles += from_coarse[j];
     }
+    stats.multilevel = stats.multilevel_handles > 0;
   }
   stats.solve_seconds = seconds_since(t0);
   if (!stats.converged)
@@ -296,7 +422,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       const int i = f(perm[k]);
       double s = W.row(i).sum();
       if (s <= 1e-12) {
-        W.row(i) = x_start.row(k).cwiseMax(0.0).cwiseMin(1.0);
+        W.row(i) = start.row(k).cwiseMax(0.0).cwiseMin(1.0);
         s = W.row(i).sum();
         ++stats.rows_renormalized_from_zero;
         if (s <= 1e-12) W.row(i).setConstant(1.0 / m), s = 1.0;

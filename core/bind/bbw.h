@@ -26,6 +26,10 @@ struct BbwOptions {
   // Volumes with at least this many vertices start their bounded solves from the weights of a coarser
   // mesh of the same domain (coarse_level.h); 0 = always from the bound-free solution.
   int multilevel_min_vertices = 20000;
+  // How long the first solver thread may sit idle waiting for the coarse level's next handle before it
+  // stops it (the remaining handles then start from the bound-free solution); < 0: max(2 s, twice the
+  // assembly and ordering time).
+  double multilevel_patience_seconds = -1;
   // BoxQPOptions::smoothing_threshold_relative and presmoothing_sweeps_per_variable of the bounded solves.
   double smoothing_threshold_relative = 0.01;
   double presmoothing_sweeps_per_variable = 0.001;
@@ -33,13 +37,16 @@ struct BbwOptions {
   // [0, 1]: assembly 0, factorization 0.1, solve 0.3 .. 1. May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
   const std::atomic<bool>* cancel = nullptr;  // throws dfm::Error("cancelled") when set
+  // Default mode: called (serialized) as soon as a handle's QP is solved, with its weights on every
+  // vertex before rows are normalized. May be empty.
+  std::function<void(int handle, const Eigen::VectorXd& weights)> handle_solved;
 };
 
 struct BbwStats {
   double assembly_seconds = 0;       // K, M, Q
   double factorization_seconds = 0;  // ordering (+ shared factorization and bound-free solve when no
-                                     // coarse level starts the solves), waiting for the coarse level
-  double solve_seconds = 0;          // bounded QPs
+                                     // coarse level starts the solves)
+  double solve_seconds = 0;          // bounded QPs (with a coarse level: from the end of the ordering)
   int iterations_total = 0;          // free-set solves over all handles
   int iterations_max = 0;            // the worst handle
   int fallback_iterations = 0;       // monotone fallback steps (0 when PDAS converged alone)
@@ -47,7 +54,8 @@ struct BbwStats {
   bool converged = false;
   long factor_nonzeros = 0;
   int rows_renormalized_from_zero = 0;  // default mode: vertices where every weight was 0
-  bool multilevel = false;              // the bounded solves started from a coarse level's weights
+  bool multilevel = false;              // some bounded solves started from a coarse level's weights
+  int multilevel_handles = 0;           // how many
   double multilevel_seconds = 0;        // building and solving the coarse level (on its own thread,
                                         // alongside assembly and ordering)
 };

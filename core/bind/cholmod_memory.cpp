@@ -17,10 +17,10 @@ namespace {
 constexpr size_t kMinCached = size_t(1) << 20;  // smaller blocks go straight to malloc
 constexpr size_t kMaxBlocks = 8;                // per thread
 constexpr size_t kHugePage = size_t(2) << 20;
-// Tails smaller than this stay resident: giving them back costs a page fault per page when the next,
-// larger face touches them again (hand.mesh: a third of its page faults), and they cannot matter for
-// peak memory.
-constexpr size_t kMinGivenBack = size_t(8) << 20;
+// Blocks smaller than this keep their tails resident: giving them back costs a page fault per page when
+// the next, larger face touches them again (hand.mesh: a third of its page faults), and they do not
+// decide the peak memory; the large factors of large meshes (armadillo: 100-200 MB) do.
+constexpr size_t kMinGivingBack = size_t(64) << 20;
 constexpr size_t kPage = 4096;
 
 struct BlockCache {
@@ -52,7 +52,7 @@ struct BlockCache {
     // request needs them): resident memory follows the current face, not the largest one so far.
     const uintptr_t b = (reinterpret_cast<uintptr_t>(p) + size + kPage - 1) & ~(kPage - 1);
     const uintptr_t e = (reinterpret_cast<uintptr_t>(p) + usable) & ~(kPage - 1);
-    if (e > b + kMinGivenBack) madvise(reinterpret_cast<void*>(b), e - b, MADV_DONTNEED);
+    if (usable >= kMinGivingBack && e > b + kMinCached) madvise(reinterpret_cast<void*>(b), e - b, MADV_DONTNEED);
     return p;
   }
   void put(void* p, size_t usable) {

@@ -55,7 +55,7 @@ struct SpdSolver::Impl {
 SpdSolver::SpdSolver() : impl_(new Impl) {}
 SpdSolver::~SpdSolver() { delete impl_; }
 
-void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0) {
+void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0, bool in_elimination_order) {
   Eigen::SparseMatrix<double> A = A0;  // compressed copy CHOLMOD can view
   A.makeCompressed();
   cholmod_sparse cs =
@@ -64,7 +64,10 @@ void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0) {
   if (impl_->L) cholmod_free_factor(&impl_->L, &c);
   impl_->numeric = false;
   // Small systems: AMD alone (METIS costs more than it saves). Large: let CHOLMOD pick AMD or METIS.
-  if (A.rows() < 20000) {
+  if (in_elimination_order) {
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_NATURAL;
+  } else if (A.rows() < 20000) {
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_AMD;
   } else {

@@ -98,7 +98,8 @@ class SpdSolver {
   SpdSolver& operator=(const SpdSolver&) = delete;
   // Fill-reducing ordering and symbolic factorization only (permutation() and factor_nonzeros() are
   // then available); a later factorize of a matrix with this pattern reuses it.
-  void analyze(const Eigen::SparseMatrix<double>& A);
+  // in_elimination_order: A's own order is already a fill-reducing one (no ordering is computed).
+  void analyze(const Eigen::SparseMatrix<double>& A, bool in_elimination_order = false);
   // Throws dfm::Error if A is not numerically positive definite.
   void factorize(const Eigen::SparseMatrix<double>& A);
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
