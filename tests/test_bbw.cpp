@@ -166,14 +166,19 @@ TEST_CASE("box QP on a sparse non-M-matrix problem matches accelerated projected
     const BoxQPResult h = solve_box_qp(H, g, lo, hi, x_free, o);
     o.smoothing_threshold_relative = 0;
     const BoxQPResult k = solve_box_qp(H, g, lo, hi, x_free, o);
-    // Skipping that much makes PDAS revisit active sets here: the path that drops the sweeps is taken
-    // (and still converges, checked below).
-    dropped += f.sweeps_dropped;
     o.presmoothing_sweeps_per_variable = 0;
+    // A few strongly over-relaxed sweeps make PDAS revisit active sets here: the solver drops the sweeps
+    // (and still converges, checked below).
+    o.smoothing_relaxation = 1.9;
+    o.smoothing_sweeps = 3;
+    const BoxQPResult cy = solve_box_qp(H, g, lo, hi, x_free, o);
+    dropped += cy.sweeps_dropped;
+    o.smoothing_relaxation = 1.6;
+    o.smoothing_sweeps = 20;
     // Plain PDAS (no sweeps between faces) too.
     o.smoothing_sweeps = 0;
     const BoxQPResult c = solve_box_qp(H, g, lo, hi, x_free, o);
-    for (const BoxQPResult* r : {&a, &b, &c, &d, &e, &f, &h, &k}) {
+    for (const BoxQPResult* r : {&a, &b, &c, &d, &e, &f, &h, &k, &cy}) {
       REQUIRE(r->converged);
       REQUIRE(r->kkt_residual <= 1e-10);
       REQUIRE((r->x - x).cwiseAbs().maxCoeff() < 1e-6);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <unordered_set>
 #include <utility>
@@ -63,7 +64,7 @@ void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0, bool in_eliminati
   cholmod_common& c = impl_->c;
   if (impl_->L) cholmod_free_factor(&impl_->L, &c);
   impl_->numeric = false;
-  // Small systems: AMD alone (METIS costs more than it saves). Large: let CHOLMOD pick AMD or METIS.
+  // Small systems: AMD alone (METIS costs more than it saves).
   if (in_elimination_order) {
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_NATURAL;
@@ -71,7 +72,11 @@ void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0, bool in_eliminati
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_AMD;
   } else {
-    c.nmethods = 0;
+    // Large volume meshes: nested dissection (METIS) alone. CHOLMOD's default also runs AMD first and
+    // keeps the better; on armadillo's Q_ff METIS took 1.44 s, AMD 0.25 s with 34% more flops, and the
+    // default 1.79 s picking METIS.
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_METIS;
   }
   c.supernodal = CHOLMOD_AUTO;
   impl_->L = cholmod_analyze(&cs, &c);
@@ -479,6 +484,8 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
   std::unordered_set<uint64_t> seen;
   bool done = false;
   bool sweeping = opts.smoothing_sweeps > 0;
+  double relative = opts.smoothing_threshold_relative;  // see smoothing_threshold_relative
+  double previous_kkt = std::numeric_limits<double>::infinity();
   // Sweeps from the start before the first face: a start carried from a coarser mesh is smooth on the
   // coarse scale but off on the fine one, which is what the sweeps fix first (multigrid's smoothing after
   // prolongation), so the first face is read off a better active set.
@@ -527,7 +534,12 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     if (sweeping) {
       const int sweeps =
           std::max(opts.smoothing_sweeps, static_cast<int>(opts.smoothing_sweeps_per_free * face.last_size()));
-      const double threshold = std::max(0.1 * opts.tolerance, opts.smoothing_threshold_relative * kkt);
+      // Skipping small moves speeds up sweeps that make progress; once a face fails to halve the
+      // residual, the active set is oscillating near the front: full sweeps from then on (armadillo:
+      // 41 -> 34 faces, worst handle 11 -> 8).
+      if (kkt > 0.5 * previous_kkt) relative = 0;
+      previous_kkt = kkt;
+      const double threshold = std::max(0.1 * opts.tolerance, relative * kkt);
       projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
       gradient(H, g, x, grad);
       if (kkt_residual_from_gradient(lo, hi, hd, x, grad) <= opts.tolerance) {

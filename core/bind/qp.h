@@ -56,7 +56,8 @@ struct BoxQPOptions {
   // the KKT residual of the face's solution). Corrections far below the current residual spread over the
   // whole face and are redone exactly by the next face solve anyway; skipping them leaves the sweeps
   // to what they are for, moving the support front. Measured in one process on hand.mesh: bounded solve
-  // 0.65 -> 0.49 s (74 -> 80 faces); much larger factors (0.03+) make PDAS revisit active sets.
+  // 0.65 -> 0.49 s (74 -> 80 faces); much larger factors (0.03+) make PDAS revisit active sets. After a
+  // face that does not halve the residual of the one before, tolerance / 10 for the rest of the solve.
   // 0 = always tolerance / 10.
   double smoothing_threshold_relative = 0.01;
   // Sweeps before the first face when a start x0 is given: the larger of smoothing_sweeps and this times
