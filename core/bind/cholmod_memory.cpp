@@ -19,8 +19,8 @@ constexpr size_t kMaxBlocks = 8;                // per thread
 constexpr size_t kHugePage = size_t(2) << 20;
 // Blocks smaller than this keep their tails resident: giving them back costs a page fault per page when
 // the next, larger face touches them again (hand.mesh: a third of its page faults), and they do not
-// decide the peak memory; the large factors of large meshes (armadillo: 100-200 MB) do.
-constexpr size_t kMinGivingBack = size_t(64) << 20;
+// decide the peak memory; the factors of large meshes (armadillo: 16-200 MB) do.
+constexpr size_t kMinGivingBack = size_t(16) << 20;
 constexpr size_t kPage = 4096;
 
 struct BlockCache {
@@ -74,10 +74,7 @@ struct BlockCache {
 
 thread_local BlockCache cache;
 
-void* fresh(size_t request) {
-  // Room to grow: the faces of one QP grow from one iteration to the next, and a block that fits the
-  // next one too saves its page faults. The headroom is address space only until it is touched.
-  const size_t size = request + request / 2;
+void* fresh(size_t size) {
   void* p = std::malloc(size);
   if (p && size >= 2 * kHugePage) {
     // The 2 MB-aligned interior of the block, backed by huge pages when the kernel allows (THP madvise).
@@ -100,7 +97,7 @@ void* cached_calloc(size_t n, size_t s) {
   if (size >= kMinCached) {
     if (void* p = cache.take(size)) return std::memset(p, 0, size);
     void* p = fresh(size);
-    return p ? std::memset(p, 0, size) : nullptr;  // the request only: the headroom is zero already
+    return p ? std::memset(p, 0, size) : nullptr;
   }
   return std::calloc(n, s);
 }
