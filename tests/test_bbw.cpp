@@ -275,6 +275,18 @@ TEST_CASE("symmetric_kdk equals Eigen's K * D * K; bad sizes are errors", "[bbw]
   REQUIRE((Eigen::MatrixXd(Q) - Eigen::MatrixXd(ref)).cwiseAbs().maxCoeff() < 1e-12 * Eigen::MatrixXd(ref).cwiseAbs().maxCoeff());
   REQUIRE_THROWS_AS(symmetric_kdk(K, Eigen::VectorXd::Ones(3)), Error);
   REQUIRE_THROWS_AS(symmetric_kdk(Eigen::SparseMatrix<double>(3, 4), Eigen::VectorXd::Ones(3)), Error);
+  // Columns split over threads (a grid large enough to be split): the very same matrix.
+  const TetMesh big = test::cube_grid(14, 14, 14, 0.1);
+  const Eigen::SparseMatrix<double> Kb = cotangent_stiffness(big.V, big.T);
+  const Eigen::VectorXd mb = lumped_mass(big.V, big.T).cwiseInverse();
+  const Eigen::SparseMatrix<double> one = symmetric_kdk(Kb, mb, 1), two = symmetric_kdk(Kb, mb, 2),
+                                    three = symmetric_kdk(Kb, mb, 3);
+  for (const Eigen::SparseMatrix<double>* q : {&two, &three}) {
+    REQUIRE(q->nonZeros() == one.nonZeros());
+    REQUIRE(std::equal(one.outerIndexPtr(), one.outerIndexPtr() + one.outerSize() + 1, q->outerIndexPtr()));
+    REQUIRE(std::equal(one.innerIndexPtr(), one.innerIndexPtr() + one.nonZeros(), q->innerIndexPtr()));
+    REQUIRE(std::equal(one.valuePtr(), one.valuePtr() + one.nonZeros(), q->valuePtr()));
+  }
 }
 
 TEST_CASE("CHOLMOD block cache: a freed large block serves the next request it fits, zeroed for calloc", "[qp]") {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <functional>
 #include <chrono>
 #include <cmath>
@@ -49,11 +50,11 @@ void validate(const Eigen::MatrixXd& V, const Eigen::VectorXi& b, const Eigen::M
 }  // namespace
 
 Eigen::SparseMatrix<double> bbw_energy_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
-                                              const Eigen::VectorXd& shape_mask) {
+                                              const Eigen::VectorXd& shape_mask, int threads) {
   const Eigen::SparseMatrix<double> K = cotangent_stiffness(V, T);
   const Eigen::VectorXd m = lumped_mass(V, T);
   const Eigen::VectorXd minv = m.cwiseInverse();
-  Eigen::SparseMatrix<double> Q = symmetric_kdk(K, minv);
+  Eigen::SparseMatrix<double> Q = symmetric_kdk(K, minv, threads);
   if (shape_mask.size()) {
     const double qd = Q.diagonal().mean(), kd = K.diagonal().mean();
     Q += (qd / kd) * masked_stiffness(V, T, shape_mask);
@@ -174,7 +175,8 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   // ---- assembly
   progress("assembly", 0.0);
   auto t0 = std::chrono::steady_clock::now();
-  Eigen::SparseMatrix<double> Q = bbw_energy_matrix(V, T, opts.shape_mask);
+  // Both cores, unless the coarse level's thread has the other one.
+  Eigen::SparseMatrix<double> Q = bbw_energy_matrix(V, T, opts.shape_mask, multilevel ? 1 : opts.threads);
   std::vector<int> fmap(n, 0);
   for (int k = 0; k < b.size(); ++k) fmap[b(k)] = -1;
   std::vector<int> free_list;
@@ -198,25 +200,48 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X0;
   std::vector<int> perm;
+  // From here on the free variables are renumbered in the factorization's (nested-dissection) order:
+  // a vertex's neighbours then sit close to it in memory, which makes the Gauss-Seidel sweeps and
+  // products with Q_ff (most of the bounded solve's time outside the factorizations) 2x faster than in
+  // TetGen's order, and every face is already in elimination order.
+  Eigen::SparseMatrix<double> Q_renumbered;
   {
     SpdSolver chol;
     chol.analyze(Qff);
     stats.factor_nonzeros = chol.factor_nonzeros();
     perm = chol.permutation();
     progress("factorization", 0.2);
-    if (!multilevel) {
-      chol.factorize(Qff);
-      X0 = chol.solve(-G);
+    const Eigen::VectorXi p = Eigen::Map<const Eigen::VectorXi>(perm.data(), nf);
+    if (!multilevel && opts.threads > 1) {
+      // The renumbered copy is made on the idle core while this one factorizes (hand.mesh: 20 ms).
+      std::exception_ptr failed;
+      std::thread renumber([&] {
+        try {
+          Q_renumbered = principal_submatrix(Qff, p);
+        } catch (...) {
+          failed = std::current_exception();
+        }
+      });
+      try {
+        chol.factorize(Qff);
+        X0 = chol.solve(-G);
+      } catch (...) {
+        renumber.join();
+        throw;
+      }
+      renumber.join();
+      if (failed) std::rethrow_exception(failed);
+    } else {
+      if (!multilevel) {
+        chol.factorize(Qff);
+        X0 = chol.solve(-G);
+      }
+      Q_renumbered = principal_submatrix(Qff, p);
     }
   }
   release_cholmod_block_cache();  // the whole-matrix factor's blocks: faces are smaller
-  // From here on the free variables are renumbered in the factorization's (nested-dissection) order:
-  // a vertex's neighbours then sit close to it in memory, which makes the Gauss-Seidel sweeps and
-  // products with Q_ff (most of the bounded solve's time outside the factorizations) 2x faster than in
-  // TetGen's order, and every face is already in elimination order.
+  Qff = std::move(Q_renumbered);
   {
-    const Eigen::VectorXi p = Eigen::Map<const Eigen::VectorXi>(perm.data(), nf);
-    Qff = principal_submatrix(Qff, p);
     Eigen::MatrixXd tmp(nf, m);
     for (int k = 0; k < nf; ++k) tmp.row(k) = G.row(perm[k]);
     G.swap(tmp);
@@ -226,7 +251,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     }
   }
   // The ordering's workspace and the matrix before renumbering are free again, but the C library keeps
-  // them mapped: hand them back before the face solves reach the bind's peak (armadillo: peak 612 -> 582-590 MB).
+  // them mapped: hand them back before the face solves reach the bind's peak (armadillo: 612 -> 590 MB).
   malloc_trim(0);
   stats.factorization_seconds = seconds_since(t0);
 

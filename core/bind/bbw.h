@@ -66,7 +66,8 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
                             const Eigen::MatrixXd& bc, const BbwOptions& opts = {}, BbwStats* stats = nullptr);
 
 // The biharmonic energy matrix Q = K M^-1 K (+ shape term) used above (#V x #V).
+// threads: for the product K M^-1 K (same result).
 Eigen::SparseMatrix<double> bbw_energy_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
-                                              const Eigen::VectorXd& shape_mask = {});
+                                              const Eigen::VectorXd& shape_mask = {}, int threads = 1);
 
 }  // namespace dfm

@@ -9,7 +9,8 @@
 namespace dfm {
 
 // K: square, symmetric (both triangles stored), compressed. d: one value per row. Returns K diag(d) K,
-// compressed with sorted row indices.
-Eigen::SparseMatrix<double> symmetric_kdk(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& d);
+// compressed with sorted row indices. threads: columns are split over that many threads (same result).
+Eigen::SparseMatrix<double> symmetric_kdk(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& d,
+                                          int threads = 1);
 
 }  // namespace dfm
