@@ -2,6 +2,10 @@
 // enclosed by its boundary).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
+#include <map>
+
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
 #include "tests/test_support.h"
@@ -111,6 +115,26 @@ TEST_CASE("tet boundary: one tet, and hand.mesh volume = volume inside its bound
   TetMesh m = read_tet_mesh(path);
   REQUIRE(non_positive_tet_count(m.V, m.T) == 0);
   Eigen::MatrixXi HB = tet_boundary_faces(m.T);
+  {  // Against a plain reference: faces seen once, in the order of their sorted vertex triples.
+    static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> seen;
+    for (int t = 0; t < m.T.rows(); ++t)
+      for (auto& fc : face) {
+        std::array<int, 3> f = {m.T(t, fc[0]), m.T(t, fc[1]), m.T(t, fc[2])}, k = f;
+        std::sort(k.begin(), k.end());
+        auto& e = seen[k];
+        ++e.first;
+        e.second = f;
+      }
+    int row = 0;
+    for (const auto& [k, e] : seen)
+      if (e.first == 1) {
+        REQUIRE(row < HB.rows());
+        REQUIRE(HB.row(row) == Eigen::RowVector3i(e.second[0], e.second[1], e.second[2]));
+        ++row;
+      }
+    REQUIRE(row == HB.rows());
+  }
   REQUIRE(is_closed(HB));
   REQUIRE(connected_component_count(HB) == 1);
   REQUIRE(signed_volume(m.V, HB) == Approx(tet_mesh_volume(m.V, m.T)).epsilon(1e-9));

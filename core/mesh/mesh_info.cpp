@@ -177,21 +177,45 @@ double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
 Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T) {
   // Faces of a positively oriented tet (0,1,2,3), each counter-clockwise seen from outside.
   static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::vector<std::pair<std::array<int, 3>, std::array<int, 3>>> all;  // sorted key, oriented face
-  all.reserve(4 * T.rows());
-  for (int t = 0; t < T.rows(); ++t)
-    for (auto& fc : face) {
-      std::array<int, 3> f = {T(t, fc[0]), T(t, fc[1]), T(t, fc[2])}, k = f;
-      std::sort(k.begin(), k.end());
-      all.push_back({k, f});
-    }
-  std::sort(all.begin(), all.end(), [](auto& x, auto& y) { return x.first < y.first; });
+  if (T.rows() == 0) return Eigen::MatrixXi(0, 3);
+  // Faces bucketed by their smallest vertex (a counting sort), then matched inside each small bucket:
+  // linear time, where one sort of all 4 #T faces took 0.25 s on armadillo's 304K tets. The output is in
+  // the order of the sorted vertex triples.
+  const long lo = T.minCoeff(), n = static_cast<long>(T.maxCoeff()) - lo + 1;
+  const long nf = 4 * static_cast<long>(T.rows());
+  struct Face {
+    int b, c;  // the two larger vertices of the sorted triple
+    long id;   // 4 * tet + face
+  };
+  std::vector<long> start(n + 1, 0);
+  auto sorted_key = [&](long id) {
+    std::array<int, 3> k = {T(id / 4, face[id % 4][0]), T(id / 4, face[id % 4][1]), T(id / 4, face[id % 4][2])};
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
+    if (k[1] > k[2]) std::swap(k[1], k[2]);
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
+    return k;
+  };
+  for (long id = 0; id < nf; ++id) ++start[sorted_key(id)[0] - lo + 1];
+  for (long v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<Face> faces(nf);
+  std::vector<long> fill(start.begin(), start.end() - 1);
+  for (long id = 0; id < nf; ++id) {
+    const std::array<int, 3> k = sorted_key(id);
+    faces[fill[k[0] - lo]++] = {k[1], k[2], id};
+  }
   std::vector<std::array<int, 3>> out;
-  for (size_t i = 0; i < all.size();) {
-    size_t j = i;
-    while (j < all.size() && all[j].first == all[i].first) ++j;
-    if (j - i == 1) out.push_back(all[i].second);
-    i = j;
+  for (long v = 0; v < n; ++v) {
+    const auto first = faces.begin() + start[v], last = faces.begin() + start[v + 1];
+    std::sort(first, last, [](const Face& x, const Face& y) { return x.b != y.b ? x.b < y.b : x.c < y.c; });
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && j->b == i->b && j->c == i->c) ++j;
+      if (j - i == 1) {
+        const long t = i->id / 4, f = i->id % 4;
+        out.push_back({T(t, face[f][0]), T(t, face[f][1]), T(t, face[f][2])});
+      }
+      i = j;
+    }
   }
   Eigen::MatrixXi B(out.size(), 3);
   for (size_t i = 0; i < out.size(); ++i) B.row(i) << out[i][0], out[i][1], out[i][2];
