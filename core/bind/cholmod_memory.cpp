@@ -56,6 +56,14 @@ struct BlockCache {
     return p;
   }
   void put(void* p, size_t usable) {
+    if (usable >= kMinGivingBack) {
+      // A large free block keeps its address space, not its pages: a cached block that no later face
+      // takes would otherwise stay resident; huge pages make the refault of a reused one cheap
+      // (armadillo, same CPU time; peak 596-597 -> 588-592 MB).
+      const uintptr_t b = (reinterpret_cast<uintptr_t>(p) + kPage - 1) & ~(kPage - 1);
+      const uintptr_t e = (reinterpret_cast<uintptr_t>(p) + usable) & ~(kPage - 1);
+      if (e > b) madvise(reinterpret_cast<void*>(b), e - b, MADV_DONTNEED);
+    }
     if (blocks.size() == kMaxBlocks) {  // drop the smallest
       size_t small = 0;
       for (size_t k = 1; k < blocks.size(); ++k)
