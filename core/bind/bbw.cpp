@@ -138,11 +138,6 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
           co.threads = 1;                                 // the other core assembles and orders meanwhile
           co.cancel = &sh.coarse_stop;
           co.multilevel_min_vertices = 0;
-          // Delaunay-of-a-subset tets are often badly shaped: with sweeps that skip small moves, or
-          // sweeps before the first face, PDAS needed 2-3x the faces on armadillo's coarse level (or
-          // cycled); full sweeps between faces only, there.
-          co.smoothing_threshold_relative = 0;
-          co.presmoothing_sweeps_per_variable = 0;
           co.handle_solved = [&](int j, const Eigen::VectorXd& w) {
             {
               std::lock_guard<std::mutex> lock(sh.mu);
