@@ -117,7 +117,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       if (t.joinable()) t.join();
     }
   } join_coarse{coarse_thread, sh};
-  std::function<void()> fine_worker;  // set once the fine solves can start (below)
+  std::function<void(bool)> fine_worker;  // set once the fine solves can start (below)
 
   if (multilevel) {
     coarse_thread = std::thread([&] {
@@ -163,7 +163,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       sh.cv.wait(lock, [&] { return sh.fine_ready || sh.abandon; });
       if (sh.abandon || opts.threads < 2) return;
       lock.unlock();
-      fine_worker();
+      fine_worker(/*smallest_first=*/true);
     });
   }
 
@@ -299,7 +299,17 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     qo.presmoothing_sweeps_per_variable = opts.presmoothing_sweeps_per_variable;
     auto cancelled = [&] { return opts.cancel && opts.cancel->load(); };
     // The next handle to solve and its start (false: none left, or give up). Called with the lock held.
-    auto next_handle = [&](std::unique_lock<std::mutex>& lock, int& j, bool& coarse_start) {
+    auto next_handle = [&](std::unique_lock<std::mutex>& lock, int& j, bool& coarse_start, bool smallest_first) {
+      auto first_untaken = [&](const std::vector<int>& order) {
+        if (smallest_first) {
+          for (auto it = order.rbegin(); it != order.rend(); ++it)
+            if (!sh.taken[*it]) return *it;
+        } else {
+          for (int c : order)
+            if (!sh.taken[c]) return c;
+        }
+        return -1;
+      };
       double idle = 0;
       for (;;) {
         if (sh.abandon || !sh.errors.empty()) return false;
@@ -308,12 +318,10 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
           sh.cv.notify_all();
           return false;
         }
-        for (int c : sh.coarse_solved)
-          if (!sh.taken[c]) return j = c, coarse_start = true, true;
+        if ((j = first_untaken(sh.coarse_solved)) >= 0) return coarse_start = true, true;
         if (std::find(sh.taken.begin(), sh.taken.end(), 0) == sh.taken.end()) return false;
         if (sh.x0_ready) {
-          for (int c : x0_order)
-            if (!sh.taken[c]) return j = c, coarse_start = false, true;
+          if ((j = first_untaken(x0_order)) >= 0) return coarse_start = false, true;
         }
         if (sh.coarse_done && !sh.x0_busy) {
           // The coarse level has no more to give: the bound-free start for the remaining handles. Q_ff is
@@ -345,7 +353,10 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
         }
       }
     };
-    fine_worker = [&] {
+    // smallest_first: the coarse level's thread, when it joins, takes the remaining handles from the small
+    // end, the first thread from the large end: the largest faces of the two threads do not coincide,
+    // which keeps the peak memory down (armadillo: two of the largest faces at once reached 600-620 MB).
+    fine_worker = [&](bool smallest_first) {
       single_threaded_numerics();
       const CholmodBlockCacheScope release_cache;
       Eigen::VectorXd x_start(nf), w;
@@ -354,7 +365,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
         bool coarse_start = false;
         {
           std::unique_lock<std::mutex> lock(sh.mu);
-          if (!next_handle(lock, j, coarse_start)) return;
+          if (!next_handle(lock, j, coarse_start, smallest_first)) return;
           sh.taken[j] = 1;
         }
         try {
@@ -393,13 +404,13 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     std::vector<std::thread> pool;
     // With a coarse level, its thread is the second solver once it is done; else a thread of our own.
     if (!multilevel)
-      for (int t = 1; t < std::min(opts.threads, m); ++t) pool.emplace_back(fine_worker);
+      for (int t = 1; t < std::min(opts.threads, m); ++t) pool.emplace_back(fine_worker, false);
     {
       std::lock_guard<std::mutex> lock(sh.mu);
       sh.fine_ready = true;
     }
     sh.cv.notify_all();
-    fine_worker();
+    fine_worker(false);
     for (auto& th : pool) th.join();
     if (coarse_thread.joinable()) {
       {
