@@ -382,6 +382,10 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
             x_start = X0.col(j);
           }
           start.col(j) = x_start;
+          // On large meshes the peak is two threads' faces at once on top of everything else: what the
+          // last handle freed goes back to the system first (armadillo: peak 594-600 -> 556-583 MB, for
+          // ~10 ms a handle and some refaults: bounded solve +5%).
+          if (multilevel) malloc_trim(0);
           BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, x_start, qo);
           std::lock_guard<std::mutex> lock(sh.mu);
           if (opts.handle_solved) {
