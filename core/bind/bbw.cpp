@@ -354,55 +354,61 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
       }
     };
     // smallest_first: the coarse level's thread, when it joins, takes the remaining handles from the small
-    // end, the first thread from the large end: the largest faces of the two threads do not coincide,
-    // which keeps the peak memory down (armadillo: two of the largest faces at once reached 600-620 MB).
+    // end, the first thread from the large end, so the largest faces of the two threads do not coincide
+    // (armadillo's peak memory is two faces at once; measured 597-609 -> 590-599 MB).
     fine_worker = [&](bool smallest_first) {
-      single_threaded_numerics();
-      const CholmodBlockCacheScope release_cache;
-      Eigen::VectorXd x_start(nf), w;
-      for (;;) {
-        int j = -1;
-        bool coarse_start = false;
-        {
-          std::unique_lock<std::mutex> lock(sh.mu);
-          if (!next_handle(lock, j, coarse_start, smallest_first)) return;
-          sh.taken[j] = 1;
-        }
-        try {
-          if (coarse_start) {
-            // The coarse weights carried to this mesh. Values under 1e-4 are within the coarse solve's
-            // accuracy; starting them at the bound keeps the first faces (and the bind's peak memory:
-            // armadillo 606 -> 579 MB) smaller at no extra faces.
-            w = sh.level.P * sh.Wc.col(j);
-            for (int k = 0; k < nf; ++k) {
-              const double v = std::min(std::max(w(f(perm[k])), 0.0), 1.0);
-              x_start(k) = v < 1e-4 ? 0.0 : v;
+      try {
+        single_threaded_numerics();
+        const CholmodBlockCacheScope release_cache;
+        Eigen::VectorXd x_start(nf), w;
+        for (;;) {
+          int j = -1;
+          bool coarse_start = false;
+          {
+            std::unique_lock<std::mutex> lock(sh.mu);
+            if (!next_handle(lock, j, coarse_start, smallest_first)) return;
+            sh.taken[j] = 1;
+          }
+          try {
+            if (coarse_start) {
+              // The coarse weights carried to this mesh. Values under 1e-4 are within the coarse solve's
+              // accuracy; starting them at the bound keeps the first faces (and the bind's peak memory:
+              // armadillo 606 -> 579 MB) smaller at no extra faces.
+              w = sh.level.P * sh.Wc.col(j);
+              for (int k = 0; k < nf; ++k) {
+                const double v = std::min(std::max(w(f(perm[k])), 0.0), 1.0);
+                x_start(k) = v < 1e-4 ? 0.0 : v;
+              }
+            } else {
+              x_start = X0.col(j);
             }
-          } else {
-            x_start = X0.col(j);
+            start.col(j) = x_start;
+            // On large meshes the peak is two threads' faces at once on top of everything else: what the
+            // last handle freed goes back to the system first (armadillo: peak 594-600 -> 556-583 MB, for
+            // ~10 ms a handle and some refaults: bounded solve +5%).
+            if (multilevel) malloc_trim(0);
+            BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, x_start, qo);
+            std::lock_guard<std::mutex> lock(sh.mu);
+            if (opts.handle_solved) {
+              Eigen::VectorXd full(n);
+              for (int k = 0; k < nf; ++k) full(f(perm[k])) = r.x(k);
+              for (int k = 0; k < b.size(); ++k) full(b(k)) = bc(k, j);
+              opts.handle_solved(j, full);
+            }
+            results[j] = std::move(r);
+            from_coarse[j] = coarse_start;
+            ++sh.finished;
+            if (opts.progress) opts.progress("solve", 0.3 + 0.7 * double(sh.finished) / m);
+          } catch (const std::exception& e) {
+            std::lock_guard<std::mutex> lock(sh.mu);
+            sh.errors.push_back(e.what());
+            sh.cv.notify_all();
           }
-          start.col(j) = x_start;
-          // On large meshes the peak is two threads' faces at once on top of everything else: what the
-          // last handle freed goes back to the system first (armadillo: peak 594-600 -> 556-583 MB, for
-          // ~10 ms a handle and some refaults: bounded solve +5%).
-          if (multilevel) malloc_trim(0);
-          BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, x_start, qo);
-          std::lock_guard<std::mutex> lock(sh.mu);
-          if (opts.handle_solved) {
-            Eigen::VectorXd full(n);
-            for (int k = 0; k < nf; ++k) full(f(perm[k])) = r.x(k);
-            for (int k = 0; k < b.size(); ++k) full(b(k)) = bc(k, j);
-            opts.handle_solved(j, full);
-          }
-          results[j] = std::move(r);
-          from_coarse[j] = coarse_start;
-          ++sh.finished;
-          if (opts.progress) opts.progress("solve", 0.3 + 0.7 * double(sh.finished) / m);
-        } catch (const std::exception& e) {
-          std::lock_guard<std::mutex> lock(sh.mu);
-          sh.errors.push_back(e.what());
-          sh.cv.notify_all();
         }
+      } catch (const std::exception& e) {  // outside a handle's solve (memory): leave, reported below
+        std::lock_guard<std::mutex> lock(sh.mu);
+        sh.errors.push_back(e.what());
+        sh.cv.notify_all();
       }
     };
     std::vector<std::thread> pool;
