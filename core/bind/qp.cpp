@@ -64,11 +64,10 @@ void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0, bool in_eliminati
   cholmod_common& c = impl_->c;
   if (impl_->L) cholmod_free_factor(&impl_->L, &c);
   impl_->numeric = false;
-  // Small systems: AMD alone (METIS costs more than it saves).
   if (in_elimination_order) {
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_NATURAL;
-  } else if (A.rows() < 20000) {
+  } else if (A.rows() < 20000) {  // small systems: AMD alone (METIS costs more than it saves)
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_AMD;
   } else {
@@ -429,7 +428,11 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
   // status: -1 at lower bound, +1 at upper bound, 0 free.
   std::vector<signed char> st(n, 0);
   Eigen::VectorXd x = x0.size() ? x0 : lo;
-  for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
+  // Each variable's status read off where x is: at a bound, or free.
+  auto status_from_position = [&] {
+    for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
+  };
+  status_from_position();
 
   auto check_cancel = [&] {
     if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
@@ -496,7 +499,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     const double threshold = std::max(0.1 * opts.tolerance, opts.smoothing_threshold_relative *
                                                                 kkt_residual_from_gradient(lo, hi, hd, x, grad));
     projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
-    for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
+    status_from_position();
   }
   for (int it = 0; it < opts.max_pdas_iterations && !done; ++it) {
     check_cancel();
@@ -546,7 +549,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
         done = true;
         break;
       }
-      for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
+      status_from_position();
     }
     if (!seen.insert(hash_status(st)).second) {
       // Cycling. The sweeps move the active set by other rules than PDAS's own: first try without them
@@ -561,7 +564,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
   // ---- monotone fallback: primal active set with a ratio test (objective strictly decreases).
   if (!done) {
     x = x.cwiseMax(lo).cwiseMin(hi);
-    for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
+    status_from_position();
     Eigen::VectorXd xt;
     while (res.iterations < opts.max_iterations) {
       check_cancel();
