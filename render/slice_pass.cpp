@@ -1,7 +1,9 @@
 #include "render/slice_pass.h"
 
 #include <algorithm>
+#include <string>
 
+#include "core/anim/manifold_normals.h"
 #include "core/anim/slice_table.h"
 #include "core/util/error.h"
 
@@ -29,14 +31,26 @@ SlicePass::SlicePass()
   check_error("slice pass setup");
 }
 
-void SlicePass::upload(const AnimationManifold& m) {
+void SlicePass::upload(const AnimationManifold& m, const Eigen::MatrixXd* vertex_normals4) {
   validate_manifold(m, "GPU slice manifold");
-  std::vector<float> pos(m.V.size());
+  Eigen::MatrixXd computed;
+  if (!vertex_normals4) {
+    computed = manifold_vertex_normals(m);
+    vertex_normals4 = &computed;
+  }
+  if (vertex_normals4->rows() != m.num_vertices() || vertex_normals4->cols() != 4)
+    throw Error("GPU slice: vertex normals must be " + std::to_string(m.num_vertices()) + " x 4");
+  std::vector<float> pos(m.V.size()), nrm(m.V.size());
   for (Eigen::Index i = 0; i < m.V.size(); ++i) pos[i] = static_cast<float>(m.V.data()[i]);  // row-major x y z t
+  for (int v = 0; v < m.num_vertices(); ++v)
+    for (int d = 0; d < 4; ++d) nrm[4 * v + d] = static_cast<float>((*vertex_normals4)(v, d));
   vao_.bind();
   positions_.upload(GL_ARRAY_BUFFER, pos);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+  normals_.upload(GL_ARRAY_BUFFER, nrm);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
   // T is row-major int32: exactly the index layout lines_adjacency wants (4 per primitive).
   indices_.upload(GL_ELEMENT_ARRAY_BUFFER, m.T.data(), static_cast<size_t>(m.T.size()) * sizeof(int));
   glBindVertexArray(0);

@@ -1,8 +1,9 @@
 #pragma once
 // GPU slicing of an animation manifold (OpenGL 3.3 core): slice.geom.glsl takes each tetrahedron as
 // lines_adjacency and emits 0-2 triangles, captured by transform feedback into a buffer of PosNormal
-// (3 vertices per triangle, unwelded, flat 4D-facet normals with the axis dropped) that the editor
-// draws directly and tests read back. For t only the tetrahedra of the active slab(s) are drawn.
+// (3 vertices per triangle, unwelded) that the editor draws directly and tests read back. Normals are
+// the smooth ones of the CPU slicer: per-vertex 4D normals (core/anim/manifold_normals.h) uploaded with
+// the positions, interpolated along the cut edge with the position's mu. For t only the tetrahedra of the active slab(s) are drawn.
 // Same case table, tie rule and winding as the CPU slicer (core/anim/slice.h). Positions are floats
 // on the GPU. Needs a current GL context for its whole life.
 #include <vector>
@@ -19,8 +20,9 @@ class SlicePass {
  public:
   SlicePass();  // compiles the program; throws dfm::Error on a driver failure
 
-  // Uploads positions (as floats) and tetrahedra; keeps the layer times and slab offsets.
-  void upload(const AnimationManifold& m);
+  // Uploads positions and unit 4D vertex normals (as floats) and tetrahedra; keeps the layer times and
+  // slab offsets. vertex_normals4: manifold_vertex_normals(m) when the caller has it, else computed.
+  void upload(const AnimationManifold& m, const Eigen::MatrixXd* vertex_normals4 = nullptr);
 
   // Slices into output(); returns the triangle count. Grows the output buffer when needed.
   int slice(SliceAxis axis, double value);
@@ -35,7 +37,7 @@ class SlicePass {
  private:
   Program program_;
   VertexArray vao_;
-  Buffer positions_, indices_, out_;
+  Buffer positions_, normals_, indices_, out_;
   size_t capacity_ = 0;  // triangles out_ can hold
   AnimationManifold meta_;  // times and slab offsets only (no vertices or tetrahedra)
   int num_tets_ = 0;

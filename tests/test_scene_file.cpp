@@ -84,6 +84,9 @@ void fill(Document& d) {
   d.set_key(0.0);
   d.translate_handle(4, {1.0 / 3.0, 0, 0});
   d.set_key(0.75);
+  TriMesh key = octahedron();  // a mesh key (format version 2)
+  key.V *= 0.5;
+  d.key_mesh(key, "octa-key.obj", 1.5);
   d.set_method(SkinMethod::DQS);
   d.set_inbetweens(7);
   BindSettings bs;
@@ -157,6 +160,10 @@ void require_equal(const SceneData& a, const SceneData& b) {
   for (size_t i = 0; i < a.keys.size(); ++i) {
     CHECK(a.keys[i].time == b.keys[i].time);
     same_params(a.keys[i].params, b.keys[i].params);
+    CHECK(a.keys[i].is_mesh() == b.keys[i].is_mesh());
+    CHECK(same(a.keys[i].mesh.V, b.keys[i].mesh.V));
+    CHECK(same(a.keys[i].mesh.F, b.keys[i].mesh.F));
+    CHECK(a.keys[i].mesh_path == b.keys[i].mesh_path);
   }
   CHECK(a.method == b.method);
   CHECK(a.inbetweens == b.inbetweens);
@@ -339,7 +346,48 @@ TEST_CASE("hostile scene files give errors naming the file and the problem") {
     std::memcpy(&b[off], &neg, 4);
     expect_error(good_json, b, "rig.regions[0].vertices", true);
   }
-  CHECK(n >= 25);
+  // Mesh keys (version 2).
+  expect_error(edit([](json& j) { j["version"] = 1; }), good_bin, "'keys[2].mesh' needs scene format version 2");
+  expect_error(edit([](json& j) { j["keys"][2]["mesh"].erase("source"); }), good_bin, "keys[2].mesh.source");
+  expect_error(edit([](json& j) { j["keys"][2]["mesh"]["F"]["cols"] = 2; }), good_bin, "keys[2].mesh.F");
+  {
+    std::string b = good_bin;
+    const long long off = gj["keys"][2]["mesh"]["F"]["offset"];
+    const int bad = 6;  // the octahedron has 6 vertices
+    std::memcpy(&b[off], &bad, 4);
+    expect_error(good_json, b, "'keys[2].mesh.F' has an index out of range", true);
+  }
+  CHECK(n >= 29);
+}
+
+TEST_CASE("a mesh key round-trips; version 1 files (pose keys only) still load") {
+  TempDir tmp;
+  Document d;
+  fill(d);
+  REQUIRE(d.keys().size() == 3);
+  REQUIRE(d.keys()[2].is_mesh());
+  const std::string a = tmp / "m.scene.json";
+  d.save_scene(a);
+  const json j = json::parse(slurp(a));
+  CHECK(j["version"] == 2);
+  CHECK(j["keys"][2]["mesh"]["source"] == "octa-key.obj");
+  CHECK_FALSE(j["keys"][0].contains("mesh"));
+  Document e;
+  e.load_scene(a);
+  require_equal(d.data(), e.data());
+  CHECK(e.keys()[2].mesh.V == d.keys()[2].mesh.V);
+
+  // A version 1 file: the same scene without the mesh key, as the previous program wrote it.
+  d.delete_key(2);
+  const std::string old_path = tmp / "old.scene.json";
+  d.save_scene(old_path);
+  json o = json::parse(slurp(old_path));
+  o["version"] = 1;
+  spit(old_path, o.dump(1));
+  Document f;
+  f.load_scene(old_path);
+  require_equal(d.data(), f.data());
+  CHECK_FALSE(f.has_mesh_keys());
 }
 
 TEST_CASE("a missing scene file is an error naming it") {

@@ -8,6 +8,8 @@
 #include "app/cli/command.h"
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_io.h"
+#include "core/anim/manifold_sequence.h"
+#include "core/anim/transition.h"
 #include "core/anim/slice.h"
 #include "core/anim/surface_checks.h"
 #include "core/mesh/io.h"
@@ -24,12 +26,15 @@ const char* kUsage =
     "usage: deform manifold (--keyframes K0.obj K1.obj ... [--times t0 t1 ...] | --manifold M.tet4)\n"
     "                       [--axis t|x|y|z] [--at VALUE -o SLICE.obj] [--save-manifold M.tet4] [--stats]\n"
     "                       [--frames N [--sequence PREFIX] [--strip STRIP.png]]\n"
-    "  Keyframes are meshes with identical connectivity (default times 0, 1, 2, ...), joined into 4D\n"
-    "  tetrahedra (x, y, z, t). --at slices at that value of --axis (default t; x, y, z give the sweep\n"
+    "  Keyframes are meshes of any connectivity (default times 0, 1, 2, ...), joined into 4D tetrahedra\n"
+    "  (x, y, z, t): neighbours sharing one triangle list by the exact prism build, others by a transition\n"
+    "  (those keys must be closed, oriented and not self-intersecting). --at slices at that value of --axis (default t; x, y, z give the sweep\n"
     "  through time drawn in the other three coordinates) and writes the welded slice with normals.\n"
     "  --sequence writes N slices on t evenly spaced over the animation as PREFIX0000.obj, ...\n"
     "  --strip renders those N frames side by side on the GPU slicer (needs a display: xvfb-run).\n"
-    "  --stats prints the tetrahedron count and the slice's triangles, vertices, closedness, volume.";
+    "  --stats prints the build (prism / transition slabs, Steiner points, seconds per stage: conform,\n"
+    "  delaunay, classify, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
+    "  closedness, volume.";
 
 void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, dfm::SliceAxis axis, double at) {
   const bool closed = s.mesh.num_faces() > 0 && dfm::is_closed_and_oriented(s.mesh.F);
@@ -44,6 +49,17 @@ void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, d
     std::cout << "volume (open only at the first/last time): " << dfm::flux_volume(s.mesh.V, s.mesh.F, 0) << "\n";
   else
     std::cout << "volume: n/a (open slice)\n";
+}
+
+// What the build did and how long each stage took (transitions: conforming Delaunay, the 4D
+// Delaunay, classifying simplices, extracting the boundary).
+void print_sequence_stats(const dfm::SequenceStats& s) {
+  const dfm::TransitionStats& t = s.transitions;
+  std::cout << "prism slabs: " << s.prism_slabs << "\ntransition slabs: " << s.transition_slabs
+            << "\nsteiner points: " << t.source_steiner + t.target_steiner << "\nconform seconds: " << t.conform_seconds
+            << "\ndelaunay seconds: " << t.delaunay_seconds << "\nclassify seconds: " << t.classify_seconds
+            << "\nextract seconds: " << t.extract_seconds << "\ntransition seconds: " << t.total_seconds
+            << "\ntotal seconds: " << s.seconds << "\n";
 }
 
 // N frames of the GPU slice (slice shader -> transform feedback -> surface pass) side by side.
@@ -140,21 +156,20 @@ int run(const dfm::cli::Args& args) {
         times.push_back(t);
       }
     }
-    std::vector<Eigen::MatrixXd> layers;
-    Eigen::MatrixXi F;
+    std::vector<dfm::KeySurface> keys;
     for (size_t i = 0; i < keyframes.size(); ++i) {
       dfm::TriMesh k = dfm::read_surface(keyframes[i]);
-      if (i == 0) {
-        F = k.F;
-      } else if (k.V.rows() != layers[0].rows() || k.F.rows() != F.rows() || k.F != F) {
-        throw dfm::Error(keyframes[i] + ": connectivity differs from " + keyframes[0] + " (" +
-                         std::to_string(k.V.rows()) + " vertices, " + std::to_string(k.F.rows()) +
-                         " triangles vs " + std::to_string(layers[0].rows()) + ", " + std::to_string(F.rows()) +
-                         "); keyframes must share one triangle list");
-      }
-      layers.push_back(std::move(k.V));
+      if (k.num_faces() == 0) throw dfm::Error(keyframes[i] + ": mesh has no triangles");
+      keys.push_back({times[i], std::move(k.V), std::move(k.F), keyframes[i]});
     }
-    M = dfm::build_manifold(layers, F, times);
+    // Neighbours sharing one triangle list: the exact prism build; others: a transition, whose
+    // keys are checked first (closed, oriented, finite, not self-intersecting; errors name the file).
+    for (size_t i = 0; i + 1 < keys.size(); ++i)
+      if (!dfm::same_connectivity(keys[i], keys[i + 1]))
+        for (const dfm::KeySurface* k : {&keys[i], &keys[i + 1]}) dfm::check_transition_key({k->V, k->F, {}}, k->name);
+    dfm::SequenceStats seq;
+    M = dfm::build_manifold_sequence(keys, {}, &seq);
+    if (stats) print_sequence_stats(seq);
   }
 
   if (!save_manifold.empty()) dfm::write_manifold(save_manifold, M);

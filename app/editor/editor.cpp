@@ -340,6 +340,20 @@ void Editor::save_screenshot(const std::string& path) {
   status("screenshot " + path);
 }
 
+void Editor::wait_for_manifold() {
+  render_frame();  // syncs the view: starts a build the last edits need
+  if (!view_->manifold_building()) return;
+  const double t0 = glfwGetTime();
+  while (view_->manifold_building()) {
+    glfwSwapBuffers(window_);
+    glfwPollEvents();
+    render_frame();
+  }
+  std::printf("animation manifold (transition) built on the worker in %.2f s%s%s\n", glfwGetTime() - t0,
+              view_->last_error().empty() ? "" : ": ", view_->last_error().c_str());
+  std::fflush(stdout);
+}
+
 // Plays the timeline for a number of frames, each one fully drawn and finished (glFinish), and prints
 // the frame times: what an artist sees while the animation plays. The stage split (ImGui layout and
 // input, deform = slice or skin, scene draw, ImGui draw) is measured with glFinish between stages.
@@ -454,7 +468,10 @@ int Editor::run() {
   if (!opts_.script.empty()) {
     const std::vector<ScriptLine> lines = read_script(opts_.script);  // checks every line first
     ScriptHost host;
-    host.screenshot = [this](const std::string& png) { save_screenshot(png); };
+    host.screenshot = [this](const std::string& png) {
+      wait_for_manifold();  // a script's picture shows the animation it keyed, not the build in progress
+      save_screenshot(png);
+    };
     host.bind = [this](Document& d) {
       // The window as the user sees it before pressing Bind: the first frame ever drawn pays one-off
       // costs (shader compiles, mesh and font uploads) that are not the bind's.
@@ -508,7 +525,7 @@ int Editor::run() {
   }
   if (frame_selection_after_script_) frame_selection();
   if (opts_.play_frames > 0) play_benchmark(opts_.play_frames);
-  if (!opts_.screenshot.empty()) save_screenshot(opts_.screenshot);
+  if (!opts_.screenshot.empty()) wait_for_manifold(), save_screenshot(opts_.screenshot);
   if (opts_.quit || should_quit_) return 0;
 
   double last = glfwGetTime();

@@ -105,6 +105,10 @@ class Editor {
   bool save_scene_as(const std::string& path);  // false: failed, reported in the UI
   void save_posed(const std::string& path);
   void save_frames(const std::string& pattern, int count);
+  // Timeline > Key mesh...: Document::key_mesh_file at the time the button was pressed (errors: popup).
+  void key_mesh_file(const std::string& path, double t);
+  // Draws frames until the viewport's manifold has finished building (scripts, --screenshot).
+  void wait_for_manifold();
   // File > Export glTF and `export-gltf`: returns the report as text (also shown in a popup).
   std::string export_gltf(const std::string& path, int influences);
   void draw_export_report();
@@ -172,6 +176,7 @@ class Editor {
   std::string error_popup_;
   std::string export_report_;  // shown in the "glTF export" popup until closed
   int export_influences_ = 4;
+  double key_mesh_time_ = 0;  // the time "Key mesh..." was pressed at
   bool quit_prompt_ = false;
   bool should_quit_ = false;
   std::chrono::steady_clock::time_point last_autosave_;

@@ -11,8 +11,10 @@
 
 #include "app/editor/editor.h"
 
+#include "core/anim/slice.h"
 #include "core/export/export_document.h"
 #include "core/mesh/io.h"
+#include "core/scene/key_surfaces.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
 
@@ -81,6 +83,7 @@ void Editor::draw_ui() {
       else if (what == "export-gltf") export_gltf(p, export_influences_);
       else if (what == "load-skeleton") doc_.load_skeleton(p), files_.add_recent(p);
       else if (what == "load-cage") doc_.load_cage(p), files_.add_recent(p);
+      else if (what == "key-mesh") key_mesh_file(p, key_mesh_time_);
     } catch (const std::exception& e) {
       error_popup_ = e.what();
     }
@@ -107,9 +110,9 @@ void Editor::draw_menu_bar() {
       else save_scene_as(doc_.path());
     }
     if (ImGui::MenuItem("Save scene as...")) files_.show(FilePanel::Mode::Save, "Save scene as", "save-scene", "scene.scene.json");
-    if (ImGui::MenuItem("Save posed mesh...", nullptr, false, doc_.has_weights()))
+    if (ImGui::MenuItem("Save posed mesh...", nullptr, false, doc_.has_weights() || doc_.has_mesh_keys()))
       files_.show(FilePanel::Mode::Save, "Save posed mesh", "save-posed", "posed.obj");
-    if (ImGui::MenuItem("Save all frames...", nullptr, false, doc_.has_weights() && doc_.keys().size() >= 2))
+    if (ImGui::MenuItem("Save all frames...", nullptr, false, (doc_.has_weights() || doc_.has_mesh_keys()) && doc_.keys().size() >= 2))
       files_.show(FilePanel::Mode::Save, "Save frames (name_####.obj)", "save-frames", "frame.obj");
     if (ImGui::MenuItem("Save screenshot...")) files_.show(FilePanel::Mode::Save, "Save screenshot", "screenshot", "screenshot.png");
     if (ImGui::BeginMenu("Export glTF", doc_.has_weights())) {
@@ -459,8 +462,12 @@ void Editor::draw_viewport_hud() {
   if (!status_.empty())
     dl->AddText(ImVec2(o.x, float(viewport_.y + viewport_.h) - 24),
                 status_error_ ? IM_COL32(255, 120, 110, 255) : IM_COL32(170, 176, 186, 220), status_.c_str());
+  float y = o.y + 18;
   if (!view_->last_error().empty())
-    dl->AddText(ImVec2(o.x, o.y + 18), IM_COL32(255, 150, 110, 255), view_->last_error().c_str());
+    dl->AddText(ImVec2(o.x, y), IM_COL32(255, 150, 110, 255), view_->last_error().c_str()), y += 18;
+  // A transition builds on a worker: say so (the pose or rest shows until it lands).
+  if (view_->manifold_building())
+    dl->AddText(ImVec2(o.x, y), IM_COL32(140, 215, 240, 255), view_->manifold_progress().c_str());
 }
 
 void Editor::draw_quit_prompt() {
@@ -560,20 +567,33 @@ void Editor::save_posed(const std::string& path) {
 }
 
 void Editor::save_frames(const std::string& pattern, int count) {
-  // name.obj -> name_0000.obj ... over the keyed time range; the document's time is restored after.
+  // name.obj -> name_0000.obj ... over the keyed time range: slices of one manifold build.
   const auto& keys = doc_.keys();
   if (keys.size() < 2) throw Error("saving frames needs at least two keys");
-  const std::string ext_dot = pattern.substr(pattern.find_last_of('.'));
-  const std::string stem = pattern.substr(0, pattern.size() - ext_dot.size());
-  const double t0 = keys.front().time, t1 = keys.back().time, keep = doc_.time();
+  const size_t dot = pattern.find_last_of('.');
+  const std::string ext_dot = dot == std::string::npos ? ".obj" : pattern.substr(dot);
+  const std::string stem = pattern.substr(0, pattern.size() - (dot == std::string::npos ? 0 : ext_dot.size()));
+  const double t0 = keys.front().time, t1 = keys.back().time;
+  const AnimationManifold m = document_manifold(doc_);
   for (int i = 0; i < count; ++i) {
-    doc_.set_time(t0 + (t1 - t0) * i / std::max(1, count - 1));
     char num[16];
     std::snprintf(num, sizeof num, "_%04d", i);
-    write_surface(stem + num + ext_dot, posed_surface(doc_));
+    write_surface(stem + num + ext_dot, slice_manifold(m, SliceAxis::T, t0 + (t1 - t0) * i / std::max(1, count - 1)).mesh);
   }
-  doc_.set_time(keep);
   status("saved " + std::to_string(count) + " frames as " + stem + "_####" + ext_dot);
+}
+
+void Editor::key_mesh_file(const std::string& path, double t) {
+  try {
+    doc_.key_mesh_file(path, t);  // checks the mesh first: a bad file changes nothing
+    files_.add_recent(path);
+    char msg[64];
+    std::snprintf(msg, sizeof msg, " at t = %.3f", t);
+    status("keyed mesh " + path + msg);
+  } catch (const std::exception& e) {
+    error_popup_ = std::string("The mesh was not keyed; the scene is unchanged.\n") + e.what();
+    status(e.what(), true);
+  }
 }
 
 }  // namespace dfm::editor

@@ -1,11 +1,12 @@
-// The timeline under the viewport: transport (play / pause / loop), set and delete keys, a ruler
-// to scrub the animation manifold (drag), keys as diamonds (drag to move, right-click to delete),
-// and the sweep view (slice along x, y or z instead of time).
+// The timeline under the viewport: transport (play / pause / loop), set and delete keys, key a mesh
+// file, a ruler to scrub the animation manifold (drag), pose keys as diamonds and mesh keys as squares
+// (drag to move, right-click to delete), and the sweep view (slice along x, y or z instead of time).
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "app/editor/editor.h"
 
@@ -27,17 +28,28 @@ void Editor::draw_timeline() {
   ImGui::SameLine();
   if (ImGui::Button("Key (K)")) doc_.set_key(doc_.time());
   ImGui::SameLine();
+  if (ImGui::Button("Key mesh...")) {
+    // The same file dialog as File > Open; the pick lands in Editor::draw_ui -> key_mesh_file.
+    key_mesh_time_ = doc_.time();
+    char title[64];
+    std::snprintf(title, sizeof title, "Key mesh at t = %.3f", key_mesh_time_);
+    files_.show(FilePanel::Mode::Open, title, "key-mesh");
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Key a whole mesh (any surface file, any connectivity) at the current time;\n"
+                      "the animation passes through it (a transition joins other connectivities)");
+  ImGui::SameLine();
   const int at = doc_.key_at(doc_.time());
   if (at < 0) ImGui::BeginDisabled();
   if (ImGui::Button("Delete key")) doc_.delete_key(at);
   if (at < 0) ImGui::EndDisabled();
   ImGui::SameLine();
   float t = float(doc_.time());
-  ImGui::SetNextItemWidth(80);
+  ImGui::SetNextItemWidth(70);
   if (ImGui::DragFloat("##time", &t, 0.01f, 0.0f, 0.0f, "t %.3f")) doc_.set_time(std::max(0.0f, t));
   ImGui::SameLine();
   float speed = float(play_speed_);
-  ImGui::SetNextItemWidth(70);
+  ImGui::SetNextItemWidth(56);
   if (ImGui::DragFloat("##speed", &speed, 0.01f, 0.05f, 8.0f, "x%.2f")) play_speed_ = speed;
   ImGui::SameLine();
   ImGui::TextDisabled("|");
@@ -112,15 +124,31 @@ void Editor::draw_timeline() {
       drag_key_ = -1;
     }
   }
+  // Pose keys are amber diamonds, mesh keys teal squares.
   for (size_t i = 0; i < doc_.keys().size(); ++i) {
     const float x = x_of(doc_.keys()[i].time), r = 6;
-    const ImU32 c = int(i) == hover_key || int(i) == drag_key_ ? IM_COL32(255, 220, 110, 255) : IM_COL32(235, 180, 60, 255);
-    dl->AddQuadFilled(ImVec2(x, ky - r), ImVec2(x + r, ky), ImVec2(x, ky + r), ImVec2(x - r, ky), c);
+    const bool hot = int(i) == hover_key || int(i) == drag_key_;
+    if (doc_.keys()[i].is_mesh()) {
+      const float q = r - 1;
+      dl->AddRectFilled(ImVec2(x - q, ky - q), ImVec2(x + q, ky + q),
+                        hot ? IM_COL32(150, 240, 235, 255) : IM_COL32(70, 195, 190, 255), 1.5f);
+    } else {
+      const ImU32 c = hot ? IM_COL32(255, 220, 110, 255) : IM_COL32(235, 180, 60, 255);
+      dl->AddQuadFilled(ImVec2(x, ky - r), ImVec2(x + r, ky), ImVec2(x, ky + r), ImVec2(x - r, ky), c);
+    }
   }
   const float xt = x_of(doc_.time());
   dl->AddLine(ImVec2(xt, p0.y), ImVec2(xt, p0.y + h), IM_COL32(90, 160, 255, 255), 2.0f);
   dl->AddTriangleFilled(ImVec2(xt - 5, p0.y), ImVec2(xt + 5, p0.y), ImVec2(xt, p0.y + 6), IM_COL32(90, 160, 255, 255));
-  if (hover_key >= 0) ImGui::SetTooltip("key %d at t = %.3f (drag to move, right-click to delete)", hover_key, doc_.keys()[hover_key].time);
+  if (hover_key >= 0) {
+    const SceneKey& k = doc_.keys()[hover_key];
+    if (k.is_mesh())
+      ImGui::SetTooltip("mesh key %d at t = %.3f: %s\n%d vertices, %d triangles (drag to move, right-click to delete)",
+                        hover_key, k.time, std::filesystem::path(k.mesh_path).filename().string().c_str(),
+                        k.mesh.num_vertices(), k.mesh.num_faces());
+    else
+      ImGui::SetTooltip("key %d at t = %.3f (drag to move, right-click to delete)", hover_key, k.time);
+  }
 }
 
 }  // namespace dfm::editor

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/anim/bake.h"
+#include "app/editor/manifold_builder.h"
 #include "core/anim/interpolate.h"
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
@@ -49,15 +49,15 @@ std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W) {
       sum += w;
     }
     if (sum > 0) c /= static_cast<float>(sum);
-    out[i] << c, 1.0f;
+    out[i] = Eigen::Vector4f(c.x(), c.y(), c.z(), 1.0f);
   }
   return out;
 }
 
 // Posing and slicing on the GPU: the skin pass writes the posed surface (LBS/DQS/STBS in the vertex
 // shader) and, with two or more keys, the slice pass cuts the animation manifold at the current time.
-// The manifold is baked on the CPU exactly as the saved frames are (same track, inbetweens, method),
-// and rebuilt only when the keys, weights or method change.
+// The manifold is built on the CPU exactly as the saved frames are (key_surfaces: same track,
+// inbetweens, method, mesh keys), and rebuilt only when the keys, weights or method change.
 struct SceneView::Deformer {
   // Skin binding identity: rebuilt when the weights, surface, rig size or influence count change.
   const double* weights_data = nullptr;
@@ -66,11 +66,9 @@ struct SceneView::Deformer {
   int k = 0;
   SkinBinding binding;
   std::unique_ptr<gl::SkinPass> skin;
-  // Manifold identity: a hash of the key times and poses, the weights and the method.
-  std::uint64_t manifold_sig = 0;
+  // The animation manifold (its signature covers key times, poses and meshes, weights, method).
+  ManifoldBuilder builder;
   std::unique_ptr<gl::SlicePass> slice;
-  AnimationManifold manifold;
-  KeyTrack track;  // the keys the manifold was baked from (handles follow the animation)
   bool has_manifold = false;
   std::uint64_t pose_sig = 0;
   bool prefer_pose = false;  // the pose was edited after the last time change: show it, not the slice
@@ -112,7 +110,8 @@ void SceneView::sync(const Document& doc, const ViewSettings& s) {
                                 s.sweep_value != synced_settings_.sweep_value;
   const bool sel_changed = doc.selection().handles != synced_selection_;
   if (time_changed) deformer_->prefer_pose = false;
-  if (content || time_changed || settings_changed) update_surface(doc, s);
+  // While the manifold builds on its worker, keep polling it (the result uploads when it lands).
+  if (content || time_changed || settings_changed || deformer_->builder.busy()) update_surface(doc, s);
   if (content || time_changed || settings_changed || sel_changed || !colors_valid_) update_colors(doc, s);
   update_handles(doc, s);
   synced_revision_ = doc.revision();
@@ -162,65 +161,16 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     for (int i = 0; i < rest.V.rows(); ++i) bounds_.extend(Eigen::Vector3d(rest.V.row(i)));
     bounds_rows_ = rest.V.rows();
   }
-  if (!doc.has_weights() || rest.num_vertices() == 0) {
-    d.skin.reset();
-    d.surface_data = rest.V.data();
-    d.weights_data = nullptr;
-    show_rest(rest);
-    colors_valid_ = false;
-    return;
-  }
   try {
-    const Eigen::MatrixXd& W = doc.weights();
-    const int max_inf = doc.bind_settings().max_influences;
-    // The GPU takes at most 8 influences per vertex.
-    const int k = std::min(8, max_inf > 0 ? max_inf : static_cast<int>(W.cols()));
-    if (!d.skin || W.data() != d.weights_data || W.rows() != d.weights_rows || W.cols() != d.weights_cols ||
-        rest.V.data() != d.surface_data || k != d.k) {
-      d.binding = make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k);
-      d.skin = std::make_unique<gl::SkinPass>(d.binding);
-      d.weights_data = W.data();
-      d.weights_rows = W.rows();
-      d.weights_cols = W.cols();
-      d.surface_data = rest.V.data();
-      d.k = k;
-      std::vector<std::uint32_t> idx(rest.F.size());
-      for (int f = 0; f < rest.F.rows(); ++f)
-        for (int c = 0; c < 3; ++c) idx[3 * f + c] = static_cast<std::uint32_t>(rest.F(f, c));
-      d.indices.upload(GL_ARRAY_BUFFER, idx);
-      d.index_count = static_cast<int>(idx.size());
-      d.manifold_sig = 0;
-      d.has_manifold = false;
-    }
-    // Animation manifold (>= 2 keys), rebuilt when what it is made of changes.
-    const std::vector<Pose> key_poses = doc.keys().size() >= 2 ? doc.key_poses() : std::vector<Pose>{};
-    std::uint64_t msig = 1469598103934665603ull;
-    if (!key_poses.empty()) {
-      for (size_t i = 0; i < key_poses.size(); ++i) {
-        msig = mix_hash(msig, &doc.keys()[i].time, sizeof(double));
-        msig = pose_hash(msig, key_poses[i]);
-      }
-      const int m = static_cast<int>(doc.method()), ib = doc.inbetweens();
-      msig = mix_hash(msig, &m, sizeof m);
-      msig = mix_hash(msig, &ib, sizeof ib);
-      msig = mix_hash(msig, &d.weights_data, sizeof d.weights_data);
-    }
-    if (key_poses.empty()) {
-      d.has_manifold = false;
-    } else if (msig != d.manifold_sig) {
-      KeyTrack track;
-      for (size_t i = 0; i < key_poses.size(); ++i) track.set({doc.keys()[i].time, key_poses[i]});
-      const SkinBinding full = make_skin_binding(rest.V, Eigen::MatrixXd(), W, doc.rig(), max_inf);
-      const BakedLayers layers = bake_layers(track, doc.inbetweens(), [&](const Pose& p) {
-        return skin(doc.method(), full, p, {}).V;
-      });
-      d.manifold = build_manifold(layers, rest.F);
-      d.track = track;
+    update_skin(doc);
+    // Animation manifold (>= 2 keys, pose keys baked, mesh keys as they are), rebuilt when what it is
+    // made of changes; one with a transition builds on a worker (the pose or rest shows meanwhile).
+    if (d.builder.update(doc)) {
       if (!d.slice) d.slice = std::make_unique<gl::SlicePass>();
-      d.slice->upload(d.manifold);
-      d.has_manifold = true;
-      d.manifold_sig = msig;
+      d.slice->upload(d.builder.manifold());
     }
+    d.has_manifold = d.builder.has_manifold();
+    error_ = d.builder.error();
     // Pose edits after the last scrub show the pose being edited; scrubbing shows the slice.
     const Pose pose = doc.pose();
     const std::uint64_t psig = pose_hash(1469598103934665603ull, pose);
@@ -228,26 +178,31 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       if (d.pose_sig != 0) d.prefer_pose = true;
       d.pose_sig = psig;
     }
-    const bool slice = d.has_manifold && (s.sweep_axis >= 0 || !d.prefer_pose);
+    const bool slice = d.has_manifold && (s.sweep_axis >= 0 || !d.prefer_pose || !d.skin);
     if (slice) {
       SliceAxis axis = SliceAxis::T;
       double value = doc.time();
       if (s.sweep_axis >= 0) {
+        const AnimationManifold& m = d.builder.manifold();
         axis = static_cast<SliceAxis>(s.sweep_axis);
-        const double lo = d.manifold.V.col(s.sweep_axis).minCoeff(), hi = d.manifold.V.col(s.sweep_axis).maxCoeff();
+        const double lo = m.V.col(s.sweep_axis).minCoeff(), hi = m.V.col(s.sweep_axis).maxCoeff();
         value = lo + s.sweep_value * (hi - lo);
       }
       const int tris = d.slice->slice(axis, value);
       surface_.set_geometry(d.slice->output().id(), 3 * tris, 0, 0);
       display_count_ = 3 * tris;
       showing_slice_ = true;
-    } else {
+    } else if (d.skin) {
       d.skin->set_pose(pose, stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
       d.skin->run(doc.method());
       surface_.set_geometry(d.skin->output_buffer(), d.skin->num_vertices(), d.indices.id(), d.index_count);
       display_count_ = d.skin->num_vertices();
       showing_slice_ = false;
       display_F_ = rest.F;
+    } else {
+      show_rest(rest);
+      colors_valid_ = false;
+      return;
     }
     display_is_rest_ = false;
     d.gpu_output_stale = true;
@@ -258,6 +213,40 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
   colors_valid_ = false;
   deform_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
+
+// The GPU skin pass of the bound weights; none without weights (the rest surface shows then).
+void SceneView::update_skin(const Document& doc) {
+  Deformer& d = *deformer_;
+  const TriMesh& rest = doc.surface();
+  if (!doc.has_weights() || rest.num_vertices() == 0) {
+    d.skin.reset();
+    d.surface_data = rest.V.data();
+    d.weights_data = nullptr;
+    return;
+  }
+  const Eigen::MatrixXd& W = doc.weights();
+  const int max_inf = doc.bind_settings().max_influences;
+  // The GPU takes at most 8 influences per vertex.
+  const int k = std::min(8, max_inf > 0 ? max_inf : static_cast<int>(W.cols()));
+  if (d.skin && W.data() == d.weights_data && W.rows() == d.weights_rows && W.cols() == d.weights_cols &&
+      rest.V.data() == d.surface_data && k == d.k)
+    return;
+  d.binding = make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k);
+  d.skin = std::make_unique<gl::SkinPass>(d.binding);
+  d.weights_data = W.data();
+  d.weights_rows = W.rows();
+  d.weights_cols = W.cols();
+  d.surface_data = rest.V.data();
+  d.k = k;
+  std::vector<std::uint32_t> idx(rest.F.size());
+  for (int f = 0; f < rest.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) idx[3 * f + c] = static_cast<std::uint32_t>(rest.F(f, c));
+  d.indices.upload(GL_ARRAY_BUFFER, idx);
+  d.index_count = static_cast<int>(idx.size());
+}
+
+bool SceneView::manifold_building() const { return deformer_->builder.busy(); }
+std::string SceneView::manifold_progress() const { return deformer_->builder.progress_text(); }
 
 void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
   colors_valid_ = true;
@@ -292,7 +281,8 @@ void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
   try {
     // A time slice shows the animation: the handles follow it (the interpolated key poses).
     const Deformer& d = *deformer_;
-    pose = showing_slice_ && s.sweep_axis < 0 && d.track.size() >= 2 ? sample_track(d.track, doc.time()) : doc.pose();
+    const KeyTrack& track = d.builder.track();
+    pose = showing_slice_ && s.sweep_axis < 0 && track.size() >= 2 ? sample_track(track, doc.time()) : doc.pose();
   } catch (...) {
   }
   const bool posed = !display_is_rest_ && pose.size() == n;

@@ -54,10 +54,14 @@ class SceneView {
   const Eigen::MatrixXd& handle_positions() const { return handle_pos_; }
   const Eigen::MatrixXd& joint_positions() const { return joint_pos_; }
   const std::string& last_error() const { return error_; }
+  // The animation manifold is building on its worker thread (a transition), and what it is doing.
+  bool manifold_building() const;
+  std::string manifold_progress() const;
   double last_deform_ms() const { return deform_ms_; }
 
  private:
   void update_surface(const Document& doc, const ViewSettings& s);
+  void update_skin(const Document& doc);
   void show_rest(const TriMesh& rest);
   void update_colors(const Document& doc, const ViewSettings& s);
   void update_handles(const Document& doc, const ViewSettings& s);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <string>
 
+#include "core/anim/manifold_normals.h"
 #include "core/anim/slice_table.h"
 #include "core/util/error.h"
 
@@ -55,9 +57,54 @@ inline std::uint64_t key_of(int a, int b) {
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
+// The tetrahedra around every vertex of the sliced ones: for t the slabs on either side as well (a
+// vertex of slab i lies in slabs i-1..i+1 only, by validate_manifold's invariant), else all.
+std::pair<int, int> normal_tet_range(const AnimationManifold& M, SliceAxis axis, double c) {
+  if (axis != SliceAxis::T || M.num_layers() < 2) return {0, M.num_tets()};
+  const auto& t = M.times;
+  const int slabs = M.num_slabs();
+  int lo = 0;
+  while (lo < slabs && t[lo + 1] < c) ++lo;
+  int hi = slabs - 1;
+  while (hi >= 0 && t[hi] > c) --hi;
+  if (lo > hi) return {0, 0};
+  return {M.slab_offsets[std::max(lo - 1, 0)], M.slab_offsets[std::min(hi + 2, slabs)]};
+}
+
+// Unit 4D normals of the vertices the slice uses: the caller's, or summed over normal_tet_range only
+// (same tetrahedra in the same order as manifold_vertex_normals, so the same bits).
+class VertexNormals {
+ public:
+  VertexNormals(const AnimationManifold& M, SliceAxis axis, double c, const Eigen::MatrixXd* given, bool needed)
+      : given_(given) {
+    if (given) {
+      if (given->rows() != M.num_vertices() || given->cols() != 4)
+        throw Error("slice: vertex normals must be " + std::to_string(M.num_vertices()) + " x 4, got " +
+                    std::to_string(given->rows()) + " x " + std::to_string(given->cols()));
+      return;
+    }
+    const auto [first, last] = normal_tet_range(M, axis, c);
+    if (!needed || first >= last) return;
+    const auto T = M.T.middleRows(first, last - first);
+    offset_ = T.minCoeff();
+    sum_ = Eigen::MatrixXd::Zero(T.maxCoeff() - offset_ + 1, 4);
+    accumulate_tet_normals(M, first, last, offset_, sum_);
+  }
+  Eigen::Vector4d operator()(int v) const {
+    if (given_) return given_->row(v).transpose();
+    return unit_or_zero(sum_.row(v - offset_).transpose());
+  }
+
+ private:
+  const Eigen::MatrixXd* given_;
+  Eigen::MatrixXd sum_;
+  int offset_ = 0;
+};
+
 }  // namespace
 
-ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, double c) {
+ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, double c,
+                             const Eigen::MatrixXd* vertex_normals4) {
   const int axis = static_cast<int>(axis_e);
   if (axis < 0 || axis > 3) throw Error("slice axis out of range");
   const bool on_plane_above = slice_on_plane_is_above(M, axis_e, c);
@@ -129,15 +176,18 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
   ManifoldSlice out;
   const int nv = static_cast<int>(keys.size());
   out.mesh.V.resize(nv, 3);
+  out.mesh.N.resize(nv, 3);
   out.edges.resize(nv);
   int keep[3], nk = 0;
   for (int d = 0; d < 4; ++d)
     if (d != axis) keep[nk++] = d;
+  const VertexNormals normal4(M, axis_e, c, vertex_normals4, nv > 0);
   for (int v = 0; v < nv; ++v) {
     const int a = static_cast<int>(keys[v] >> 32), b = static_cast<int>(keys[v] & 0xffffffffu);
     out.edges[v] = {a, b};
     if (a == b) {
       for (int d = 0; d < 3; ++d) out.mesh.V(v, d) = V[4 * a + keep[d]];
+      out.mesh.N.row(v) = slice_normal3(normal4(a), axis_e).transpose();
       continue;
     }
     // Interpolate from the above endpoint; the formula depends on the edge only, never on the tet.
@@ -149,6 +199,10 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
       const double pu = V[4 * up + keep[d]], pd = V[4 * dn + keep[d]];
       out.mesh.V(v, d) = pu + mu * (pd - pu);
     }
+    const Eigen::Vector3d nu = slice_normal3(normal4(up), axis_e), nd = slice_normal3(normal4(dn), axis_e);
+    const Eigen::Vector3d n = nu + mu * (nd - nu);
+    const double len = n.norm();
+    out.mesh.N.row(v) = len > 0 ? Eigen::RowVector3d(n.transpose() / len) : Eigen::RowVector3d::Zero();
   }
   const int nf = static_cast<int>(corners.size() / 3);
   out.mesh.F.resize(nf, 3);
@@ -156,18 +210,6 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
     for (int j = 0; j < 3; ++j)
       out.mesh.F(f, j) = rank[corner_id[3 * f + j]];
 
-  // Area-weighted vertex normals of the welded slice.
-  out.mesh.N = Eigen::MatrixXd::Zero(nv, 3);
-  for (int f = 0; f < nf; ++f) {
-    const Eigen::Vector3d p0 = out.mesh.V.row(out.mesh.F(f, 0)), p1 = out.mesh.V.row(out.mesh.F(f, 1)),
-                          p2 = out.mesh.V.row(out.mesh.F(f, 2));
-    const Eigen::RowVector3d n = (p1 - p0).cross(p2 - p0).transpose();
-    for (int j = 0; j < 3; ++j) out.mesh.N.row(out.mesh.F(f, j)) += n;
-  }
-  for (int v = 0; v < nv; ++v) {
-    const double len = out.mesh.N.row(v).norm();
-    if (len > 0) out.mesh.N.row(v) /= len;
-  }
   return out;
 }
 

@@ -13,6 +13,9 @@
 //   s = coordinate - value; a point on a vertex is that vertex exactly.
 // - Vertices are welded by the manifold edge (or vertex) they lie on; triangles collapsed by the weld
 //   are dropped. Triangles face outward of the space-time solid (outward surfaces for t).
+// - Normals are smooth (Southern 2008, 2.3; core/anim/manifold_normals.h): each endpoint's 4D vertex
+//   normal loses the axis and is renormalised, then n = normalize(na + mu (nb - na)) with the same
+//   endpoint and mu as the position; a point on a vertex takes that vertex's normal.
 #include <array>
 #include <string>
 #include <utility>
@@ -36,7 +39,10 @@ struct ManifoldSlice {
   std::vector<std::array<int, 2>> edges;
 };
 
-ManifoldSlice slice_manifold(const AnimationManifold& m, SliceAxis axis, double value);
+// vertex_normals4: #V x 4 unit normals from manifold_vertex_normals(m), to reuse them across slices;
+// when null, only the normals the slice needs are computed (for t, from the neighbouring slabs).
+ManifoldSlice slice_manifold(const AnimationManifold& m, SliceAxis axis, double value,
+                             const Eigen::MatrixXd* vertex_normals4 = nullptr);
 
 // The tetrahedra a slice has to visit, as a row range [first, second) of m.T: for t only the slabs
 // whose time span holds `value` (empty outside the animation), for x, y, z all of them.

@@ -22,12 +22,18 @@ GltfExportInput gltf_input_from_document(const Document& doc) {
   in.current = doc.pose();
   const std::vector<double> times = doc.key_times();
   const std::vector<Pose> poses = doc.key_poses();
-  for (size_t k = 0; k < times.size(); ++k) in.keys.push_back({times[k], poses[k]});
+  for (size_t k = 0; k < times.size(); ++k)
+    if (!doc.keys()[k].is_mesh()) in.keys.push_back({times[k], poses[k]});  // glTF skins one mesh
   return in;
 }
 
 GltfExportReport export_document_gltf(const Document& doc, const std::string& path, const GltfExportOptions& options) {
   GltfExportReport r = export_gltf(path, gltf_input_from_document(doc), options);
+  int mesh_keys = 0;
+  for (const SceneKey& k : doc.keys()) mesh_keys += k.is_mesh();
+  if (mesh_keys > 0)
+    r.notes.push_back(std::to_string(mesh_keys) + " mesh key(s) left out: a glTF skin animates one mesh, so only the "
+                      "pose keys are exported");
   if (doc.method() != SkinMethod::LBS)
     r.notes.push_back(std::string("the document skins with ") + skin_method_name(doc.method()) +
                       "; glTF skinning is linear (LBS), so the file plays LBS with these weights");

@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "core/anim/transition.h"
 #include "core/mesh/io.h"
 #include "core/rig/rig_io.h"
 #include "core/scene/scene_file.h"
@@ -268,6 +269,10 @@ std::vector<Pose> Document::key_poses() const {
   std::vector<Pose> out;
   for (const SceneKey& k : s_.keys) out.push_back(evaluate_pose(s_.rig, k.params));
   return out;
+}
+
+bool Document::has_mesh_keys() const {
+  return std::any_of(s_.keys.begin(), s_.keys.end(), [](const SceneKey& k) { return k.is_mesh(); });
 }
 
 std::vector<double> Document::key_times() const {
@@ -761,12 +766,38 @@ void Document::set_key(double t) {
   execute(at >= 0 ? "replace key" : "set key", kKeys, "", [&](SceneData& s) {
     if (at >= 0) {
       s.keys[at].params = s.pose;
+      s.keys[at].mesh = TriMesh{};  // a mesh key replaced by a pose key
+      s.keys[at].mesh_path.clear();
       return;
     }
-    SceneKey k{t, s.pose};
+    SceneKey k{t, s.pose, {}, {}};
     auto it = std::lower_bound(s.keys.begin(), s.keys.end(), t, [](const SceneKey& a, double x) { return a.time < x; });
     s.keys.insert(it, std::move(k));
   });
+}
+
+void Document::key_mesh(const TriMesh& mesh, const std::string& path, double t) {
+  if (!std::isfinite(t)) throw Error("key time is not finite");
+  if (mesh.num_vertices() == 0 || mesh.num_faces() == 0) throw Error(path + ": mesh has no triangles");
+  TriMesh m{mesh.V, mesh.F, {}};  // positions and triangles: the manifold needs no normals
+  check_transition_key(m, path);  // throws naming the file before anything changes
+  const int at = key_at(t);
+  const std::string name = "key mesh " + std::filesystem::path(path).filename().string();
+  execute(at >= 0 ? "replace key (" + name + ")" : name, kKeys, "", [&](SceneData& s) {
+    if (at >= 0) {
+      s.keys[at].mesh = std::move(m);
+      s.keys[at].mesh_path = path;
+      return;
+    }
+    SceneKey k{t, fit_pose_params(s.rig, {}), std::move(m), path};
+    auto it = std::lower_bound(s.keys.begin(), s.keys.end(), t, [](const SceneKey& a, double x) { return a.time < x; });
+    s.keys.insert(it, std::move(k));
+  });
+}
+
+void Document::key_mesh_file(const std::string& path, double t) {
+  if (!std::isfinite(t)) throw Error("key time is not finite");
+  key_mesh(read_surface(path), path, t);
 }
 
 void Document::delete_key(int index) {
@@ -787,6 +818,8 @@ void Document::move_key(int index, double t) {
 
 void Document::go_to_key(int index) {
   if (index < 0 || index >= static_cast<int>(s_.keys.size())) throw Error("no key " + std::to_string(index));
+  if (s_.keys[index].is_mesh())
+    throw Error("key " + std::to_string(index) + " is a mesh key (" + s_.keys[index].mesh_path + "): it has no pose");
   PoseParams p = s_.keys[index].params;
   execute("go to key", kPose, "", [&](SceneData& s) { s.pose = std::move(p); });
 }

@@ -56,10 +56,16 @@ struct BindStats {
   bool operator==(const BindStats& o) const;
 };
 
-// A key: the artist's pose parameters at a time (evaluate_pose() turns it into a Pose per handle).
+// A key: the artist's pose parameters at a time (evaluate_pose() turns it into a Pose per handle), or
+// a whole mesh (any connectivity) that the animation passes through at that time (a "mesh key"; the
+// animation manifold joins it to its neighbours by a transition, see core/anim/manifold_sequence.h).
+// A mesh key keeps params sized to the rig like every key (unused by the animation).
 struct SceneKey {
   double time = 0;
   PoseParams params;
+  TriMesh mesh;           // empty (no vertices): a pose key; else closed, checked by check_transition_key
+  std::string mesh_path;  // where the mesh came from (informational; the data is in the scene)
+  bool is_mesh() const { return mesh.num_vertices() > 0; }
 };
 
 struct Selection {
@@ -70,7 +76,8 @@ struct Selection {
 
 // Everything a scene file holds. Plain data; Document owns one and guards its invariants:
 //   pose / every key's params are sized to the rig; mask has #surface V entries (or is empty);
-//   weights are empty or #surface V x num_handles(rig); keys are sorted by time, times distinct.
+//   weights are empty or #surface V x num_handles(rig); keys are sorted by time, times distinct;
+//   a mesh key's mesh passed check_transition_key (closed, oriented, finite, valid indices).
 struct SceneData {
   TriMesh surface;
   std::string surface_path;  // where the surface came from (informational; the data is in the scene)
@@ -124,8 +131,10 @@ class Document {
   const std::vector<SceneKey>& keys() const { return s_.keys; }
   // Index of the key at time t (|dt| <= 1e-9), or -1.
   int key_at(double t) const;
-  // Every key's params evaluated to a Pose (for the animation manifold), in time order.
+  // Every key's params evaluated to a Pose, in time order (a mesh key gives its unused params' pose:
+  // check keys()[i].is_mesh()).
   std::vector<Pose> key_poses() const;
+  bool has_mesh_keys() const;
   std::vector<double> key_times() const;
   const Eigen::VectorXd& mask() const { return s_.mask; }
   const Camera& camera() const { return s_.camera; }
@@ -206,11 +215,18 @@ class Document {
   void rotate_handle(int handle, const Eigen::Quaterniond& q);
   void reset_pose();
 
-  // Keys: set_key stores the current pose params at time t (replacing a key at the same time).
+  // Keys: set_key stores the current pose params at time t (replacing a key at the same time, a mesh
+  // key included).
   void set_key(double t);
+  // A mesh key: the animation passes through `mesh` at time t (replacing a key at the same time).
+  // The mesh is checked first (check_transition_key: closed, oriented, finite, valid indices, not
+  // self-intersecting); a bad mesh throws dfm::Error naming `path` and leaves the document unchanged.
+  void key_mesh(const TriMesh& mesh, const std::string& path, double t);
+  // read_surface(path) then key_mesh: what `key-mesh FILE [T]` and the timeline's "Key mesh..." do.
+  void key_mesh_file(const std::string& path, double t);
   void delete_key(int index);
   void move_key(int index, double new_time);  // throws if another key sits at new_time
-  // Applies the key's params as the current pose (a pose edit).
+  // Applies the key's params as the current pose (a pose edit). A mesh key has no pose: dfm::Error.
   void go_to_key(int index);
 
   // ---- view state (saved, not undoable, does not mark dirty) ---------------------------------------

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/anim/transition.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
@@ -264,6 +265,20 @@ class SceneReader {
   std::string blob_;
 };
 
+// A mesh key's surface: shapes, indices, then the transition checks (closed, oriented, ...).
+void read_mesh_key(const SceneReader& R, const json& m, const std::string& ctx, SceneKey& k) {
+  k.mesh_path = R.string(R.field(m, "source", ctx), ctx + ".source");
+  k.mesh.V = R.f64(R.field(m, "V", ctx), ctx + ".V", 3);
+  k.mesh.F = R.i32(R.field(m, "F", ctx), ctx + ".F", 3);
+  if (k.mesh.V.rows() == 0 || k.mesh.F.rows() == 0) R.fail("'" + ctx + "' has no triangles");
+  R.check_indices(k.mesh.F, k.mesh.V.rows(), ctx + ".F");
+  try {
+    check_transition_key(k.mesh, ctx + " (" + k.mesh_path + ")");
+  } catch (const Error& e) {
+    R.fail(e.what());
+  }
+}
+
 }  // namespace
 
 std::string scene_sidecar_path(const std::string& json_path) {
@@ -309,7 +324,12 @@ void write_scene(const std::string& json_path, const SceneData& s) {
 
   j["pose"] = params_json(s.pose);
   j["keys"] = json::array();
-  for (const SceneKey& k : s.keys) j["keys"].push_back({{"time", k.time}, {"params", params_json(k.params)}});
+  for (const SceneKey& k : s.keys) {
+    json key = {{"time", k.time}, {"params", params_json(k.params)}};
+    // Version 2: a mesh key's own surface (a pose key has no "mesh").
+    if (k.is_mesh()) key["mesh"] = {{"source", k.mesh_path}, {"V", blob.add(k.mesh.V)}, {"F", blob.add(k.mesh.F)}};
+    j["keys"].push_back(key);
+  }
   j["method"] = skin_method_name(s.method);
   j["inbetweens"] = s.inbetweens;
   j["bind_settings"] = {{"tetgen_switches", s.bind_settings.volume.tetgen_switches},
@@ -451,6 +471,10 @@ SceneData read_scene(const std::string& path) {
     k.time = R.number(R.field(keys[i], "time", c), c + ".time");
     if (!s.keys.empty() && !(k.time > s.keys.back().time)) R.fail("'" + c + ".time' is not after the previous key");
     k.params = R.params(R.field(keys[i], "params", c), s.rig, c + ".params");
+    if (keys[i].is_object() && keys[i].contains("mesh")) {
+      if (version < 2) R.fail("'" + c + ".mesh' needs scene format version 2 (the file says " + std::to_string(version) + ")");
+      read_mesh_key(R, keys[i]["mesh"], c + ".mesh", k);
+    }
     s.keys.push_back(std::move(k));
   }
   try {

@@ -1,6 +1,6 @@
 #pragma once
 // The scene file: versioned JSON (small, readable fields) plus a binary sidecar for large arrays
-// (surface, tets, weights, mask, cages, regions). The JSON names the sidecar, its byte size and a
+// (surface, tets, weights, mask, cages, regions, mesh keys). The JSON names the sidecar, its byte size and a
 // checksum (FNV-1a 64), and every array's offset/shape inside it. Saves are atomic: the sidecar is
 // written first, then the JSON (so a crash never leaves a JSON pointing at a missing sidecar).
 // Writing is deterministic: save -> load -> save gives byte-identical files.
@@ -10,7 +10,9 @@
 
 namespace dfm {
 
-constexpr int kSceneFormatVersion = 1;
+// 1: the first format. 2: a key may hold a mesh ("keys[i].mesh": source, V, F), a mesh key.
+// Files of every version up to this one load; saves write this one.
+constexpr int kSceneFormatVersion = 2;
 
 // "<dir>/x.scene.json" -> "<dir>/x.scene.bin" (any other name: path + ".bin").
 std::string scene_sidecar_path(const std::string& json_path);

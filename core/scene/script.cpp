@@ -7,11 +7,10 @@
 #include <map>
 #include <sstream>
 
-#include "core/anim/bake.h"
-#include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
 #include "core/scene/bind_document.h"
+#include "core/scene/key_surfaces.h"
 #include "core/mesh/io.h"
 #include "core/skin/skin.h"
 #include "core/util/atomic_file.h"
@@ -43,6 +42,7 @@ const std::map<std::string, Spec>& specs() {
       {"rotate", {4, 4, -1, "rotate DEGREES AX AY AZ"}},
       {"set-method", {1, 1, 0, "set-method lbs|dqs|stbs"}},
       {"set-key", {0, 1, -1, "set-key [TIME]"}},
+      {"key-mesh", {1, 2, 0, "key-mesh FILE [TIME]"}},
       {"delete-key", {0, 1, -1, "delete-key [TIME]"}},
       {"set-time", {1, 1, -1, "set-time T"}},
       {"reset-pose", {0, 0, 0, "reset-pose"}},
@@ -103,18 +103,11 @@ SkinBinding binding_of(const Document& doc) {
                            doc.rig(), doc.bind_settings().max_influences);
 }
 
-AnimationManifold manifold_of(const Document& doc, const SkinBinding& binding) {
-  KeyTrack track;
-  const std::vector<Pose> poses = doc.key_poses();
-  for (size_t i = 0; i < poses.size(); ++i) track.set({doc.keys()[i].time, poses[i]});
-  // Twist/stretch is per key and not part of a Pose, so the animation skins without it.
-  const BakedLayers layers =
-      bake_layers(track, doc.inbetweens(), [&](const Pose& p) { return skin(doc.method(), binding, p, {}).V; });
-  return build_manifold(layers, doc.surface().F);
-}
-
-TriMesh frame_at(const Document& doc, const SkinBinding& binding, const AnimationManifold* m, double t) {
-  if (m) return slice_manifold(*m, SliceAxis::T, t).mesh;
+// The frame without an animation (fewer than two keys): the one key (its mesh, or its pose skinned),
+// else the current pose skinned with the current method.
+TriMesh still_frame(const Document& doc) {
+  if (doc.keys().size() == 1 && doc.keys()[0].is_mesh()) return doc.keys()[0].mesh;
+  const SkinBinding binding = binding_of(doc);
   if (doc.keys().size() == 1) return skinned(doc, binding, doc.key_poses()[0], {});
   return skinned(doc, binding, doc.pose(), stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
 }
@@ -158,6 +151,11 @@ std::vector<ScriptLine> parse_script(const std::string& text, const std::string&
       if (!parse_number(l.words[2], c) || c < 2 || c != std::floor(c) || c > 100000)
         throw file_error(name, line, "frame count '" + l.words[2] + "' must be an integer >= 2");
     }
+    if (l.words[0] == "key-mesh" && nargs == 2) {
+      double t;
+      if (!parse_number(l.words[2], t))
+        throw file_error(name, line, "'" + l.words[2] + "' is not a finite number; usage: " + s.usage);
+    }
     if (l.words[0] == "export-gltf") {
       if (!ends_with(l.words[1], ".glb") && !ends_with(l.words[1], ".gltf"))
         throw file_error(name, line, "export-gltf writes .glb or .gltf, got '" + l.words[1] + "'");
@@ -179,12 +177,8 @@ std::vector<ScriptLine> read_script(const std::string& path) {
 }
 
 TriMesh posed_surface(const Document& doc) {
-  const SkinBinding binding = binding_of(doc);
-  if (doc.keys().size() >= 2) {
-    const AnimationManifold m = manifold_of(doc, binding);
-    return frame_at(doc, binding, &m, doc.time());
-  }
-  return frame_at(doc, binding, nullptr, doc.time());
+  if (doc.keys().size() >= 2) return slice_manifold(document_manifold(doc), SliceAxis::T, doc.time()).mesh;
+  return still_frame(doc);
 }
 
 ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, const std::string& name,
@@ -228,6 +222,8 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
         doc.set_method(parse_skin_method(l.words[1]));
       } else if (cmd == "set-key") {
         doc.set_key(l.words.size() > 1 ? num(l, 1) : doc.time());
+      } else if (cmd == "key-mesh") {
+        doc.key_mesh_file(l.words[1], l.words.size() > 2 ? num(l, 2) : doc.time());
       } else if (cmd == "delete-key") {
         const double t = l.words.size() > 1 ? num(l, 1) : doc.time();
         const int k = doc.key_at(t);
@@ -246,8 +242,7 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
       } else if (cmd == "save-frames") {
         const int count = l.words.size() > 2 ? integer_arg(l, 2) : 30;
         if (doc.keys().size() < 2) throw Error("save-frames needs at least two keys");
-        const SkinBinding binding = binding_of(doc);
-        const AnimationManifold m = manifold_of(doc, binding);
+        const AnimationManifold m = document_manifold(doc);
         const double t0 = doc.keys().front().time, t1 = doc.keys().back().time;
         std::string prefix = l.words[1], ext = ".obj";
         for (const char* e : {".obj", ".ply", ".off", ".stl"})
@@ -259,7 +254,7 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
           char num_buf[16];
           std::snprintf(num_buf, sizeof num_buf, "%04d", i);
           const double t = t0 + (t1 - t0) * i / (count - 1);
-          write_surface(prefix + num_buf + ext, frame_at(doc, binding, &m, t));
+          write_surface(prefix + num_buf + ext, slice_manifold(m, SliceAxis::T, t).mesh);
         }
       } else if (cmd == "save-scene") {
         doc.save_scene(l.words[1]);

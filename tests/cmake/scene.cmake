@@ -2,6 +2,8 @@
 dfm_test(test_document SOURCES test_document.cpp LIBS dfm_scene)
 dfm_test(test_scene_file SOURCES test_scene_file.cpp LIBS dfm_scene)
 dfm_test(test_script SOURCES test_script.cpp LIBS dfm_scene)
+# Mesh keys: the document command, hostile files, the script's key-mesh, key_surfaces -> manifold.
+dfm_test(test_key_mesh SOURCES test_key_mesh.cpp LIBS dfm_scene)
 
 # The generator of assets/default.* (run by hand: make_default_scene assets). Built with the tests so
 # the test below can regenerate the scene and compare it with the committed copy.

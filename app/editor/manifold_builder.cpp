@@ -1,0 +1,191 @@
+#include "app/editor/manifold_builder.h"
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+
+#include "core/anim/manifold_sequence.h"
+#include "core/scene/key_surfaces.h"
+#include "core/util/error.h"
+
+namespace dfm::editor {
+
+namespace {
+std::uint64_t mix(std::uint64_t h, const void* p, size_t n) {
+  const unsigned char* b = static_cast<const unsigned char*>(p);
+  for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;  // FNV-1a
+  return h;
+}
+template <class M>
+std::uint64_t mix_matrix(std::uint64_t h, const M& m) {
+  const Eigen::Index r = m.rows(), c = m.cols();
+  h = mix(h, &r, sizeof r);
+  h = mix(h, &c, sizeof c);
+  return mix(h, m.data(), sizeof(typename M::Scalar) * m.size());
+}
+}  // namespace
+
+std::uint64_t manifold_signature(const Document& doc) {
+  const auto& keys = doc.keys();
+  if (keys.size() < 2) return 0;
+  bool pose_keys = false;
+  for (const SceneKey& k : keys) pose_keys |= !k.is_mesh();
+  if (pose_keys && (!doc.has_weights() || doc.surface().num_vertices() == 0)) return 0;
+  std::uint64_t h = 1469598103934665603ull;
+  const std::vector<Pose> poses = doc.key_poses();
+  for (size_t i = 0; i < keys.size(); ++i) {
+    h = mix(h, &keys[i].time, sizeof(double));
+    if (keys[i].is_mesh()) {
+      h = mix(h, "mesh", 4);
+      h = mix_matrix(h, keys[i].mesh.V);
+      h = mix_matrix(h, keys[i].mesh.F);
+    } else {
+      for (const auto& T : poses[i].transforms) h = mix(h, T.matrix().data(), sizeof(double) * 16);
+    }
+  }
+  if (pose_keys) {
+    const int m = static_cast<int>(doc.method()), ib = doc.inbetweens(), k = doc.bind_settings().max_influences;
+    const double* w = doc.weights().data();
+    const void* v = doc.surface().V.data();
+    h = mix(h, &m, sizeof m);
+    h = mix(h, &ib, sizeof ib);
+    h = mix(h, &k, sizeof k);
+    h = mix(h, &w, sizeof w);
+    h = mix(h, &v, sizeof v);
+  }
+  return h == 0 ? 1 : h;
+}
+
+// One background build: its own copy of the key surfaces; the result is read after `done`.
+struct ManifoldBuilder::Job {
+  std::thread thread;
+  std::uint64_t sig = 0;
+  std::vector<KeySurface> keys;
+  KeyTrack track;
+  std::atomic<bool> cancel{false}, done{false};
+  std::atomic<int> slabs_done{0}, slabs_total{0};
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  AnimationManifold result;
+  std::string error;
+  bool ok = false;
+};
+
+ManifoldBuilder::ManifoldBuilder() = default;
+
+ManifoldBuilder::~ManifoldBuilder() {
+  if (job_) {
+    job_->cancel = true;
+    if (job_->thread.joinable()) job_->thread.join();
+  }
+}
+
+void ManifoldBuilder::collect() {
+  if (!job_ || !job_->done.load(std::memory_order_acquire)) return;
+  std::shared_ptr<Job> j = std::move(job_);
+  job_.reset();
+  if (j->thread.joinable()) j->thread.join();
+  // Stale (finished after an edit, or cancelled): the newer keys build next.
+  if (j->sig != wanted_sig_ || (!j->ok && j->cancel.load())) return;
+  built_sig_ = j->sig;
+  if (j->ok) {
+    manifold_ = std::move(j->result);
+    track_ = std::move(j->track);
+    has_ = true;
+    error_.clear();
+  } else {
+    has_ = false;
+    error_ = "animation manifold: " + j->error;
+  }
+}
+
+void ManifoldBuilder::start(const Document& doc) {
+  built_sig_ = wanted_sig_;  // a failure below is not retried until the keys change
+  has_ = false;
+  std::vector<KeySurface> keys;
+  try {
+    keys = key_surfaces(doc);
+  } catch (const std::exception& e) {
+    error_ = std::string("animation manifold: ") + e.what();
+    return;
+  }
+  KeyTrack track = doc.has_mesh_keys() ? KeyTrack{} : pose_key_track(doc);
+  if (!needs_transition(keys)) {
+    // The prism build only: milliseconds, as before mesh keys existed.
+    try {
+      manifold_ = build_manifold_sequence(keys);
+      track_ = std::move(track);
+      has_ = true;
+      error_.clear();
+    } catch (const std::exception& e) {
+      error_ = std::string("animation manifold: ") + e.what();
+    }
+    return;
+  }
+  built_sig_ = 0;  // not built until the job is collected
+  auto j = std::make_shared<Job>();
+  j->sig = wanted_sig_;
+  j->keys = std::move(keys);
+  j->track = std::move(track);
+  j->slabs_total = static_cast<int>(j->keys.size()) - 1;
+  Job* raw = j.get();
+  j->thread = std::thread([raw] {
+    // The UI thread must keep the CPU (as the bind worker does): a lower priority for this thread.
+    setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
+    try {
+      raw->result = build_manifold_sequence(raw->keys, TransitionOptions{}, nullptr, [raw](int done, int total) {
+        raw->slabs_done = done;
+        raw->slabs_total = total;
+        return !raw->cancel.load();
+      });
+      raw->ok = true;
+    } catch (const std::exception& e) {
+      raw->error = raw->cancel.load() ? "cancelled" : e.what();
+    }
+    raw->done.store(true, std::memory_order_release);
+  });
+  job_ = std::move(j);
+}
+
+bool ManifoldBuilder::update(const Document& doc) {
+  const std::uint64_t before = built_sig_;
+  const bool had = has_;
+  collect();
+  if (doc.revision() != seen_revision_) {
+    seen_revision_ = doc.revision();
+    wanted_sig_ = manifold_signature(doc);
+  }
+  if (wanted_sig_ == 0) {
+    has_ = false;
+    built_sig_ = 0;
+    error_.clear();
+    if (job_) job_->cancel = true;
+    return false;
+  }
+  if (wanted_sig_ != built_sig_) {
+    if (job_) {
+      job_->cancel = job_->sig != wanted_sig_;  // a stale one is collected (and dropped) when it stops
+    } else {
+      start(doc);
+    }
+  }
+  return has_ && (built_sig_ != before || !had);
+}
+
+std::string ManifoldBuilder::progress_text() const {
+  if (!job_) return "";
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - job_->started).count();
+  char buf[160];
+  if (job_->cancel.load())
+    std::snprintf(buf, sizeof buf, "animation manifold: stopping an outdated build (%.1f s)", s);
+  else
+    std::snprintf(buf, sizeof buf, "building the animation manifold (transition): slab %d of %d done, %.1f s",
+                  job_->slabs_done.load(), job_->slabs_total.load(), s);
+  return buf;
+}
+
+}  // namespace dfm::editor

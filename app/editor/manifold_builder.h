@@ -1,0 +1,59 @@
+#pragma once
+// The animation manifold the viewport slices, kept up to date with the document's keys (the same
+// core call as the script and the saves: key_surfaces + build_manifold_sequence). Keys that share one
+// triangle list build at once on the UI thread (the prism build takes milliseconds); a sequence with a
+// transition (a mesh key of another connectivity: seconds) builds on a worker thread at a lower
+// priority while the window keeps drawing, with progress text. An edit during a build cancels it
+// (between slabs) and the newer keys build next.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/anim/keyframes.h"
+#include "core/anim/manifold.h"
+#include "core/scene/document.h"
+
+namespace dfm::editor {
+
+// What the manifold is made of: key times, poses and meshes, method, in-betweens, weights identity.
+// 0 when the document has no manifold to build (fewer than two keys, or pose keys and no weights).
+std::uint64_t manifold_signature(const Document& doc);
+
+class ManifoldBuilder {
+ public:
+  ManifoldBuilder();
+  ~ManifoldBuilder();  // cancels a running build and waits for its current slab
+  ManifoldBuilder(const ManifoldBuilder&) = delete;
+  ManifoldBuilder& operator=(const ManifoldBuilder&) = delete;
+
+  // Cheap when nothing changed; call on every document change and every frame while busy().
+  // Returns true when manifold() is new (upload it).
+  bool update(const Document& doc);
+  // The manifold matches the document's keys (false while a build runs or after one failed).
+  bool has_manifold() const { return has_; }
+  const AnimationManifold& manifold() const { return manifold_; }
+  // The pose keys the manifold was built from when every key is a pose key (the handles follow the
+  // animation); empty with mesh keys.
+  const KeyTrack& track() const { return track_; }
+  // A background build is running, or its result waits for update() to collect it.
+  bool busy() const { return job_ != nullptr; }
+  // "building animation manifold: transition, slab 1 of 2, 3.4 s" while busy(), else "".
+  std::string progress_text() const;
+  // Why the last build failed ("" when it did not), e.g. a bad key or a failed transition.
+  const std::string& error() const { return error_; }
+
+ private:
+  struct Job;
+  void collect();
+  void start(const Document& doc);
+
+  std::shared_ptr<Job> job_;
+  AnimationManifold manifold_;
+  KeyTrack track_;
+  bool has_ = false;
+  std::string error_;
+  std::uint64_t seen_revision_ = ~0ull;
+  std::uint64_t wanted_sig_ = 0, built_sig_ = 0;
+};
+
+}  // namespace dfm::editor

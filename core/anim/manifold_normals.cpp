@@ -1,0 +1,53 @@
+#include "core/anim/manifold_normals.h"
+
+#include <Eigen/LU>
+
+namespace dfm {
+
+Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k) {
+  const Eigen::Vector4d p0 = m.V.row(m.T(k, 0)).transpose();
+  const Eigen::Vector4d e1 = m.V.row(m.T(k, 1)).transpose() - p0, e2 = m.V.row(m.T(k, 2)).transpose() - p0,
+                        e3 = m.V.row(m.T(k, 3)).transpose() - p0;
+  // Cofactor expansion of det[w, e1, e2, e3] along its first column w.
+  Eigen::Vector4d N;
+  for (int j = 0; j < 4; ++j) {
+    Eigen::Matrix3d minor;
+    for (int r = 0, i = 0; r < 4; ++r) {
+      if (r == j) continue;
+      minor.row(i++) << e1[r], e2[r], e3[r];
+    }
+    N[j] = (j % 2 ? -1.0 : 1.0) * minor.determinant();
+  }
+  return N;
+}
+
+void accumulate_tet_normals(const AnimationManifold& m, int first_tet, int last_tet, int vertex_offset,
+                            Eigen::MatrixXd& sum) {
+  for (int k = first_tet; k < last_tet; ++k) {
+    const Eigen::RowVector4d n = tet_normal4(m, k).transpose();
+    for (int c = 0; c < 4; ++c) sum.row(m.T(k, c) - vertex_offset) += n;
+  }
+}
+
+Eigen::Vector4d unit_or_zero(const Eigen::Vector4d& sum) {
+  const double len = sum.norm();
+  return len > 0 ? Eigen::Vector4d(sum / len) : Eigen::Vector4d::Zero();
+}
+
+Eigen::MatrixXd manifold_vertex_normals(const AnimationManifold& m) {
+  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(m.num_vertices(), 4);
+  accumulate_tet_normals(m, 0, m.num_tets(), 0, N);
+  for (int v = 0; v < N.rows(); ++v) N.row(v) = unit_or_zero(N.row(v).transpose()).transpose();
+  return N;
+}
+
+Eigen::Vector3d slice_normal3(const Eigen::Vector4d& n4, SliceAxis axis) {
+  const int a = static_cast<int>(axis);
+  Eigen::Vector3d n;
+  for (int d = 0, i = 0; d < 4; ++d)
+    if (d != a) n[i++] = n4[d];
+  const double len = n.norm();
+  return len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+}
+
+}  // namespace dfm

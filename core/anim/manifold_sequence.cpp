@@ -1,0 +1,93 @@
+#include "core/anim/manifold_sequence.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/util/error.h"
+
+namespace dfm {
+
+bool same_connectivity(const KeySurface& a, const KeySurface& b) {
+  return a.V.rows() == b.V.rows() && a.F.rows() == b.F.rows() && a.F == b.F;
+}
+
+namespace {
+
+// Appends M's slabs (vertices renumbered after out's) to out.
+void append_slabs(AnimationManifold& out, const AnimationManifold& M) {
+  const int base_v = out.num_vertices(), base_t = out.num_tets();
+  out.V.conservativeResize(base_v + M.num_vertices(), 4);
+  out.V.bottomRows(M.num_vertices()) = M.V;
+  out.T.conservativeResize(base_t + M.num_tets(), 4);
+  out.T.bottomRows(M.num_tets()) = M.T.array() + base_v;
+  const bool first = out.times.empty();
+  for (int i = first ? 0 : 1; i < M.num_layers(); ++i) {
+    out.times.push_back(M.times[i]);
+    out.slab_offsets.push_back(base_t + M.slab_offsets[i]);
+  }
+}
+
+}  // namespace
+
+AnimationManifold build_manifold_sequence(const std::vector<KeySurface>& keys, const TransitionOptions& options,
+                                          SequenceStats* stats, const std::function<bool(int, int)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const int m = static_cast<int>(keys.size());
+  if (m < 2) throw Error("an animation manifold needs at least 2 keys, got " + std::to_string(m));
+  for (int i = 0; i < m; ++i) {
+    if (!std::isfinite(keys[i].time) || (i > 0 && !(keys[i].time > keys[i - 1].time)))
+      throw Error("key times must be finite and strictly increasing (" + keys[i].name + ")");
+    if (keys[i].V.cols() != 3 || keys[i].F.cols() != 3)
+      throw Error(keys[i].name + ": positions and triangles need 3 columns");
+  }
+  SequenceStats local;
+  AnimationManifold out;
+  out.V.resize(0, 4);
+  out.T.resize(0, 4);
+  int i = 0;
+  while (i + 1 < m) {
+    int j = i;  // the run [i, j] of keys sharing one triangle list
+    while (j + 1 < m && same_connectivity(keys[j], keys[j + 1])) ++j;
+    if (j > i) {
+      std::vector<Eigen::MatrixXd> layers;
+      std::vector<double> times;
+      for (int k = i; k <= j; ++k) {
+        layers.push_back(keys[k].V);
+        times.push_back(keys[k].time);
+      }
+      append_slabs(out, build_manifold(layers, keys[i].F, times));
+      local.prism_slabs += j - i;
+      i = j;
+    } else {
+      TransitionStats ts;
+      const TriMesh a{keys[i].V, keys[i].F, {}}, b{keys[i + 1].V, keys[i + 1].F, {}};
+      check_transition_key(a, keys[i].name);
+      check_transition_key(b, keys[i + 1].name);
+      append_slabs(out, build_transition(a, keys[i].time, b, keys[i + 1].time, options, &ts));
+      local.transition_slabs += 1;
+      auto& s = local.transitions;
+      s.source_points += ts.source_points;
+      s.target_points += ts.target_points;
+      s.source_steiner += ts.source_steiner;
+      s.target_steiner += ts.target_steiner;
+      s.simplices += ts.simplices;
+      s.kept_early += ts.kept_early;
+      s.kept_middle += ts.kept_middle;
+      s.kept_late += ts.kept_late;
+      s.tets += ts.tets;
+      s.conform_seconds += ts.conform_seconds;
+      s.delaunay_seconds += ts.delaunay_seconds;
+      s.classify_seconds += ts.classify_seconds;
+      s.extract_seconds += ts.extract_seconds;
+      s.total_seconds += ts.total_seconds;
+      i += 1;
+    }
+    if (progress && !progress(i, m - 1)) throw Error("animation manifold build cancelled");
+  }
+  local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (stats) *stats = local;
+  validate_manifold(out, "animation manifold");
+  return out;
+}
+
+}  // namespace dfm

@@ -1,0 +1,94 @@
+#include "core/scene/key_surfaces.h"
+
+#include <filesystem>
+#include <string>
+
+#include "core/anim/bake.h"
+#include "core/skin/skin.h"
+#include "core/util/error.h"
+
+namespace dfm {
+
+namespace {
+
+// The skin binding of the document's weights (positions only: the manifold needs no normals).
+SkinBinding pose_binding(const Document& doc) {
+  if (doc.surface().num_vertices() == 0) throw Error("pose keys need a surface: open a mesh first");
+  if (!doc.has_weights())
+    throw Error("pose keys need weights: " + (doc.weights_note().empty() ? std::string("not bound") : doc.weights_note()) +
+                "; bind first");
+  return make_skin_binding(doc.surface().V, Eigen::MatrixXd(), doc.weights(), doc.rig(),
+                           doc.bind_settings().max_influences);
+}
+
+std::string key_name(const Document& doc, int i) {
+  const SceneKey& k = doc.keys()[i];
+  if (k.is_mesh()) {
+    const std::string file = std::filesystem::path(k.mesh_path).filename().string();
+    return file.empty() ? "mesh key " + std::to_string(i) : file;
+  }
+  return "key " + std::to_string(i);
+}
+
+}  // namespace
+
+KeyTrack pose_key_track(const Document& doc) {
+  KeyTrack track;
+  const std::vector<Pose> poses = doc.key_poses();
+  for (size_t i = 0; i < poses.size(); ++i)
+    if (!doc.keys()[i].is_mesh()) track.set({doc.keys()[i].time, poses[i]});
+  return track;
+}
+
+std::vector<KeySurface> key_surfaces(const Document& doc) {
+  const std::vector<SceneKey>& keys = doc.keys();
+  const int n = static_cast<int>(keys.size());
+  std::vector<KeySurface> out;
+  SkinBinding binding;
+  bool have_binding = false;
+  std::vector<Pose> poses;
+  for (int i = 0; i < n;) {
+    if (keys[i].is_mesh()) {
+      out.push_back({keys[i].time, keys[i].mesh.V, keys[i].mesh.F, key_name(doc, i)});
+      ++i;
+      continue;
+    }
+    // A run [i, j) of pose keys: baked together, in-betweens inside each of its intervals.
+    int j = i;
+    while (j < n && !keys[j].is_mesh()) ++j;
+    if (!have_binding) {
+      binding = pose_binding(doc);
+      poses = doc.key_poses();
+      have_binding = true;
+    }
+    KeyTrack track;
+    for (int k = i; k < j; ++k) track.set({keys[k].time, poses[k]});
+    // Twist/stretch is per key and not part of a Pose, so the animation skins without it.
+    const BakedLayers layers = bake_layers(track, doc.inbetweens(), [&](const Pose& p) {
+      return skin(doc.method(), binding, p, {}).V;
+    });
+    int key = i;
+    for (size_t l = 0; l < layers.times.size(); ++l) {
+      const bool at_key = key < j && layers.times[l] == keys[key].time;
+      const std::string name = at_key ? key_name(doc, key++) : "in-between at t = " + std::to_string(layers.times[l]);
+      out.push_back({layers.times[l], layers.positions[l], doc.surface().F, name});
+    }
+    i = j;
+  }
+  return out;
+}
+
+bool needs_transition(const std::vector<KeySurface>& keys) {
+  for (size_t i = 0; i + 1 < keys.size(); ++i)
+    if (!same_connectivity(keys[i], keys[i + 1])) return true;
+  return false;
+}
+
+AnimationManifold document_manifold(const Document& doc, SequenceStats* stats,
+                                    const std::function<bool(int, int)>& progress) {
+  if (doc.keys().size() < 2)
+    throw Error("an animation needs at least two keys (the document has " + std::to_string(doc.keys().size()) + ")");
+  return build_manifold_sequence(key_surfaces(doc), TransitionOptions{}, stats, progress);
+}
+
+}  // namespace dfm

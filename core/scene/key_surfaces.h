@@ -1,0 +1,33 @@
+#pragma once
+// The document's keys as the surfaces the animation passes through, and the animation manifold
+// through them: the one place the editor's view, the script (save-posed, save-frames) and the UI's
+// saves turn keys into a manifold.
+//
+// Consecutive pose keys are baked as always (bake_layers with doc.inbetweens(), skinned with the
+// document's method and weights: one layer per key plus the in-betweens inside each interval of two
+// pose keys); a mesh key contributes its own mesh at its time. build_manifold_sequence then joins
+// neighbours with the same triangle list by the exact prism build and the others by a transition.
+#include <functional>
+#include <vector>
+
+#include "core/anim/keyframes.h"
+#include "core/anim/manifold_sequence.h"
+#include "core/scene/document.h"
+
+namespace dfm {
+
+// The key surfaces in time order. Pose keys need weights: without them (or with no surface) throws
+// dfm::Error saying why ("pose keys need weights: not bound yet; bind first").
+std::vector<KeySurface> key_surfaces(const Document& doc);
+
+// The pose keys as a track (their times and evaluated poses), mesh keys left out.
+KeyTrack pose_key_track(const Document& doc);
+
+// True when some neighbouring key surfaces differ in connectivity (a transition joins them: seconds).
+bool needs_transition(const std::vector<KeySurface>& keys);
+
+// build_manifold_sequence(key_surfaces(doc)); needs >= 2 keys. `progress` as there (false cancels).
+AnimationManifold document_manifold(const Document& doc, SequenceStats* stats = nullptr,
+                                    const std::function<bool(int, int)>& progress = {});
+
+}  // namespace dfm

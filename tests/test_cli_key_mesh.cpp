@@ -1,0 +1,120 @@
+// `deform manifold --keyframes` of any connectivity (build_manifold_sequence): same-connectivity keys
+// give exactly the prism build, --stats prints the build's stages, a bad keyframe (missing, open, NaN)
+// exits 1 naming the file, and a sphere -> torus transition slices closed.
+#include <unistd.h>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "core/anim/manifold.h"
+#include "core/anim/manifold_io.h"
+#include "core/mesh/io.h"
+#include "tests/cli_test_util.h"
+#include "tests/key_mesh_test_meshes.h"
+
+using dfm::test::run_program;
+using dfm::test::RunResult;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    dir = fs::temp_directory_path() / ("dfm_test_cli_key_mesh_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  std::string operator/(const std::string& f) const { return (dir / f).string(); }
+};
+
+RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return run_program(DEFORM_EXE, args, s.dir); }
+
+std::string describe(const RunResult& r) {
+  return r.command + "\n  -> " + (r.signaled ? "signal " + std::to_string(r.signal) : "exit " + std::to_string(r.exit_code)) +
+         "\n  stdout: " + r.out.substr(0, 1500) + "\n  stderr: " + r.err.substr(0, 800);
+}
+
+long count_field(const std::string& text, const std::string& key) {
+  std::smatch m;
+  if (std::regex_search(text, m, std::regex("\\b" + key + ": (-?[0-9]+)"))) return std::stol(m[1]);
+  return -1;
+}
+
+dfm::TriMesh sphere() { return dfm::test::icosphere({0, 0, 0}, 1.0, 1); }
+dfm::TriMesh torus() { return dfm::test::torus({0, 0, 0}, 1.0, 0.35, 16, 8); }
+
+}  // namespace
+
+TEST_CASE("deform manifold: same-connectivity keyframes are exactly the prism build, with stage stats", "[cli]") {
+  Scratch s;
+  dfm::TriMesh a = sphere(), b = sphere(), c = sphere();
+  b.V.col(1).array() += 0.25;
+  c.V *= 1.3;
+  dfm::test::write_obj_raw(s / "a.obj", a);
+  dfm::test::write_obj_raw(s / "b.obj", b);
+  dfm::test::write_obj_raw(s / "c.obj", c);
+  const RunResult r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", s / "c.obj", "--times", "0", "1",
+                                 "3", "--at", "0.5", "-o", s / "slice.obj", "--stats", "--save-manifold", s / "m.tet4",
+                                 "--frames", "3", "--sequence", s / "seq"});
+  INFO(describe(r));
+  REQUIRE(r.exit_code == 0);
+  CHECK(count_field(r.out, "prism slabs") == 2);
+  CHECK(count_field(r.out, "transition slabs") == 0);
+  CHECK(count_field(r.out, "steiner points") == 0);
+  for (const char* k : {"conform seconds: ", "delaunay seconds: ", "classify seconds: ", "extract seconds: ",
+                        "total seconds: "})
+    CHECK(r.out.find(k) != std::string::npos);
+  CHECK(r.out.find("closed: yes") != std::string::npos);
+  // The saved manifold is the prism build of the three layers.
+  const dfm::AnimationManifold want = dfm::build_manifold({a.V, b.V, c.V}, a.F, {0, 1, 3});
+  const dfm::AnimationManifold got = dfm::read_manifold(s / "m.tet4");
+  REQUIRE(got.num_vertices() == want.num_vertices());
+  CHECK((got.V - want.V).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(got.T == want.T);
+  CHECK(got.times == want.times);
+  CHECK(got.slab_offsets == want.slab_offsets);
+  CHECK(fs::exists(s / "seq0002.obj"));
+}
+
+TEST_CASE("deform manifold: a bad keyframe exits 1 naming the file", "[cli][hostile]") {
+  Scratch s;
+  dfm::test::write_obj_raw(s / "sphere.obj", sphere());
+  dfm::test::write_obj_raw(s / "open.obj", dfm::test::open_copy(torus()));
+  dfm::TriMesh nan = torus();
+  nan.V(2, 0) = std::nan("");
+  dfm::test::write_obj_raw(s / "nan.obj", nan);
+  dfm::TriMesh bad = torus();
+  bad.F(4, 1) = 9999;
+  dfm::test::write_obj_raw(s / "badindex.obj", bad);
+  for (const std::string f : {"missing.obj", "open.obj", "nan.obj", "badindex.obj"}) {
+    const RunResult r = deform(s, {"manifold", "--keyframes", s / "sphere.obj", s / f, "--at", "0.5", "--stats"});
+    INFO(describe(r));
+    CHECK_FALSE(r.signaled);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("deform manifold: error: ") == 0);
+    CHECK(r.err.find(f) != std::string::npos);
+  }
+}
+
+TEST_CASE("deform manifold: sphere -> torus is a transition whose slice is closed", "[cli][transition]") {
+  Scratch s;
+  dfm::test::write_obj_raw(s / "sphere.obj", sphere());
+  dfm::test::write_obj_raw(s / "torus.obj", torus());
+  const RunResult r = deform(s, {"manifold", "--keyframes", s / "sphere.obj", s / "torus.obj", "--at", "0.5", "-o",
+                                 s / "mid.obj", "--stats", "--save-manifold", s / "m.tet4"});
+  INFO(describe(r));
+  REQUIRE(r.exit_code == 0);
+  CHECK(count_field(r.out, "transition slabs") == 1);
+  CHECK(count_field(r.out, "prism slabs") == 0);
+  CHECK(r.out.find("closed: yes") != std::string::npos);
+  CHECK(dfm::read_manifold(s / "m.tet4").num_tets() > 0);
+}

