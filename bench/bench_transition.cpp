@@ -51,7 +51,7 @@ void run(const char* name, const TriMesh& a, const TriMesh& b) {
 }  // namespace
 
 int main() {
-  const TriMesh torus = dfm::test::torus(0.32, 0.12, 100, 50);  // 5,000 vertices, genus 1
+  const TriMesh torus = dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.12, 100, 50);  // 5,000 vertices, genus 1
   const TriMesh two = dfm::test::concat(dfm::test::icosphere(Eigen::Vector3d(-0.22, 0, 0), 0.2, 4),
                                         dfm::test::icosphere(Eigen::Vector3d(0.22, 0, 0.01), 0.2, 4));  // 5,124
   run("torus to two spheres", torus, two);

@@ -59,6 +59,14 @@ struct Snapshot {
 
 }  // namespace
 
+// Bit-identical manifolds: vertices, tetrahedra, layer times and slabs.
+static void check_same_manifold(const AnimationManifold& got, const AnimationManifold& want) {
+  CHECK(got.V == want.V);
+  CHECK(got.T == want.T);
+  CHECK(got.times == want.times);
+  CHECK(got.slab_offsets == want.slab_offsets);
+}
+
 TEST_CASE("key_mesh is one undo step, replaces a key at the same time, and undoes exactly") {
   Document d;
   make_posable(d);
@@ -182,10 +190,7 @@ TEST_CASE("pose keys only: document_manifold is today's bake + prism build, bit 
       bake_layers(track, 3, [&](const Pose& p) { return skin(d.method(), b, p, {}).V; }), d.surface().F);
   SequenceStats st;
   const AnimationManifold got = document_manifold(d, &st);
-  CHECK(got.V == want.V);
-  CHECK(got.T == want.T);
-  CHECK(got.times == want.times);
-  CHECK(got.slab_offsets == want.slab_offsets);
+  check_same_manifold(got, want);
   CHECK(st.prism_slabs == 8);
   CHECK(st.transition_slabs == 0);
   CHECK_FALSE(needs_transition(key_surfaces(d)));
@@ -208,10 +213,7 @@ TEST_CASE("same-connectivity mesh keys give exactly the prism build, mixed with 
   SequenceStats st;
   const AnimationManifold got = document_manifold(d, &st);
   const AnimationManifold want = build_manifold({s.V, moved.V, grown.V}, s.F, {0, 1, 2});
-  CHECK(got.V == want.V);
-  CHECK(got.T == want.T);
-  CHECK(got.times == want.times);
-  CHECK(got.slab_offsets == want.slab_offsets);
+  check_same_manifold(got, want);
   CHECK(st.prism_slabs == 2);
   CHECK(st.transition_slabs == 0);
 

@@ -176,7 +176,7 @@ TEST_CASE("transition: sphere to torus", "[transition]") {
   Expect want;
   want.closed_near_target = false;
   want.target_topology = false;
-  check_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 3), dfm::test::torus(0.32, 0.14, 48, 16),
+  check_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 3), dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 48, 16),
                    "sphere to torus", want);
 }
 
@@ -211,5 +211,5 @@ TEST_CASE("transition keys: hostile input names the key and the problem", "[tran
   TriMesh inside_out = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1);
   inside_out.F.col(1).swap(inside_out.F.col(2));
   CHECK_THROWS_WITH(check_transition_key(inside_out, "inv.obj"), Catch::Contains("inv.obj"));
-  CHECK_NOTHROW(check_transition_key(dfm::test::torus(0.32, 0.14, 24, 8), "torus"));
+  CHECK_NOTHROW(check_transition_key(dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), "torus"));
 }

@@ -1,6 +1,6 @@
 #pragma once
-// Closed test surfaces for transitions (torus, ellipsoid pairs) and checks of slices written
-// independently of the production code (point-to-triangle distance, Euler characteristic).
+// Checks of transition slices written independently of the production code (point-to-triangle
+// distance, Euler characteristic); the test surfaces come from key_mesh_test_meshes.h.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -9,30 +9,10 @@
 #include <Eigen/Geometry>
 
 #include "core/mesh/mesh.h"
+#include "tests/key_mesh_test_meshes.h"
 #include "tests/volume_test_meshes.h"
 
 namespace dfm::test {
-
-// Torus around the z axis: tube radius r around a circle of radius R, n x m quads split in two.
-inline TriMesh torus(double R, double r, int n, int m, const Eigen::Vector3d& c = Eigen::Vector3d::Zero()) {
-  TriMesh t;
-  t.V.resize(n * m, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-      t.V.row(i * m + j) << c.x() + (R + r * std::cos(v)) * std::cos(u), c.y() + (R + r * std::cos(v)) * std::sin(u),
-          c.z() + r * std::sin(v);
-    }
-  t.F.resize(2 * n * m, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const int a = i * m + j, b = ((i + 1) % n) * m + j, cc = ((i + 1) % n) * m + (j + 1) % m,
-                d = i * m + (j + 1) % m;
-      t.F.row(2 * (i * m + j)) << a, b, cc;
-      t.F.row(2 * (i * m + j) + 1) << a, cc, d;
-    }
-  return t;
-}
 
 // V - E + F of a triangle list.
 inline int euler_characteristic(const Eigen::MatrixXi& F) {

@@ -9,7 +9,6 @@
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_io.h"
 #include "core/anim/manifold_sequence.h"
-#include "core/anim/transition.h"
 #include "core/anim/slice.h"
 #include "core/anim/surface_checks.h"
 #include "core/mesh/io.h"
@@ -162,11 +161,8 @@ int run(const dfm::cli::Args& args) {
       if (k.num_faces() == 0) throw dfm::Error(keyframes[i] + ": mesh has no triangles");
       keys.push_back({times[i], std::move(k.V), std::move(k.F), keyframes[i]});
     }
-    // Neighbours sharing one triangle list: the exact prism build; others: a transition, whose
-    // keys are checked first (closed, oriented, finite, not self-intersecting; errors name the file).
-    for (size_t i = 0; i + 1 < keys.size(); ++i)
-      if (!dfm::same_connectivity(keys[i], keys[i + 1]))
-        for (const dfm::KeySurface* k : {&keys[i], &keys[i + 1]}) dfm::check_transition_key({k->V, k->F, {}}, k->name);
+    // Neighbours sharing one triangle list: the exact prism build; others: a transition, whose keys
+    // build_manifold_sequence checks first (errors name the file).
     dfm::SequenceStats seq;
     M = dfm::build_manifold_sequence(keys, {}, &seq);
     if (stats) print_sequence_stats(seq);

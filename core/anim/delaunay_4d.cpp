@@ -1,8 +1,8 @@
 #include "core/anim/delaunay_4d.h"
 
-#include <cstring>
+#include <algorithm>
+#include <array>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <CGAL/Delaunay_triangulation.h>
@@ -23,17 +23,9 @@ using Cell4 = CGAL::Triangulation_full_cell<K4, int>;
 using Tds4 = CGAL::Triangulation_data_structure<CGAL::Dimension_tag<4>, Vertex4, Cell4>;
 using DT4 = CGAL::Delaunay_triangulation<K4, Tds4>;
 
-struct CoordHash {
-  size_t operator()(const std::array<double, 4>& p) const {
-    std::uint64_t h = 14695981039346656037ull;
-    for (double d : p) {
-      std::uint64_t b;
-      std::memcpy(&b, &d, sizeof b);
-      h = (h ^ b) * 1099511628211ull;
-    }
-    return static_cast<size_t>(h);
-  }
-};
+using Coords = std::array<double, 4>;
+
+Coords coords_of(const K4::Point_d& p) { return {p[0], p[1], p[2], p[3]}; }
 
 }  // namespace
 
@@ -41,20 +33,24 @@ Delaunay4 delaunay_4d(const Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowM
   const int n = static_cast<int>(P.rows());
   std::vector<K4::Point_d> pts;
   pts.reserve(n);
-  std::unordered_map<std::array<double, 4>, int, CoordHash> index_of;
-  index_of.reserve(2 * static_cast<size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const std::array<double, 4> c = {P(i, 0), P(i, 1), P(i, 2), P(i, 3)};
-    if (!index_of.emplace(c, i).second) throw Error("4D Delaunay: points " + std::to_string(index_of[c]) + " and " +
-                                                   std::to_string(i) + " coincide");
-    pts.emplace_back(c.begin(), c.end());
-  }
+  for (int i = 0; i < n; ++i) pts.emplace_back(P.row(i).data(), P.row(i).data() + 4);
+  // The points in coordinate order: to refuse duplicates and to find each vertex's index after the
+  // (spatially sorted) insertion.
+  std::vector<int> order(n);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  auto row = [&](int i) { return Coords{P(i, 0), P(i, 1), P(i, 2), P(i, 3)}; };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return row(a) < row(b); });
+  for (int k = 1; k < n; ++k)
+    if (row(order[k]) == row(order[k - 1]))
+      throw Error("4D Delaunay: points " + std::to_string(order[k - 1]) + " and " + std::to_string(order[k]) +
+                  " coincide");
   DT4 dt(4);
-  dt.insert(pts.begin(), pts.end());  // spatially sorted inside
+  dt.insert(pts.begin(), pts.end());
   if (dt.current_dimension() != 4) throw Error("4D Delaunay: the points do not span 4 dimensions");
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-    const auto& p = v->point();
-    v->data() = index_of.at({p[0], p[1], p[2], p[3]});
+    const Coords c = coords_of(v->point());
+    const auto it = std::lower_bound(order.begin(), order.end(), c, [&](int i, const Coords& x) { return row(i) < x; });
+    v->data() = *it;
   }
   int count = 0;
   for (auto c = dt.finite_full_cells_begin(); c != dt.finite_full_cells_end(); ++c) c->data() = count++;

@@ -65,21 +65,7 @@ AnimationManifold build_manifold_sequence(const std::vector<KeySurface>& keys, c
       check_transition_key(b, keys[i + 1].name);
       append_slabs(out, build_transition(a, keys[i].time, b, keys[i + 1].time, options, &ts));
       local.transition_slabs += 1;
-      auto& s = local.transitions;
-      s.source_points += ts.source_points;
-      s.target_points += ts.target_points;
-      s.source_steiner += ts.source_steiner;
-      s.target_steiner += ts.target_steiner;
-      s.simplices += ts.simplices;
-      s.kept_early += ts.kept_early;
-      s.kept_middle += ts.kept_middle;
-      s.kept_late += ts.kept_late;
-      s.tets += ts.tets;
-      s.conform_seconds += ts.conform_seconds;
-      s.delaunay_seconds += ts.delaunay_seconds;
-      s.classify_seconds += ts.classify_seconds;
-      s.extract_seconds += ts.extract_seconds;
-      s.total_seconds += ts.total_seconds;
+      local.transitions += ts;
       i += 1;
     }
     if (progress && !progress(i, m - 1)) throw Error("animation manifold build cancelled");

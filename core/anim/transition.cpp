@@ -103,7 +103,7 @@ std::vector<int> ring_around(const Delaunay4& D, int s, const std::array<int, 3>
   };
   std::vector<int> fwd = {s}, back;
   for (int dir = 0; dir < 2; ++dir) {
-    int prev = -1, cur = s;
+    int cur = s;
     int o[2];
     others(s, o);
     int exit = o[dir];  // leave s across the facet opposite this corner
@@ -112,12 +112,10 @@ std::vector<int> ring_around(const Delaunay4& D, int s, const std::array<int, 3>
       if (next < 0 || next == s) break;
       (dir == 0 ? fwd : back).push_back(next);
       const int came_from = cur;
-      prev = cur;
       cur = next;
       others(cur, o);
       // Leave cur across the facet that is not shared with came_from.
       exit = D.neighbors(cur, o[0]) == came_from ? o[1] : o[0];
-      (void)prev;
     }
     if (dir == 0 && !fwd.empty() && D.neighbors(fwd.back(), exit) == s) return fwd;  // closed ring
   }
@@ -381,6 +379,25 @@ AnimationManifold extract(const Delaunay4& D, const std::vector<unsigned char>& 
 }
 
 }  // namespace
+
+TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
+  source_points += o.source_points;
+  target_points += o.target_points;
+  source_steiner += o.source_steiner;
+  target_steiner += o.target_steiner;
+  simplices += o.simplices;
+  kept_early += o.kept_early;
+  kept_middle += o.kept_middle;
+  kept_late += o.kept_late;
+  repairs += o.repairs;
+  tets += o.tets;
+  conform_seconds += o.conform_seconds;
+  delaunay_seconds += o.delaunay_seconds;
+  classify_seconds += o.classify_seconds;
+  extract_seconds += o.extract_seconds;
+  total_seconds += o.total_seconds;
+  return *this;
+}
 
 void check_transition_key(const TriMesh& key, const std::string& what) {
   if (key.V.cols() != 3 || key.F.cols() != 3) throw Error(what + ": positions and triangles need 3 columns");

@@ -38,6 +38,9 @@ struct TransitionStats {
   int tets = 0;                                  // of the resulting manifold
   double conform_seconds = 0, delaunay_seconds = 0, classify_seconds = 0, extract_seconds = 0;
   double total_seconds = 0;
+
+  // Adds another transition's counts and times (a sequence's sum).
+  TransitionStats& operator+=(const TransitionStats& o);
 };
 
 // Checks a key surface for a transition: finite coordinates, valid indices, no repeated vertex in a
