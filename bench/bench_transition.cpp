@@ -5,11 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <string>
 
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
 #include "core/anim/transition.h"
+#include "core/mesh/io.h"
 #include "tests/transition_test_meshes.h"
 
 using namespace dfm;
@@ -31,10 +33,10 @@ void run(const char* name, const TriMesh& a, const TriMesh& b) {
   TransitionStats st;
   const AnimationManifold M = build_transition(a, 0, b, 1, {}, &st);
   std::printf("%-28s %5d -> %5d vertices: total %.2f s (conform %.2f, delaunay %.2f, classify %.2f, extract %.2f); "
-              "%d 4-simplices, %d Steiner points, %d repairs, %d tets\n",
+              "%d 4-simplices, %d Steiner points, %d triangles not conforming, %d repairs, %d tets\n",
               name, static_cast<int>(a.V.rows()), static_cast<int>(b.V.rows()), st.total_seconds, st.conform_seconds,
               st.delaunay_seconds, st.classify_seconds, st.extract_seconds, st.simplices,
-              st.source_steiner + st.target_steiner, st.repairs, st.tets);
+              st.source_steiner + st.target_steiner, st.source_missing + st.target_missing, st.repairs, st.tets);
   // Baseline in the same process: a prism manifold of the first key over enough layers to hold about
   // as many tetrahedra, sliced by the same slicer.
   const int layers = std::max(2, static_cast<int>(std::lround(st.tets / (3.0 * a.F.rows()))) + 1);
@@ -56,5 +58,12 @@ int main() {
                                         dfm::test::icosphere(Eigen::Vector3d(0.22, 0, 0.01), 0.2, 4));  // 5,124
   run("torus to two spheres", torus, two);
   run("icosphere 2562 to torus", dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.45, 4), torus);
+  try {
+    const std::string dir = DFM_DATA_DIR;
+    run("bunny to 3holes", dfm::test::into_unit_box(read_surface(dir + "/bunny.off")),
+        dfm::test::into_unit_box(read_surface(dir + "/3holes.off")));
+  } catch (const std::exception& e) {
+    std::printf("bunny to 3holes skipped: %s\n", e.what());
+  }
   return 0;
 }

@@ -161,12 +161,13 @@ TEST_CASE("delaunay_4d: every circumsphere is empty (brute force)", "[transition
 TEST_CASE("conforming surface: split edges keep the surface and its orientation", "[transition]") {
   TriMesh box = dfm::test::box_mesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3, 1, 0.2));
   ConformingSurface s = conforming_delaunay_surface(box.V, box.F, 30);
+  CHECK(s.missing == 0);
   CHECK(s.V.topRows(8) == box.V);
   CHECK(is_closed_and_oriented(s.F));
   CHECK(std::abs(enclosed_volume(s.V, s.F) - 0.6) < 1e-12);
   CHECK(dfm::test::max_distance_to_surface(s.V, box) < 1e-12);
   const int before = static_cast<int>(s.V.rows());
-  CHECK(split_longest_edges(s, {0, 1}) >= 1);
+  CHECK(split_edges(s, {{0, 0}, {1, 2}}) >= 1);
   CHECK(s.V.rows() > before);
   CHECK(is_closed_and_oriented(s.F));
   CHECK(std::abs(enclosed_volume(s.V, s.F) - 0.6) < 1e-12);
@@ -196,6 +197,25 @@ TEST_CASE("transition: icosphere of 642 vertices to one of 10242", "[transition]
   REQUIRE(a.V.rows() == 642);
   REQUIRE(b.V.rows() == 10242);
   check_transition(a, b, "642 to 10242");
+}
+
+TEST_CASE("transition: bunny to 3holes builds; its key slices keep the key vertices on the surface", "[transition]") {
+  // The bunny's surface cannot be made fully conforming by edge splits (they cascade near its sharp
+  // parts), so the full acceptance does not hold here yet (see issue 15); what must hold is checked.
+  DFM_DATA_OR_SKIP(bunny, "bunny.off");
+  DFM_DATA_OR_SKIP(holes, "3holes.off");
+  const TriMesh a = dfm::test::into_unit_box(read_surface(bunny));
+  const TriMesh b = dfm::test::into_unit_box(read_surface(holes));
+  TransitionStats st;
+  const AnimationManifold M = build_transition(a, 0, b, 1, {}, &st);
+  validate_manifold(M, "bunny to 3holes");
+  INFO(st.source_missing << " + " << st.target_missing << " surface triangles not conforming");
+  for (int k = 0; k < 2; ++k) {
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, k);
+    CHECK(dfm::test::max_distance_to_surface(s.mesh.V, k == 0 ? a : b) <= 1e-9 * diagonal(a, b));
+  }
+  for (int i = 1; i <= 4; ++i) CHECK(enclosed_volume(slice_manifold(M, SliceAxis::T, i / 5.0).mesh.V,
+                                                     slice_manifold(M, SliceAxis::T, i / 5.0).mesh.F) > 0);
 }
 
 TEST_CASE("transition keys: hostile input names the key and the problem", "[transition]") {

@@ -25,8 +25,12 @@ std::uint64_t edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
-// The triangles of s that are not faces of the Delaunay tetrahedralization of s.V.
-std::vector<int> missing_triangles(const ConformingSurface& s) {
+// One round: the triangles of s missing from the Delaunay tetrahedralization of s.V. Where a
+// missing triangle and its neighbour are coplanar (co-circular points: the Delaunay tetrahedralization
+// chose the other diagonal) the surface takes the other diagonal, which changes no geometry;
+// elsewhere the triangle's longest edge missing from the tetrahedralization is split (else its
+// longest edge). Returns the number of triangles that were missing; with fix false it only counts.
+int conform_round(ConformingSurface& s, bool fix) {
   const int n = static_cast<int>(s.V.rows());
   std::vector<std::pair<K::Point_3, int>> pts;
   pts.reserve(n);
@@ -36,18 +40,58 @@ std::vector<int> missing_triangles(const ConformingSurface& s) {
   int found = 0;
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v, ++found) vh[v->info()] = v;
   if (found != n) throw Error("two surface vertices are at the same position");
-  std::vector<int> missing;
+  std::unordered_map<std::uint64_t, std::vector<int>> faces_of;
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int j = 0; j < 3; ++j) faces_of[edge_key(s.F(f, j), s.F(f, (j + 1) % 3))].push_back(f);
+  Delaunay3::Cell_handle c;
+  int i, j, k;
+  auto is_edge = [&](int a, int b) { return dt.is_edge(vh[a], vh[b], c, i, j); };
+  auto point = [&](int v) { return pts[v].first; };
+  std::vector<char> changed(s.F.rows(), 0);
+  std::vector<std::pair<int, int>> split;
+  int missing = 0;
   for (int f = 0; f < s.F.rows(); ++f) {
-    Delaunay3::Cell_handle c;
-    int i, j, k;
-    if (!dt.is_facet(vh[s.F(f, 0)], vh[s.F(f, 1)], vh[s.F(f, 2)], c, i, j, k)) missing.push_back(f);
+    if (dt.is_facet(vh[s.F(f, 0)], vh[s.F(f, 1)], vh[s.F(f, 2)], c, i, j, k)) continue;
+    ++missing;
+    if (!fix || changed[f]) continue;
+    bool flipped = false;
+    for (int e = 0; e < 3 && !flipped; ++e) {
+      const int a = s.F(f, e), b = s.F(f, (e + 1) % 3), cc = s.F(f, (e + 2) % 3);
+      const auto& around = faces_of[edge_key(a, b)];
+      if (around.size() != 2) continue;
+      const int g = around[0] == f ? around[1] : around[0];
+      if (changed[g]) continue;
+      int d = -1;
+      for (int t = 0; t < 3; ++t)
+        if (s.F(g, t) != a && s.F(g, t) != b) d = s.F(g, t);
+      if (CGAL::orientation(point(a), point(b), point(cc), point(d)) != CGAL::COPLANAR || !is_edge(cc, d)) continue;
+      s.F.row(f) << a, d, cc;  // the quad a d b cc, split by cc -- d
+      s.F.row(g) << d, b, cc;
+      changed[f] = changed[g] = 1;
+      flipped = true;
+    }
+    if (flipped) continue;
+    int best = -1, best_missing = -1;
+    double len = -1, len_missing = -1;
+    for (int e = 0; e < 3; ++e) {
+      const int a = s.F(f, e), b = s.F(f, (e + 1) % 3);
+      const double l = (s.V.row(a) - s.V.row(b)).squaredNorm();
+      if (l > len) len = l, best = e;
+      if (!is_edge(a, b) && l > len_missing) len_missing = l, best_missing = e;
+    }
+    split.push_back({f, best_missing >= 0 ? best_missing : best});
   }
+  // Splits of triangles a flip has rewritten in this round wait for the next one.
+  std::vector<std::pair<int, int>> todo;
+  for (const auto& fe : split)
+    if (!changed[fe.first]) todo.push_back(fe);
+  if (!todo.empty()) split_edges(s, todo);
   return missing;
 }
 
 }  // namespace
 
-int split_longest_edges(ConformingSurface& s, const std::vector<int>& triangles) {
+int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& triangle_edges) {
   std::vector<std::array<int, 3>> F(s.F.rows());
   for (int f = 0; f < s.F.rows(); ++f) F[f] = {s.F(f, 0), s.F(f, 1), s.F(f, 2)};
   std::vector<Eigen::RowVector3d> V(s.V.rows());
@@ -57,15 +101,7 @@ int split_longest_edges(ConformingSurface& s, const std::vector<int>& triangles)
     for (int j = 0; j < 3; ++j) faces_of[edge_key(F[f][j], F[f][(j + 1) % 3])].push_back(f);
 
   std::vector<std::uint64_t> edges;
-  for (int f : triangles) {
-    int best = 0;
-    double len = -1;
-    for (int j = 0; j < 3; ++j) {
-      const double l = (V[F[f][j]] - V[F[f][(j + 1) % 3]]).squaredNorm();
-      if (l > len) len = l, best = j;
-    }
-    edges.push_back(edge_key(F[f][best], F[f][(best + 1) % 3]));
-  }
+  for (const auto& [f, e] : triangle_edges) edges.push_back(edge_key(F[f][e], F[f][(e + 1) % 3]));
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
 
@@ -104,17 +140,24 @@ int split_longest_edges(ConformingSurface& s, const std::vector<int>& triangles)
   return added;
 }
 
+
 void make_conforming(ConformingSurface& s, int max_rounds) {
-  for (;;) {
-    const std::vector<int> missing = missing_triangles(s);
-    if (missing.empty()) return;
-    if (s.rounds >= max_rounds)
-      throw Error("the surface is not conforming Delaunay after " + std::to_string(s.rounds) + " rounds of " +
-                  "splitting (" + std::to_string(missing.size()) + " triangles missing; very thin triangles or " +
-                  "nearly touching parts?)");
-    split_longest_edges(s, missing);
+  ConformingSurface best;
+  int previous = -1;
+  best.missing = -1;
+  for (int round = 0;; ++round) {
+    ConformingSurface next = s;
+    const int missing = conform_round(next, round < max_rounds);  // counts s's missing triangles
+    if (best.missing < 0 || missing < best.missing) {
+      best = s;
+      best.missing = missing;
+    }
+    if (missing == 0 || round >= max_rounds || (previous >= 0 && missing >= previous)) break;
+    previous = missing;
+    s = std::move(next);
     ++s.rounds;
   }
+  s = std::move(best);
 }
 
 ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int max_rounds) {

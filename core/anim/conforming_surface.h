@@ -13,14 +13,17 @@ struct ConformingSurface {
   Eigen::MatrixXi F;  // the input's triangles, split where Steiner points were added (same orientation)
   int steiner = 0;
   int rounds = 0;
+  int missing = 0;  // triangles still not faces of the Delaunay tetrahedralization (0: conforming)
 };
 
-// Splits the longest edge of each listed triangle at its midpoint (both triangles on the edge are
-// split, orientation kept). Returns the number of points added.
-int split_longest_edges(ConformingSurface& s, const std::vector<int>& triangles);
+// Splits the given edge (0..2: corners e, e+1) of each listed triangle at its midpoint (both
+// triangles on the edge are split, orientation kept). Returns the number of points added.
+int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& triangle_edges);
 
-// Makes a closed, edge-manifold surface conforming Delaunay. Throws dfm::Error when it is not after
-// max_rounds rounds of splitting.
+// Makes a closed, edge-manifold surface conforming Delaunay, as far as max_rounds rounds of flips
+// (coplanar neighbours) and edge splits get; it stops early when a round leaves no fewer triangles
+// missing (near sharp or nearly touching parts splitting cascades). `missing` says how far it got.
+// Throws dfm::Error when two vertices coincide.
 ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int max_rounds);
 // Continues on a surface that is already partly conforming (e.g. after split_longest_edges).
 void make_conforming(ConformingSurface& s, int max_rounds);

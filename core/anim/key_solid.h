@@ -1,13 +1,18 @@
 #pragma once
-// Which faces of a Delaunay tetrahedralization lie in the closed solid bounded by a key surface that
-// conforms to it (every surface triangle is a face). Used to strip 4-simplices (Southern 2008, 8.5):
-// a face is in the solid exactly when it is a face of an inside tetrahedron.
+// Which faces of a key's Delaunay tetrahedralization lie in the closed solid the key surface bounds,
+// for stripping 4-simplices (Southern 2008, 8.5): a face is in the solid exactly when it is a face of
+// an inside tetrahedron. Where every surface triangle is a face of the tetrahedra, inside is exact (a
+// flood fill that flips across the surface); otherwise the generalized winding number of the surface
+// at each tetrahedron's centroid decides (Jacobson 2013, ch. 8), which stays right where the surface
+// could not be made fully conforming and a tetrahedron crosses it.
 #include <array>
-#include <string>
 #include <unordered_set>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "core/anim/manifold.h"
+#include "core/mesh/mesh.h"
 
 namespace dfm {
 
@@ -25,23 +30,20 @@ SimplexKey simplex_key(const int* vertices, int count);
 
 class KeySolid {
  public:
-  // tets: the tetrahedralization (#T x 4, indices into one point set) of the convex hull of the key's
-  // points; surface: the key's outward triangles in the same indices. Inside/outside by a flood fill
-  // from the hull that flips across surface triangles. Throws dfm::Error naming `what` when a surface
-  // triangle is not a face of tets (`missing` receives their rows, if given, before the throw) or
-  // the fill is inconsistent.
-  KeySolid(const std::vector<std::array<int, 4>>& tets, const Eigen::MatrixXi& surface, const std::string& what,
-           std::vector<int>* missing = nullptr);
-  // True when the face (1 to 4 vertices) lies in the closed solid. A single vertex always does.
+  // tets: the key's tetrahedra (indices into P, whose first 3 columns are positions); surface: the
+  // key's closed, outward surface; surface_in_P: its triangles in P's indices.
+  KeySolid(const std::vector<std::array<int, 4>>& tets, const MatrixX4dRow& P, const TriMesh& surface,
+           const Eigen::MatrixXi& surface_in_P);
+  bool exact() const { return exact_; }
+  // True when the face (1 to 4 vertices) lies in the closed solid. A single vertex always does (every
+  // key point is on its surface).
   bool contains(const int* vertices, int count) const;
-  // True when the triangle is one of the key surface's triangles.
-  bool on_surface(const int* vertices) const { return surface_.count(simplex_key(vertices, 3)) > 0; }
   int num_inside_tets() const { return inside_tets_; }
 
  private:
   std::unordered_set<SimplexKey, SimplexKeyHash> inside_;  // edges, triangles and tets of inside tets
-  std::unordered_set<SimplexKey, SimplexKeyHash> surface_;
   int inside_tets_ = 0;
+  bool exact_ = false;
 };
 
 }  // namespace dfm

@@ -92,8 +92,9 @@ std::vector<unsigned char> classify(const Delaunay4& D, int n0, const KeySolid& 
 
 // ---- manifold repair: a triangle of the boundary held by more than two boundary facets --------
 
-// The simplices around the triangle g of simplex s in ring order (open at the hull).
-std::vector<int> ring_around(const Delaunay4& D, int s, const std::array<int, 3>& g) {
+// The simplices around the triangle g of simplex s in ring order; `closed` false when the ring ends
+// on the hull at both ends.
+std::vector<int> ring_around(const Delaunay4& D, int s, const std::array<int, 3>& g, bool* closed) {
   auto others = [&](int x, int* out) {  // the two corners of x not in g, as corner indices
     int k = 0;
     for (int j = 0; j < 5; ++j) {
@@ -117,8 +118,12 @@ std::vector<int> ring_around(const Delaunay4& D, int s, const std::array<int, 3>
       // Leave cur across the facet that is not shared with came_from.
       exit = D.neighbors(cur, o[0]) == came_from ? o[1] : o[0];
     }
-    if (dir == 0 && !fwd.empty() && D.neighbors(fwd.back(), exit) == s) return fwd;  // closed ring
+    if (dir == 0 && D.neighbors(cur, exit) == s) {
+      *closed = true;
+      return fwd;
+    }
   }
+  *closed = false;
   std::reverse(back.begin(), back.end());
   back.insert(back.end(), fwd.begin(), fwd.end());
   return back;
@@ -135,46 +140,62 @@ bool may_flip(const Delaunay4& D, int n0, int s, int L) {
   return true;
 }
 
+// The triangles of simplex s that span both keys (slices inside the slab cut them), as keys.
+void spanning_triangles(const Delaunay4& D, int n0, int s, std::vector<SimplexKey>& out) {
+  for (int a = 0; a < 5; ++a)
+    for (int b = a + 1; b < 5; ++b)
+      for (int c = b + 1; c < 5; ++c) {
+        const int g[3] = {D.simplices(s, a), D.simplices(s, b), D.simplices(s, c)};
+        const int nl = (g[0] < n0) + (g[1] < n0) + (g[2] < n0);
+        if (nl != 0 && nl != 3) out.push_back(simplex_key(g, 3));
+      }
+}
+
 // Fills (or, where that is not allowed, empties) the rings around boundary triangles that more than
-// two boundary facets hold, until the boundary is a 3-manifold at its triangles. Returns the flips.
-int repair_nonmanifold(const Delaunay4& D, int n0, std::vector<unsigned char>& kept, int L, int max_rounds) {
-  int flips = 0;
+// two boundary facets hold, until the boundary is a 3-manifold at its triangles: a worklist seeded
+// with every triangle of every boundary facet, refilled with the triangles of flipped simplices.
+// Returns the flips (at most max_flips).
+int repair_nonmanifold(const Delaunay4& D, int n0, std::vector<unsigned char>& kept, int L, int max_flips) {
   const unsigned char bit = static_cast<unsigned char>(1 << L);
-  for (int round = 0; round < max_rounds; ++round) {
-    std::unordered_map<SimplexKey, std::pair<int, int>, SimplexKeyHash> count;  // facets holding it, a simplex
-    for (int s = 0; s < D.simplices.rows(); ++s) {
-      if (!(kept[s] & bit)) continue;
-      for (int i = 0; i < 5; ++i) {
-        const int nb = D.neighbors(s, i);
-        if (nb >= 0 && (kept[nb] & bit)) continue;
-        int f[4], k = 0;
-        for (int j = 0; j < 5; ++j)
-          if (j != i) f[k++] = D.simplices(s, j);
-        for (int a = 0; a < 4; ++a) {
-          int g[3], m = 0, nl = 0;
-          for (int b = 0; b < 4; ++b)
-            if (b != a) g[m++] = f[b], nl += f[b] < n0;
-          if (nl == 0 || nl == 3) continue;  // not cut by slices inside the slab
-          auto& c = count[simplex_key(g, 3)];
-          c.first += 1;
-          c.second = s;
-        }
-      }
+  auto in = [&](int x) { return x >= 0 && (kept[x] & bit); };
+  // Boundary facets of the kept set that hold the ring's triangle: one per kept/not-kept step.
+  auto boundary_count = [&](const std::vector<int>& ring, bool closed) {
+    int c = 0;
+    for (size_t k = 0; k + 1 < ring.size(); ++k) c += in(ring[k]) != in(ring[k + 1]);
+    if (closed) c += in(ring.back()) != in(ring.front());
+    else c += in(ring.front()) + in(ring.back());  // the hull's outside is never kept
+    return c;
+  };
+  std::vector<std::pair<SimplexKey, int>> work;  // triangle, a simplex holding it
+  std::vector<SimplexKey> tris;
+  for (int s = 0; s < D.simplices.rows(); ++s) {
+    if (!in(s)) continue;
+    bool on_boundary = false;
+    for (int i = 0; i < 5; ++i) on_boundary = on_boundary || !in(D.neighbors(s, i));
+    if (!on_boundary) continue;
+    tris.clear();
+    spanning_triangles(D, n0, s, tris);
+    for (const auto& g : tris) work.push_back({g, s});
+  }
+  int flips = 0;
+  while (!work.empty() && flips < max_flips) {
+    const auto [g, s] = work.back();
+    work.pop_back();
+    bool closed = false;
+    const std::vector<int> ring = ring_around(D, s, {g[0], g[1], g[2]}, &closed);
+    if (boundary_count(ring, closed) <= 2) continue;
+    bool can_fill = true;
+    for (int x : ring) can_fill = can_fill && (in(x) || may_flip(D, n0, x, L));
+    for (int x : ring) {
+      const bool flip = can_fill ? !in(x) : (in(x) && may_flip(D, n0, x, L));
+      if (!flip) continue;
+      kept[x] ^= bit;
+      ++flips;
+      tris.clear();
+      spanning_triangles(D, n0, x, tris);
+      for (const auto& h : tris)
+        if (h != g) work.push_back({h, x});
     }
-    int fixed = 0;
-    for (const auto& [key, c] : count) {
-      if (c.first <= 2) continue;
-      const std::vector<int> ring = ring_around(D, c.second, {key[0], key[1], key[2]});
-      bool can_fill = true;
-      for (int x : ring) can_fill = can_fill && ((kept[x] & bit) || may_flip(D, n0, x, L));
-      for (int x : ring) {
-        const bool in = kept[x] & bit;
-        if (can_fill && !in) kept[x] |= bit, ++fixed;
-        if (!can_fill && in && may_flip(D, n0, x, L)) kept[x] &= static_cast<unsigned char>(~bit), ++fixed;
-      }
-    }
-    flips += fixed;
-    if (fixed == 0) break;
   }
   return flips;
 }
@@ -385,6 +406,8 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   target_points += o.target_points;
   source_steiner += o.source_steiner;
   target_steiner += o.target_steiner;
+  source_missing += o.source_missing;
+  target_missing += o.target_missing;
   simplices += o.simplices;
   kept_early += o.kept_early;
   kept_middle += o.kept_middle;
@@ -449,42 +472,21 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   }
   st.conform_seconds = seconds_since(t);
 
-  for (int attempt = 0;; ++attempt) {
-    const int n0 = static_cast<int>(S.V.rows()), n1 = static_cast<int>(T.V.rows());
-    MatrixX4dRow P(n0 + n1, 4);
-    P.topLeftCorner(n0, 3) = S.V;
-    P.block(0, 3, n0, 1).setConstant(t0);
-    P.bottomLeftCorner(n1, 3) = T.V;
-    P.block(n0, 3, n1, 1).setConstant(t1);
-    t = Clock::now();
-    const Delaunay4 D = delaunay_4d(P);
-    st.delaunay_seconds += seconds_since(t);
-    t = Clock::now();
-    // Where the 4D triangulation's key tetrahedra do not keep a surface triangle (degenerate point
-    // sets: co-spherical points have several Delaunay tetrahedralizations), split it and retry.
-    std::vector<int> miss_s, miss_t;
-    const Eigen::MatrixXi FT = T.F.array() + n0;
-    std::unique_ptr<KeySolid> in_s, in_t;
-    try {
-      in_s = std::make_unique<KeySolid>(key_tets(D, 0, n0), S.F, "source key", &miss_s);
-    } catch (const Error&) {
-      if (miss_s.empty() || attempt >= 3) throw;
-    }
-    try {
-      in_t = std::make_unique<KeySolid>(key_tets(D, n0, n0 + n1), FT, "target key", &miss_t);
-    } catch (const Error&) {
-      if (miss_t.empty() || attempt >= 3) throw;
-    }
-    if (!in_s || !in_t) {
-      if (!miss_s.empty()) split_longest_edges(S, miss_s);
-      if (!miss_t.empty()) split_longest_edges(T, miss_t);
-      make_conforming(S, o.max_conform_rounds + 4);
-      make_conforming(T, o.max_conform_rounds + 4);
-      st.classify_seconds += seconds_since(t);
-      continue;
-    }
-    std::vector<unsigned char> kept = classify(D, n0, *in_s, *in_t);
-    for (int L = 0; L < 3; ++L) st.repairs += repair_nonmanifold(D, n0, kept, L, 20);
+  const int n0 = static_cast<int>(S.V.rows()), n1 = static_cast<int>(T.V.rows());
+  MatrixX4dRow P(n0 + n1, 4);
+  P.topLeftCorner(n0, 3) = S.V;
+  P.block(0, 3, n0, 1).setConstant(t0);
+  P.bottomLeftCorner(n1, 3) = T.V;
+  P.block(n0, 3, n1, 1).setConstant(t1);
+  t = Clock::now();
+  const Delaunay4 D = delaunay_4d(P);
+  st.delaunay_seconds = seconds_since(t);
+  t = Clock::now();
+  const KeySolid in_s(key_tets(D, 0, n0), P, {S.V, S.F, {}}, S.F);
+  const KeySolid in_t(key_tets(D, n0, n0 + n1), P, {T.V, T.F, {}}, T.F.array() + n0);
+  {
+    std::vector<unsigned char> kept = classify(D, n0, in_s, in_t);
+    for (int L = 0; L < 3; ++L) st.repairs += repair_nonmanifold(D, n0, kept, L, static_cast<int>(D.simplices.rows()));
     st.classify_seconds += seconds_since(t);
     t = Clock::now();
     AnimationManifold M = extract(D, kept, P, n0, t0, t1, o);
@@ -493,6 +495,8 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
     st.target_points = n1;
     st.source_steiner = S.steiner;
     st.target_steiner = T.steiner;
+    st.source_missing = S.missing;
+    st.target_missing = T.missing;
     st.simplices = static_cast<int>(D.simplices.rows());
     for (unsigned char k : kept) {
       st.kept_early += k & 1;

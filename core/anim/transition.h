@@ -23,15 +23,16 @@ namespace dfm {
 
 struct TransitionOptions {
   // The local times (in (0, 1), early < late) where the source's and the target's own say ends.
-  double early = 0.25;
-  double late = 0.75;
-  // Rounds of surface Steiner points allowed to make a key conforming Delaunay.
-  int max_conform_rounds = 30;
+  double early = 0.15;
+  double late = 0.85;
+  // Rounds of surface flips and Steiner points allowed to make a key conforming Delaunay.
+  int max_conform_rounds = 12;
 };
 
 struct TransitionStats {
   int source_points = 0, target_points = 0;      // after the conforming step
   int source_steiner = 0, target_steiner = 0;    // surface Steiner points added
+  int source_missing = 0, target_missing = 0;    // surface triangles the conforming step left missing
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
   int kept_early = 0, kept_middle = 0, kept_late = 0;
   int repairs = 0;                               // simplices flipped to keep the boundary manifold
