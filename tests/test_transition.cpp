@@ -233,3 +233,20 @@ TEST_CASE("transition keys: hostile input names the key and the problem", "[tran
   CHECK_THROWS_WITH(check_transition_key(inside_out, "inv.obj"), Catch::Contains("inv.obj"));
   CHECK_NOTHROW(check_transition_key(dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), "torus"));
 }
+
+TEST_CASE("manifold sequence: a transition asked for again is the same manifold; other keys are not", "[transition]") {
+  const TriMesh a = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1);
+  TriMesh b = dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 12, 6);
+  const std::vector<KeySurface> keys = {{0, a.V, a.F, "a"}, {1, b.V, b.F, "b"}};
+  const AnimationManifold first = build_manifold_sequence(keys), again = build_manifold_sequence(keys);
+  CHECK(first.V == again.V);
+  CHECK(first.T == again.T);
+  const AnimationManifold direct = build_transition(a, 0, b, 1);
+  CHECK(first.V == direct.V);
+  CHECK(first.T == direct.T);
+  b.V.col(2).array() += 0.01;
+  const AnimationManifold moved = build_manifold_sequence({{0, a.V, a.F, "a"}, {1, b.V, b.F, "b"}});
+  CHECK_FALSE(moved.V == first.V);
+  const AnimationManifold later = build_manifold_sequence({{0, a.V, a.F, "a"}, {2, b.V, b.F, "b"}});
+  CHECK(later.times.back() == 2);
+}

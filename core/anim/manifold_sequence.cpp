@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <list>
+#include <mutex>
 
 #include "core/util/error.h"
 
@@ -12,6 +14,53 @@ bool same_connectivity(const KeySurface& a, const KeySurface& b) {
 }
 
 namespace {
+
+// Transitions take seconds, and the editor's view, its saves and the script ask for the same ones:
+// the last few are kept, found by exact comparison of both keys, their times and the options.
+class TransitionCache {
+ public:
+  AnimationManifold get(const KeySurface& a, const KeySurface& b, const TransitionOptions& o, TransitionStats* st) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto it = entries_.begin(); it != entries_.end(); ++it)
+        if (it->matches(a, b, o)) {
+          entries_.splice(entries_.begin(), entries_, it);  // most recent first
+          *st = entries_.front().stats;
+          return entries_.front().manifold;
+        }
+    }
+    Entry e{a, b, o, {}, {}};
+    e.manifold = build_transition({a.V, a.F, {}}, a.time, {b.V, b.F, {}}, b.time, o, &e.stats);
+    *st = e.stats;
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.push_front(std::move(e));
+    if (entries_.size() > kCapacity) entries_.pop_back();
+    return entries_.front().manifold;
+  }
+
+ private:
+  static constexpr size_t kCapacity = 4;
+  struct Entry {
+    KeySurface a, b;
+    TransitionOptions options;
+    AnimationManifold manifold;
+    TransitionStats stats;
+    bool matches(const KeySurface& x, const KeySurface& y, const TransitionOptions& o) const {
+      auto same = [](const KeySurface& p, const KeySurface& q) {
+        return p.time == q.time && p.V.rows() == q.V.rows() && p.F.rows() == q.F.rows() && p.V == q.V && p.F == q.F;
+      };
+      return same(a, x) && same(b, y) && options.early == o.early && options.late == o.late &&
+             options.max_conform_rounds == o.max_conform_rounds;
+    }
+  };
+  std::mutex mutex_;
+  std::list<Entry> entries_;
+};
+
+TransitionCache& transition_cache() {
+  static TransitionCache cache;
+  return cache;
+}
 
 // Appends M's slabs (vertices renumbered after out's) to out.
 void append_slabs(AnimationManifold& out, const AnimationManifold& M) {
@@ -60,10 +109,9 @@ AnimationManifold build_manifold_sequence(const std::vector<KeySurface>& keys, c
       i = j;
     } else {
       TransitionStats ts;
-      const TriMesh a{keys[i].V, keys[i].F, {}}, b{keys[i + 1].V, keys[i + 1].F, {}};
-      check_transition_key(a, keys[i].name);
-      check_transition_key(b, keys[i + 1].name);
-      append_slabs(out, build_transition(a, keys[i].time, b, keys[i + 1].time, options, &ts));
+      check_transition_key({keys[i].V, keys[i].F, {}}, keys[i].name);
+      check_transition_key({keys[i + 1].V, keys[i + 1].F, {}}, keys[i + 1].name);
+      append_slabs(out, transition_cache().get(keys[i], keys[i + 1], options, &ts));
       local.transition_slabs += 1;
       local.transitions += ts;
       i += 1;

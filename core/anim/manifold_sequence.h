@@ -2,7 +2,8 @@
 // An animation manifold through key surfaces of any connectivity: neighbouring keys that share one
 // triangle list are joined by the exact prism build (manifold.h), others by a transition
 // (transition.h). Slabs follow each other in time; each run of same-connectivity keys shares its
-// layer vertices, a transition has its own copies of its two keys' vertices.
+// layer vertices, a transition has its own copies of its two keys' vertices. The last few
+// transitions built are kept, so asking again for the same keys costs a comparison.
 #include <functional>
 #include <string>
 #include <vector>
