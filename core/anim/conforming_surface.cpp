@@ -5,10 +5,13 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include <Eigen/Geometry>
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include "core/bind/winding_bvh.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -30,16 +33,17 @@ std::uint64_t edge_key(int a, int b) {
 // chose the other diagonal) the surface takes the other diagonal, which changes no geometry;
 // elsewhere the triangle's longest edge missing from the tetrahedralization is split (else its
 // longest edge). Returns the number of triangles that were missing; with fix false it only counts.
-int conform_round(ConformingSurface& s, bool fix) {
-  const int n = static_cast<int>(s.V.rows());
+int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr) {
+  const int n = static_cast<int>(s.V.rows()), ni = static_cast<int>(s.interior.rows());
   std::vector<std::pair<K::Point_3, int>> pts;
-  pts.reserve(n);
+  pts.reserve(n + ni);
   for (int i = 0; i < n; ++i) pts.push_back({K::Point_3(s.V(i, 0), s.V(i, 1), s.V(i, 2)), i});
+  for (int i = 0; i < ni; ++i) pts.push_back({K::Point_3(s.interior(i, 0), s.interior(i, 1), s.interior(i, 2)), n + i});
   Delaunay3 dt(pts.begin(), pts.end());
-  std::vector<Delaunay3::Vertex_handle> vh(n);
+  std::vector<Delaunay3::Vertex_handle> vh(n + ni);
   int found = 0;
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v, ++found) vh[v->info()] = v;
-  if (found != n) throw Error("two surface vertices are at the same position");
+  if (found != n + ni) throw Error("two surface vertices are at the same position");
   std::unordered_map<std::uint64_t, std::vector<int>> faces_of;
   for (int f = 0; f < s.F.rows(); ++f)
     for (int j = 0; j < 3; ++j) faces_of[edge_key(s.F(f, j), s.F(f, (j + 1) % 3))].push_back(f);
@@ -53,6 +57,7 @@ int conform_round(ConformingSurface& s, bool fix) {
   for (int f = 0; f < s.F.rows(); ++f) {
     if (dt.is_facet(vh[s.F(f, 0)], vh[s.F(f, 1)], vh[s.F(f, 2)], c, i, j, k)) continue;
     ++missing;
+    if (missing_rows) missing_rows->push_back(f);
     if (!fix || changed[f]) continue;
     bool flipped = false;
     for (int e = 0; e < 3 && !flipped; ++e) {
@@ -90,6 +95,55 @@ int conform_round(ConformingSurface& s, bool fix) {
 }
 
 }  // namespace
+
+void add_interior_points(ConformingSurface& s, double h) {
+  if (!(h > 0)) return;
+  const Eigen::RowVector3d lo = s.V.colwise().minCoeff(), hi = s.V.colwise().maxCoeff();
+  const Eigen::Array3i n = (((hi - lo) / h).array().floor().cast<int>() + 1).transpose();
+  if (static_cast<double>(n.prod()) > 2e6) return;  // a spacing far below the shape's size: no fill
+  std::vector<Eigen::RowVector3d> grid;
+  for (int x = 0; x < n[0]; ++x)
+    for (int y = 0; y < n[1]; ++y)
+      for (int z = 0; z < n[2]; ++z)
+        grid.push_back(lo + 0.5 * ((hi - lo) - (n.cast<double>() - 1).matrix().transpose() * h) +
+                       Eigen::RowVector3d(x, y, z) * h);
+  Eigen::MatrixXd G(grid.size(), 3);
+  for (size_t i = 0; i < grid.size(); ++i) G.row(static_cast<Eigen::Index>(i)) = grid[i];
+  const Eigen::VectorXd w = winding_numbers(build_winding_tree(s.V, s.F), G);
+  std::vector<Eigen::RowVector3d> inside;
+  for (Eigen::Index i = 0; i < G.rows(); ++i)
+    if (w[i] > 0.75) inside.push_back(G.row(i));  // clearly inside: points near the surface would crowd it
+  auto store = [&]() {
+    s.interior.resize(static_cast<Eigen::Index>(inside.size()), 3);
+    for (size_t i = 0; i < inside.size(); ++i) s.interior.row(static_cast<Eigen::Index>(i)) = inside[i];
+  };
+  store();
+  for (int round = 0; round < 6 && !inside.empty(); ++round) {
+    std::vector<int> lost;
+    ConformingSurface probe = s;
+    conform_round(probe, false, &lost);
+    if (static_cast<int>(lost.size()) <= s.missing) return;  // no worse than without the points
+    // Drop the points in the diametral spheres of the lost triangles.
+    std::vector<char> drop(inside.size(), 0);
+    for (int f : lost) {
+      const Eigen::RowVector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
+      const Eigen::RowVector3d ab = b - a, ac = c - a, nrm = ab.cross(ac);
+      const Eigen::RowVector3d centre =
+          a + (nrm.cross(ab) * ac.squaredNorm() + ac.cross(nrm) * ab.squaredNorm()) / (2 * nrm.squaredNorm());
+      const double r2 = (centre - a).squaredNorm() * 1.0001;
+      for (size_t i = 0; i < inside.size(); ++i)
+        if ((inside[i] - centre).squaredNorm() <= r2) drop[i] = 1;
+    }
+    std::vector<Eigen::RowVector3d> kept;
+    for (size_t i = 0; i < inside.size(); ++i)
+      if (!drop[i]) kept.push_back(inside[i]);
+    if (kept.size() == inside.size()) break;
+    inside.swap(kept);
+    store();
+  }
+  inside.clear();  // the points keep costing the surface triangles: go without them
+  store();
+}
 
 int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& triangle_edges) {
   std::vector<std::array<int, 3>> F(s.F.rows());

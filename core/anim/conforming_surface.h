@@ -14,6 +14,8 @@ struct ConformingSurface {
   int steiner = 0;
   int rounds = 0;
   int missing = 0;  // triangles still not faces of the Delaunay tetrahedralization (0: conforming)
+  // Points strictly inside, part of the Delaunay tetrahedralization but not of the surface.
+  Eigen::MatrixXd interior = Eigen::MatrixXd(0, 3);
 };
 
 // Splits the given edge (0..2: corners e, e+1) of each listed triangle at its midpoint (both
@@ -27,5 +29,11 @@ int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& tr
 ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int max_rounds);
 // Continues on a surface that is already partly conforming (e.g. after split_longest_edges).
 void make_conforming(ConformingSurface& s, int max_rounds);
+
+// Fills the inside with points on a grid of the given spacing (as TetGen's quality mesh fills the
+// keys' interiors in Southern's 8.7: small tetrahedra keep the simplices of a transition small), then
+// drops the points inside the diametral sphere of a surface triangle the tetrahedralization loses, so
+// the surface stays as conforming as it was.
+void add_interior_points(ConformingSurface& s, double spacing);
 
 }  // namespace dfm

@@ -55,6 +55,13 @@ TriMesh compacted(const TriMesh& key) {
   return out;
 }
 
+double mean_edge_length(const ConformingSurface& s) {
+  double sum = 0;
+  for (int f = 0; f < s.F.rows(); ++f)
+    for (int j = 0; j < 3; ++j) sum += (s.V.row(s.F(f, j)) - s.V.row(s.F(f, (j + 1) % 3))).norm();
+  return s.F.rows() > 0 ? sum / (3.0 * s.F.rows()) : 0.0;
+}
+
 // ---- classification (which 4-simplices are kept in which layer) ---------------------------------
 
 enum Layer { kEarly = 0, kMiddle = 1, kLate = 2 };
@@ -74,6 +81,7 @@ std::vector<std::array<int, 4>> key_tets(const Delaunay4& D, int first, int last
 }
 
 // kept[s] bit L: simplex s belongs to the morph in layer L.
+// kept[s] bit L: simplex s belongs to the morph in layer L.
 std::vector<unsigned char> classify(const Delaunay4& D, int n0, const KeySolid& source, const KeySolid& target) {
   std::vector<unsigned char> kept(D.simplices.rows(), 0);
   for (int s = 0; s < D.simplices.rows(); ++s) {
@@ -82,10 +90,9 @@ std::vector<unsigned char> classify(const Delaunay4& D, int n0, const KeySolid& 
       const int v = D.simplices(s, j);
       if (v < n0) lo[nl++] = v; else hi[nh++] = v;
     }
-    const bool in_s = nl > 0 && source.contains(lo, nl), in_t = nh > 0 && target.contains(hi, nh);
-    const bool early = in_s, late = in_t;
-    kept[s] = static_cast<unsigned char>((early ? 1 << kEarly : 0) | (in_s && in_t ? 1 << kMiddle : 0) |
-                                         (late ? 1 << kLate : 0));
+    const bool in_s = source.contains(lo, nl), in_t = target.contains(hi, nh);
+    kept[s] = static_cast<unsigned char>((in_s ? 1 << kEarly : 0) | (in_s && in_t ? 1 << kMiddle : 0) |
+                                         (in_t ? 1 << kLate : 0));
   }
   return kept;
 }
@@ -178,18 +185,22 @@ int repair_nonmanifold(const Delaunay4& D, int n0, std::vector<unsigned char>& k
     for (const auto& g : tris) work.push_back({g, s});
   }
   int flips = 0;
+  std::vector<char> flipped(kept.size(), 0);
   while (!work.empty() && flips < max_flips) {
     const auto [g, s] = work.back();
     work.pop_back();
     bool closed = false;
     const std::vector<int> ring = ring_around(D, s, {g[0], g[1], g[2]}, &closed);
     if (boundary_count(ring, closed) <= 2) continue;
+    // Each simplex changes at most once, so repairs cannot undo each other.
+    auto free = [&](int x) { return !flipped[x] && may_flip(D, n0, x, L); };
     bool can_fill = true;
-    for (int x : ring) can_fill = can_fill && (in(x) || may_flip(D, n0, x, L));
+    for (int x : ring) can_fill = can_fill && (in(x) || free(x));
     for (int x : ring) {
-      const bool flip = can_fill ? !in(x) : (in(x) && may_flip(D, n0, x, L));
+      const bool flip = can_fill ? !in(x) : (in(x) && free(x));
       if (!flip) continue;
       kept[x] ^= bit;
+      flipped[x] = 1;
       ++flips;
       tris.clear();
       spanning_triangles(D, n0, x, tris);
@@ -470,13 +481,17 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   } catch (const Error& e) {
     throw Error(std::string("target key: ") + e.what());
   }
+  add_interior_points(S, o.interior_spacing * mean_edge_length(S));
+  add_interior_points(T, o.interior_spacing * mean_edge_length(T));
   st.conform_seconds = seconds_since(t);
 
-  const int n0 = static_cast<int>(S.V.rows()), n1 = static_cast<int>(T.V.rows());
+  const int n0 = static_cast<int>(S.V.rows() + S.interior.rows()), n1 = static_cast<int>(T.V.rows() + T.interior.rows());
   MatrixX4dRow P(n0 + n1, 4);
-  P.topLeftCorner(n0, 3) = S.V;
+  P.topLeftCorner(S.V.rows(), 3) = S.V;
+  P.block(S.V.rows(), 0, S.interior.rows(), 3) = S.interior;
   P.block(0, 3, n0, 1).setConstant(t0);
-  P.bottomLeftCorner(n1, 3) = T.V;
+  P.block(n0, 0, T.V.rows(), 3) = T.V;
+  P.bottomLeftCorner(T.interior.rows(), 3) = T.interior;
   P.block(n0, 3, n1, 1).setConstant(t1);
   t = Clock::now();
   const Delaunay4 D = delaunay_4d(P);

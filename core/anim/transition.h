@@ -27,10 +27,12 @@ struct TransitionOptions {
   double late = 0.85;
   // Rounds of surface flips and Steiner points allowed to make a key conforming Delaunay.
   int max_conform_rounds = 12;
+  // Interior points on a grid this many mean surface edge lengths apart (0: surface points only).
+  double interior_spacing = 2.0;
 };
 
 struct TransitionStats {
-  int source_points = 0, target_points = 0;      // after the conforming step
+  int source_points = 0, target_points = 0;      // after the conforming step, interior points included
   int source_steiner = 0, target_steiner = 0;    // surface Steiner points added
   int source_missing = 0, target_missing = 0;    // surface triangles the conforming step left missing
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation

@@ -11,7 +11,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/anim/transition.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
@@ -265,18 +264,15 @@ class SceneReader {
   std::string blob_;
 };
 
-// A mesh key's surface: shapes, indices, then the transition checks (closed, oriented, ...).
+// A mesh key's surface: shapes, indices and finite coordinates. Whether it can key a transition
+// (closed, oriented, not self-intersecting) is checked where transitions are built, which names it.
 void read_mesh_key(const SceneReader& R, const json& m, const std::string& ctx, SceneKey& k) {
   k.mesh_path = R.string(R.field(m, "source", ctx), ctx + ".source");
   k.mesh.V = R.f64(R.field(m, "V", ctx), ctx + ".V", 3);
   k.mesh.F = R.i32(R.field(m, "F", ctx), ctx + ".F", 3);
   if (k.mesh.V.rows() == 0 || k.mesh.F.rows() == 0) R.fail("'" + ctx + "' has no triangles");
+  if (!k.mesh.V.allFinite()) R.fail("'" + ctx + ".V' has a coordinate that is not finite");
   R.check_indices(k.mesh.F, k.mesh.V.rows(), ctx + ".F");
-  try {
-    check_transition_key(k.mesh, ctx + " (" + k.mesh_path + ")");
-  } catch (const Error& e) {
-    R.fail(e.what());
-  }
 }
 
 }  // namespace
