@@ -70,7 +70,7 @@ TEST_CASE("deform manifold: same-connectivity keyframes are exactly the prism bu
   CHECK(count_field(r.out, "prism slabs") == 2);
   CHECK(count_field(r.out, "transition slabs") == 0);
   CHECK(count_field(r.out, "steiner points") == 0);
-  for (const char* k : {"conform seconds: ", "delaunay seconds: ", "classify seconds: ", "extract seconds: ",
+  for (const char* k : {"conform seconds: ", "field seconds: ", "delaunay seconds: ", "extract seconds: ",
                         "total seconds: "})
     CHECK(r.out.find(k) != std::string::npos);
   CHECK(r.out.find("closed: yes") != std::string::npos);

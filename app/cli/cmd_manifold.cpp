@@ -32,7 +32,7 @@ const char* kUsage =
     "  --sequence writes N slices on t evenly spaced over the animation as PREFIX0000.obj, ...\n"
     "  --strip renders those N frames side by side on the GPU slicer (needs a display: xvfb-run).\n"
     "  --stats prints the build (prism / transition slabs, Steiner points, seconds per stage: conform,\n"
-    "  delaunay, classify, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
+    "  field, delaunay, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
     "  closedness, volume.";
 
 void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, dfm::SliceAxis axis, double at) {
@@ -50,13 +50,13 @@ void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, d
     std::cout << "volume: n/a (open slice)\n";
 }
 
-// What the build did and how long each stage took (transitions: conforming Delaunay, the 4D
-// Delaunay, classifying simplices, extracting the boundary).
+// What the build did and how long each stage took (transitions: conforming Delaunay and the keys'
+// fill, the blended field's layers, the 4D Delaunay, extracting the level set).
 void print_sequence_stats(const dfm::SequenceStats& s) {
   const dfm::TransitionStats& t = s.transitions;
   std::cout << "prism slabs: " << s.prism_slabs << "\ntransition slabs: " << s.transition_slabs
             << "\nsteiner points: " << t.source_steiner + t.target_steiner << "\nconform seconds: " << t.conform_seconds
-            << "\ndelaunay seconds: " << t.delaunay_seconds << "\nclassify seconds: " << t.classify_seconds
+            << "\nfield seconds: " << t.field_seconds << "\ndelaunay seconds: " << t.delaunay_seconds
             << "\nextract seconds: " << t.extract_seconds << "\ntransition seconds: " << t.total_seconds
             << "\ntotal seconds: " << s.seconds << "\n";
 }

@@ -4,6 +4,8 @@
 #include <array>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
+#include <set>
 
 #include <Eigen/Geometry>
 
@@ -32,13 +34,14 @@ std::uint64_t edge_key(int a, int b) {
 // missing triangle and its neighbour are coplanar (co-circular points: the Delaunay tetrahedralization
 // chose the other diagonal) the surface takes the other diagonal, which changes no geometry;
 // elsewhere the triangle's longest edge missing from the tetrahedralization is split (else its
-// longest edge). Returns the number of triangles that were missing; with fix false it only counts.
-int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr) {
-  const int n = static_cast<int>(s.V.rows()), ni = static_cast<int>(s.interior.rows());
+// longest edge). Returns the number of triangles that were missing; with fix false it only counts,
+// with split false it only flips.
+int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr, bool allow_split = true) {
+  const int n = static_cast<int>(s.V.rows()), ni = static_cast<int>(s.fill.rows());
   std::vector<std::pair<K::Point_3, int>> pts;
   pts.reserve(n + ni);
   for (int i = 0; i < n; ++i) pts.push_back({K::Point_3(s.V(i, 0), s.V(i, 1), s.V(i, 2)), i});
-  for (int i = 0; i < ni; ++i) pts.push_back({K::Point_3(s.interior(i, 0), s.interior(i, 1), s.interior(i, 2)), n + i});
+  for (int i = 0; i < ni; ++i) pts.push_back({K::Point_3(s.fill(i, 0), s.fill(i, 1), s.fill(i, 2)), n + i});
   Delaunay3 dt(pts.begin(), pts.end());
   std::vector<Delaunay3::Vertex_handle> vh(n + ni);
   int found = 0;
@@ -75,7 +78,7 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
       changed[f] = changed[g] = 1;
       flipped = true;
     }
-    if (flipped) continue;
+    if (flipped || !allow_split) continue;
     int best = -1, best_missing = -1;
     double len = -1, len_missing = -1;
     for (int e = 0; e < 3; ++e) {
@@ -96,53 +99,108 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
 
 }  // namespace
 
-void add_interior_points(ConformingSurface& s, double h) {
-  if (!(h > 0)) return;
-  const Eigen::RowVector3d lo = s.V.colwise().minCoeff(), hi = s.V.colwise().maxCoeff();
-  const Eigen::Array3i n = (((hi - lo) / h).array().floor().cast<int>() + 1).transpose();
-  if (static_cast<double>(n.prod()) > 2e6) return;  // a spacing far below the shape's size: no fill
-  std::vector<Eigen::RowVector3d> grid;
-  for (int x = 0; x < n[0]; ++x)
-    for (int y = 0; y < n[1]; ++y)
-      for (int z = 0; z < n[2]; ++z)
-        grid.push_back(lo + 0.5 * ((hi - lo) - (n.cast<double>() - 1).matrix().transpose() * h) +
-                       Eigen::RowVector3d(x, y, z) * h);
-  Eigen::MatrixXd G(grid.size(), 3);
-  for (size_t i = 0; i < grid.size(); ++i) G.row(static_cast<Eigen::Index>(i)) = grid[i];
-  const Eigen::VectorXd w = winding_numbers(build_winding_tree(s.V, s.F), G);
-  std::vector<Eigen::RowVector3d> inside;
-  for (Eigen::Index i = 0; i < G.rows(); ++i)
-    if (w[i] > 0.75) inside.push_back(G.row(i));  // clearly inside: points near the surface would crowd it
+void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates) {
+  if (candidates.rows() == 0) return;
+  const Eigen::MatrixXd before = s.fill;
+  std::set<std::array<double, 3>> taken;  // a point the tetrahedralization has already is not added
+  auto fresh = [&](const Eigen::RowVector3d& p) { return taken.insert({p[0], p[1], p[2]}).second; };
+  for (Eigen::Index i = 0; i < s.V.rows(); ++i) fresh(s.V.row(i));
+  for (Eigen::Index i = 0; i < s.fill.rows(); ++i) fresh(s.fill.row(i));
+  std::vector<Eigen::RowVector3d> added;
+  for (Eigen::Index i = 0; i < candidates.rows(); ++i)
+    if (fresh(candidates.row(i))) added.push_back(candidates.row(i));
   auto store = [&]() {
-    s.interior.resize(static_cast<Eigen::Index>(inside.size()), 3);
-    for (size_t i = 0; i < inside.size(); ++i) s.interior.row(static_cast<Eigen::Index>(i)) = inside[i];
+    s.fill.resize(before.rows() + static_cast<Eigen::Index>(added.size()), 3);
+    s.fill.topRows(before.rows()) = before;
+    for (size_t i = 0; i < added.size(); ++i) s.fill.row(before.rows() + static_cast<Eigen::Index>(i)) = added[i];
   };
   store();
-  for (int round = 0; round < 6 && !inside.empty(); ++round) {
+  // The points break ties between co-spherical surface vertices: the surface takes the diagonals
+  // the tetrahedralization now has (no change of geometry), then points that still cost a triangle
+  // go, those inside its diametral sphere first.
+  int lost_before = s.missing;
+  for (int round = 0; round < 4 && !added.empty(); ++round) {
+    conform_round(s, true, nullptr, false);
     std::vector<int> lost;
     ConformingSurface probe = s;
     conform_round(probe, false, &lost);
-    if (static_cast<int>(lost.size()) <= s.missing) return;  // no worse than without the points
-    // Drop the points in the diametral spheres of the lost triangles.
-    std::vector<char> drop(inside.size(), 0);
+    if (static_cast<int>(lost.size()) <= lost_before) return;  // no worse than without the points
+    const double grow = 1.0001 + 0.5 * round;  // widen the net when the diametral spheres do not do
+    std::vector<char> drop(added.size(), 0);
     for (int f : lost) {
       const Eigen::RowVector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
       const Eigen::RowVector3d ab = b - a, ac = c - a, nrm = ab.cross(ac);
       const Eigen::RowVector3d centre =
           a + (nrm.cross(ab) * ac.squaredNorm() + ac.cross(nrm) * ab.squaredNorm()) / (2 * nrm.squaredNorm());
-      const double r2 = (centre - a).squaredNorm() * 1.0001;
-      for (size_t i = 0; i < inside.size(); ++i)
-        if ((inside[i] - centre).squaredNorm() <= r2) drop[i] = 1;
+      const double r2 = (centre - a).squaredNorm() * grow * grow;
+      for (size_t i = 0; i < added.size(); ++i)
+        if ((added[i] - centre).squaredNorm() <= r2) drop[i] = 1;
     }
     std::vector<Eigen::RowVector3d> kept;
-    for (size_t i = 0; i < inside.size(); ++i)
-      if (!drop[i]) kept.push_back(inside[i]);
-    if (kept.size() == inside.size()) break;
-    inside.swap(kept);
+    for (size_t i = 0; i < added.size(); ++i)
+      if (!drop[i]) kept.push_back(added[i]);
+    added.swap(kept);
     store();
   }
-  inside.clear();  // the points keep costing the surface triangles: go without them
-  store();
+  ConformingSurface probe = s;
+  s.missing = conform_round(probe, false);  // what the points cost in the end
+}
+
+int cover_outside_chords(ConformingSurface& s, int rounds) {
+  const WindingTree tree = build_winding_tree(s.V, s.F);
+  std::unordered_set<std::uint64_t> surface;  // sorted triangle keys (21 bits a vertex)
+  auto tri_key = [](int a, int b, int c) {
+    int v[3] = {a, b, c};
+    std::sort(v, v + 3);
+    return static_cast<std::uint64_t>(v[0]) << 42 | static_cast<std::uint64_t>(v[1]) << 21 | static_cast<std::uint64_t>(v[2]);
+  };
+  for (int f = 0; f < s.F.rows(); ++f) surface.insert(tri_key(s.F(f, 0), s.F(f, 1), s.F(f, 2)));
+  const int n = static_cast<int>(s.V.rows());
+  int left = 0;
+  for (int round = 0; round <= rounds; ++round) {
+    const int nf = static_cast<int>(s.fill.rows());
+    std::vector<std::pair<K::Point_3, int>> pts;
+    for (int i = 0; i < n; ++i) pts.push_back({K::Point_3(s.V(i, 0), s.V(i, 1), s.V(i, 2)), i});
+    for (int i = 0; i < nf; ++i) pts.push_back({K::Point_3(s.fill(i, 0), s.fill(i, 1), s.fill(i, 2)), n + i});
+    const Delaunay3 dt(pts.begin(), pts.end());
+    std::vector<Eigen::RowVector3d> centroids;
+    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+      int v[4], on = 0;
+      for (int j = 0; j < 4; ++j) on += (v[j] = c->vertex(j)->info()) < n;
+      if (on < 3) continue;
+      bool chord = on == 4;  // no corner off the surface: inside or outside, the field is 0 throughout
+      for (int j = 0; j < 4 && !chord; ++j) {
+        const int a = v[(j + 1) % 4], b = v[(j + 2) % 4], d = v[(j + 3) % 4];
+        chord = a < n && b < n && d < n && !surface.count(tri_key(a, b, d));
+      }
+      if (!chord) continue;
+      Eigen::RowVector3d p[4], m = Eigen::RowVector3d::Zero();
+      for (int j = 0; j < 4; ++j) m += (p[j] = v[j] < n ? s.V.row(v[j]) : s.fill.row(v[j] - n)) / 4;
+      const bool outside = winding_number(tree, m.transpose()) < 0.5;
+      if (on < 4 && !outside) continue;
+      // A flat tetrahedron's centroid sits in its surface triangles' diametral spheres; a point toward
+      // its circumcentre (at most its longest edge away, on its own side of the surface) kills it
+      // from farther off.
+      const K::Point_3 cc = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
+                                               c->vertex(3)->point());
+      Eigen::RowVector3d dir = Eigen::RowVector3d(cc.x(), cc.y(), cc.z()) - m;
+      double edge = 0;
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) edge = std::max(edge, (p[a] - p[b]).norm());
+      const double len = dir.norm();
+      if (len > edge) dir *= edge / len;
+      const Eigen::RowVector3d q = m + dir;
+      if (on == 4 && len > 0 && (winding_number(tree, q.transpose()) < 0.5) == outside) centroids.push_back(q);
+      else centroids.push_back(m);
+    }
+    left = static_cast<int>(centroids.size());
+    if (left == 0 || round == rounds) break;
+    Eigen::MatrixXd C(left, 3);
+    for (int i = 0; i < left; ++i) C.row(i) = centroids[i];
+    add_fill_points(s, C);
+    if (s.fill.rows() == nf) break;  // every centroid cost a surface triangle
+  }
+  return left;
 }
 
 int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& triangle_edges) {

@@ -14,8 +14,8 @@ struct ConformingSurface {
   int steiner = 0;
   int rounds = 0;
   int missing = 0;  // triangles still not faces of the Delaunay tetrahedralization (0: conforming)
-  // Points strictly inside, part of the Delaunay tetrahedralization but not of the surface.
-  Eigen::MatrixXd interior = Eigen::MatrixXd(0, 3);
+  // Points off the surface (inside or outside), part of the Delaunay tetrahedralization.
+  Eigen::MatrixXd fill = Eigen::MatrixXd(0, 3);
 };
 
 // Splits the given edge (0..2: corners e, e+1) of each listed triangle at its midpoint (both
@@ -30,10 +30,17 @@ ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Ei
 // Continues on a surface that is already partly conforming (e.g. after split_longest_edges).
 void make_conforming(ConformingSurface& s, int max_rounds);
 
-// Fills the inside with points on a grid of the given spacing (as TetGen's quality mesh fills the
-// keys' interiors in Southern's 8.7: small tetrahedra keep the simplices of a transition small), then
-// drops the points inside the diametral sphere of a surface triangle the tetrahedralization loses, so
-// the surface stays as conforming as it was.
-void add_interior_points(ConformingSurface& s, double spacing);
+// Adds points off the surface to the tetrahedralization (as TetGen's quality mesh fills the keys in
+// Southern's 8.7: small tetrahedra keep the simplices of a transition small), then drops the points
+// inside the diametral sphere of a surface triangle the tetrahedralization loses, so the surface
+// stays as conforming as it was.
+void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates);
+
+// Tetrahedra with all four corners on the surface, and outside tetrahedra with a triangle of three
+// surface vertices that is not a surface triangle (they bridge concavities), get a point at their
+// centroid, as far as add_fill_points keeps them: so that every tetrahedron has a corner off the
+// surface and the outside touches the surface only through surface triangles, edges and vertices.
+// Returns the number of such tetrahedra left.
+int cover_outside_chords(ConformingSurface& s, int rounds = 1);
 
 }  // namespace dfm

@@ -49,8 +49,7 @@ class TransitionCache {
       auto same = [](const KeySurface& p, const KeySurface& q) {
         return p.time == q.time && p.V.rows() == q.V.rows() && p.F.rows() == q.F.rows() && p.V == q.V && p.F == q.F;
       };
-      return same(a, x) && same(b, y) && options.early == o.early && options.late == o.late &&
-             options.max_conform_rounds == o.max_conform_rounds;
+      return same(a, x) && same(b, y) && options == o;
     }
   };
   std::mutex mutex_;

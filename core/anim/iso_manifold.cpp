@@ -1,0 +1,162 @@
+#include "core/anim/iso_manifold.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include <Eigen/LU>
+
+#include "core/util/error.h"
+
+namespace dfm {
+
+namespace {
+
+// Vertex permutations of a prism (0 1 2 below, 3 4 5 above, i over i + 3) that bring corner i to 0.
+constexpr int kRotate[6][6] = {{0, 1, 2, 3, 4, 5}, {1, 2, 0, 4, 5, 3}, {2, 0, 1, 5, 3, 4},
+                               {3, 5, 4, 0, 2, 1}, {4, 3, 5, 1, 0, 2}, {5, 4, 3, 2, 1, 0}};
+
+class Writer {
+ public:
+  Writer(const IsoField& f) : f_(f) {}
+
+  // Cuts one 4-simplex (point indices s[0..4], orientation o = +-1).
+  void simplex(const int* s, int o) {
+    int neg[5], pos[5], nn = 0, np = 0;
+    for (int j = 0; j < 5; ++j) (f_.values[s[j]] < 0 ? neg[nn++] : pos[np++]) = j;
+    if (nn == 0 || np == 0) return;
+    s_ = s;
+    o_ = o;
+    nslots_ = 0;
+    positive_centroid_.setZero();
+    for (int k = 0; k < np; ++k) positive_centroid_[pos[k]] = 1.0 / np;
+    if (nn == 1 || np == 1) {
+      int q[4];
+      for (int k = 0; k < 4; ++k) q[k] = nn == 1 ? crossing(neg[0], pos[k]) : crossing(neg[k], pos[0]);
+      tet(q[0], q[1], q[2], q[3]);
+      return;
+    }
+    // A prism: triangles A (first of the pair side) and B, A[i] over B[i].
+    int c[6];
+    for (int i = 0; i < 3; ++i) {
+      c[i] = nn == 2 ? crossing(neg[0], pos[i]) : crossing(neg[i], pos[0]);
+      c[i + 3] = nn == 2 ? crossing(neg[1], pos[i]) : crossing(neg[i], pos[1]);
+    }
+    int m = 0;
+    for (int i = 1; i < 6; ++i)
+      if (id_[c[i]] < id_[c[m]]) m = i;
+    int I[6];
+    for (int i = 0; i < 6; ++i) I[i] = c[kRotate[m][i]];
+    auto id = [&](int k) { return id_[I[k]]; };
+    if (std::min(id(1), id(5)) < std::min(id(2), id(4))) {
+      tet(I[0], I[1], I[2], I[5]);
+      tet(I[0], I[1], I[5], I[4]);
+    } else {
+      tet(I[0], I[1], I[2], I[4]);
+      tet(I[0], I[4], I[2], I[5]);
+    }
+    tet(I[0], I[4], I[5], I[3]);
+  }
+
+  IsoManifold result() {
+    IsoManifold M;
+    M.V.resize(static_cast<Eigen::Index>(V_.size()), 4);
+    for (size_t v = 0; v < V_.size(); ++v) M.V.row(static_cast<Eigen::Index>(v)) = V_[v];
+    M.T.resize(static_cast<Eigen::Index>(T_.size()), 4);
+    for (size_t t = 0; t < T_.size(); ++t)
+      for (int c = 0; c < 4; ++c) M.T(static_cast<Eigen::Index>(t), c) = T_[t][c];
+    M.anchored = anchored_;
+    return M;
+  }
+
+ private:
+  // The crossing on the edge between corners a (negative) and b (positive) of the current simplex:
+  // a slot (at most 6 per simplex) holding its global vertex and its barycentric coordinates.
+  int crossing(int a, int b) {
+    const int pa = s_[a], pb = s_[b];
+    const double la = f_.values[pa] / (f_.values[pa] - f_.values[pb]);  // in (0, 1)
+    Eigen::Matrix<double, 5, 1> w = Eigen::Matrix<double, 5, 1>::Zero();
+    w[a] = 1 - la;
+    w[b] = la;
+    int v;
+    if (f_.anchored[pa]) {
+      v = vertex_of(anchors_, static_cast<std::uint64_t>(pa), [&] { return f_.points.row(pa).eval(); }, pa);
+    } else {
+      const std::uint64_t key = static_cast<std::uint64_t>(pa) << 32 | static_cast<std::uint32_t>(pb);
+      v = vertex_of(edges_, key, [&] { return ((1 - la) * f_.points.row(pa) + la * f_.points.row(pb)).eval(); }, -1);
+    }
+    slots_[nslots_] = {v, w};
+    id_[nslots_] = v;
+    return nslots_++;
+  }
+
+  template <class Make>
+  int vertex_of(std::unordered_map<std::uint64_t, int>& map, std::uint64_t key, const Make& make, int anchor) {
+    auto [it, fresh] = map.emplace(key, static_cast<int>(V_.size()));
+    if (fresh) {
+      V_.push_back(make());
+      anchored_.push_back(anchor);
+    }
+    return it->second;
+  }
+
+  // A tetrahedron of slots, oriented so that its 4D normal points toward the positive corners: the
+  // sign of det[q1 - q0, c - q0, ...] is the determinant of the barycentric rows times the simplex's
+  // orientation, and barycentric rows stay well scaled where the simplex is a sliver. The rows are
+  // the unanchored crossings': the level set there is a proper convex polytope, and an anchored
+  // crossing only moves a corner onto its point (which may flatten the piece, never turn it over).
+  void tet(int a, int b, int c, int d) {
+    std::array<int, 4> t = {id_[a], id_[b], id_[c], id_[d]};
+    if (t[0] == t[1] || t[0] == t[2] || t[0] == t[3] || t[1] == t[2] || t[1] == t[3] || t[2] == t[3]) return;
+    Eigen::Matrix<double, 5, 5> B;
+    B.row(0) = slots_[a].second.transpose();
+    B.row(1) = positive_centroid_.transpose();
+    B.row(2) = slots_[b].second.transpose();
+    B.row(3) = slots_[c].second.transpose();
+    B.row(4) = slots_[d].second.transpose();
+    const double det = B.determinant() * o_;
+    if (det == 0) return;
+    if (det < 0) std::swap(t[2], t[3]);
+    T_.push_back(t);
+  }
+
+  const IsoField& f_;
+  const int* s_ = nullptr;
+  int o_ = 1;
+  Eigen::Matrix<double, 5, 1> positive_centroid_;
+  std::pair<int, Eigen::Matrix<double, 5, 1>> slots_[6];
+  int id_[6] = {0, 0, 0, 0, 0, 0};
+  int nslots_ = 0;
+  std::unordered_map<std::uint64_t, int> edges_, anchors_;
+  std::vector<Eigen::RowVector4d> V_;
+  std::vector<int> anchored_;
+  std::vector<std::array<int, 4>> T_;
+};
+
+}  // namespace
+
+IsoManifold iso_manifold(const IsoField& f, const Delaunay4& D) {
+  const Eigen::Index n = f.points.rows();
+  if (f.values.size() != n || static_cast<Eigen::Index>(f.layer.size()) != n ||
+      static_cast<Eigen::Index>(f.anchored.size()) != n)
+    throw Error("iso_manifold: points, values, layers and anchors disagree in size");
+  for (Eigen::Index p = 0; p < n; ++p)
+    if (!std::isfinite(f.values[p]) || f.values[p] == 0)
+      throw Error("iso_manifold: the field at point " + std::to_string(p) + " is zero or not finite");
+  Writer w(f);
+  for (int s = 0; s < D.simplices.rows(); ++s) {
+    const int* c = D.simplices.row(s).data();
+    bool mixed = false;
+    for (int j = 1; j < 5; ++j) mixed = mixed || ((f.values[c[j]] < 0) != (f.values[c[0]] < 0));
+    if (!mixed) continue;
+    Eigen::Matrix<double, 5, 4, Eigen::RowMajor> Q;
+    for (int j = 0; j < 5; ++j) Q.row(j) = f.points.row(c[j]);
+    const int o = orientation_4d(Q);
+    if (o == 0) continue;
+    w.simplex(c, o);
+  }
+  return w.result();
+}
+
+}  // namespace dfm

@@ -1,0 +1,38 @@
+#pragma once
+// The zero level set of a piecewise linear field over a 4D triangulation ("marching pentatopes"):
+// in each 4-simplex the field is linear, so its zero set is a flat convex polytope, a tetrahedron
+// (one corner on one side) or a triangular prism (two and three), cut into tetrahedra by a rule on
+// global vertex numbers (Dompierre et al. 1999: each quadrilateral takes the diagonal from its
+// smallest vertex) so that neighbouring simplices meet without cracks. Because every 4-simplex is
+// cut by one rule of signs, the result is a closed 3-manifold wherever the field is nonzero at the
+// vertices: no repair is needed.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/anim/delaunay_4d.h"
+#include "core/anim/manifold.h"
+
+namespace dfm {
+
+struct IsoField {
+  MatrixX4dRow points;     // the triangulated points (x, y, z, t)
+  Eigen::VectorXd values;  // the field at each point, never 0
+  // Per point its layer (points of one key share one), and whether it is anchored: an anchored point
+  // (its value negative) stands for the level set where it is, so a crossing on an edge from it to
+  // a point of its own layer is the point itself (a key's surface vertex seen from the key's own
+  // tetrahedra).
+  std::vector<int> layer;
+  std::vector<char> anchored;
+};
+
+struct IsoManifold {
+  MatrixX4dRow V;                // crossing points
+  MatrixX4iRow T;                // tetrahedra, 4D normals toward positive values (manifold.h)
+  std::vector<int> anchored;     // per vertex of V: the point it is anchored to, or -1
+};
+
+// Throws dfm::Error when a value is 0 or not finite or the sizes disagree.
+IsoManifold iso_manifold(const IsoField& field, const Delaunay4& D);
+
+}  // namespace dfm
