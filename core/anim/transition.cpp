@@ -17,6 +17,7 @@
 #include "core/anim/delaunay_4d.h"
 #include "core/anim/iso_manifold.h"
 #include "core/anim/key_distance.h"
+#include "core/anim/key_time_seal.h"
 #include "core/anim/surface_checks.h"
 #include "core/util/error.h"
 
@@ -138,7 +139,7 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> band_points(const Box& box, double h
 // Field values are kept at least this far from 0 (relative to the spacing), so that no crossing
 // sits on a point and no piece of the level set is flat.
 constexpr double kMinValue = 1e-4;
-constexpr double kSnap = 0.05;
+constexpr double kAway = 0.05;  // middle points, in middle spacings
 
 // One key's points at its time: the conforming surface (anchored, just inside), its fill near the
 // surface at the key's own spacing and farther out at the middle spacing, and the centroids that
@@ -172,8 +173,11 @@ KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, 
   return k;
 }
 
+// |v| at least eps; positive values at least sqrt(2) eps, so that two clamped values never put a
+// crossing halfway between layers (a round time a user scrubs to, where a slice would pass through
+// the crossing itself).
 double clamp_away_from_zero(double v, double eps) {
-  if (v >= 0) return std::max(v, eps);
+  if (v >= 0) return std::max(v, std::sqrt(2.0) * eps);
   return std::min(v, -eps);
 }
 
@@ -227,6 +231,7 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   source_missing += o.source_missing;
   target_missing += o.target_missing;
   source_chords += o.source_chords;
+  sealed += o.sealed;
   target_chords += o.target_chords;
   simplices += o.simplices;
   tets += o.tets;
@@ -317,24 +322,25 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   std::vector<double> vals;
   std::vector<int> layer;
   std::vector<char> anchored;
-  // A middle point nearer the level set than kSnap spacings is on it (anchored): crossings that
-  // close to a point would make slivers (as in Raman and Wenger's snap marching cubes).
-  auto add = [&](const Eigen::MatrixXd& X, double time, const Eigen::VectorXd* f, int k, double snap) {
+  // Values are kept at least `away` from 0: a crossing that close to a point would make slivers.
+  // (Snapping such points onto the level set instead, as Raman and Wenger's snap marching cubes do,
+  // can pinch it where the field has a saddle; moving the level set by `away` cannot.) The keys'
+  // surface vertices are anchored: the level set passes through them.
+  auto add = [&](const Eigen::MatrixXd& X, double time, const Eigen::VectorXd* f, int k, double away) {
     for (Eigen::Index i = 0; i < X.rows(); ++i) {
       pts.push_back(Eigen::RowVector4d(X(i, 0), X(i, 1), X(i, 2), time));
-      const bool on = !f || std::abs((*f)[i]) < snap;
-      vals.push_back(on ? -eps : clamp_away_from_zero((*f)[i], eps));
+      vals.push_back(f ? clamp_away_from_zero((*f)[i], away) : -eps);
       layer.push_back(k);
-      anchored.push_back(on);
+      anchored.push_back(f == nullptr);
     }
   };
-  add(S.surface.V, 0.0, nullptr, 0, 0);
-  add(S.surface.fill, 0.0, &S.fill_values, 0, 0);
+  add(S.surface.V, 0.0, nullptr, 0, eps);
+  add(S.surface.fill, 0.0, &S.fill_values, 0, eps);
   const int n0 = static_cast<int>(pts.size());
-  for (int k = 1; k <= o.layers; ++k) add(middle[k - 1].first, u[k], &middle[k - 1].second, k, kSnap * h_mid);
+  for (int k = 1; k <= o.layers; ++k) add(middle[k - 1].first, u[k], &middle[k - 1].second, k, kAway * h_mid);
   const int n_mid = static_cast<int>(pts.size()) - n0;
-  add(T.surface.V, 1.0, nullptr, o.layers + 1, 0);
-  add(T.surface.fill, 1.0, &T.fill_values, o.layers + 1, 0);
+  add(T.surface.V, 1.0, nullptr, o.layers + 1, eps);
+  add(T.surface.fill, 1.0, &T.fill_values, o.layers + 1, eps);
   const double time_scale = 4.0 * h_mid * o.layers;
   MatrixX4dRow P4(static_cast<Eigen::Index>(pts.size()), 4);
   IsoField field;
@@ -355,7 +361,10 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   std::vector<double> layer_times;
   for (double x : u) layer_times.push_back(t0 + x * (t1 - t0));
   layer_times.back() = t1;
-  AnimationManifold M = into_slabs(iso_manifold(field, D), layer_times);
+  IsoManifold iso = iso_manifold(field, D);
+  const double seal = 1e-6 * (t1 - t0);  // how far inside the slab a sealing cone's point sits
+  st.sealed = seal_key_time(iso.V, iso.T, t0, t0 + seal) + seal_key_time(iso.V, iso.T, t1, t1 - seal);
+  AnimationManifold M = into_slabs(iso, layer_times);
   st.extract_seconds = seconds_since(t);
 
   st.source_points = n0;

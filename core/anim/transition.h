@@ -44,6 +44,7 @@ struct TransitionStats {
   int source_steiner = 0, target_steiner = 0;    // surface Steiner points added
   int source_missing = 0, target_missing = 0;    // surface triangles the conforming step left missing
   int source_chords = 0, target_chords = 0;      // outside tetrahedra still bridging a concavity
+  int sealed = 0;                                // folds at the keys' times replaced (key_time_seal.h)
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
   int tets = 0;                                  // of the resulting manifold
   double conform_seconds = 0, field_seconds = 0, delaunay_seconds = 0, extract_seconds = 0;

@@ -1,0 +1,130 @@
+#include "core/anim/key_time_seal.h"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+#include <vector>
+
+namespace dfm {
+
+namespace {
+
+using Face = std::array<int, 3>;
+
+struct FaceHash {
+  size_t operator()(const Face& f) const {
+    return (static_cast<size_t>(f[0]) * 0x9E3779B97F4A7C15ull) ^ (static_cast<size_t>(f[1]) * 0xC2B2AE3D27D4EB4Full) ^
+           static_cast<size_t>(f[2]);
+  }
+};
+
+// The face of tet t opposite corner i, with the orientation the tet's boundary gives it:
+// d[v0 v1 v2 v3] = [v1 v2 v3] - [v0 v2 v3] + [v0 v1 v3] - [v0 v1 v2].
+Face oriented_face(const MatrixX4iRow& T, int t, int i) {
+  Face f;
+  int k = 0;
+  for (int c = 0; c < 4; ++c)
+    if (c != i) f[k++] = T(t, c);
+  if (i % 2 == 1) std::swap(f[1], f[2]);
+  return f;
+}
+
+// Sorted vertices and the parity of the sort (+1 even).
+std::pair<Face, int> canonical(Face f) {
+  int sign = 1;
+  if (f[0] > f[1]) std::swap(f[0], f[1]), sign = -sign;
+  if (f[1] > f[2]) std::swap(f[1], f[2]), sign = -sign;
+  if (f[0] > f[1]) std::swap(f[0], f[1]), sign = -sign;
+  return {f, sign};
+}
+
+int find(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+}  // namespace
+
+int seal_key_time(MatrixX4dRow& V, MatrixX4iRow& T, double time, double inside) {
+  const int nt = static_cast<int>(T.rows());
+  auto on = [&](int v) { return V(v, 3) == time; };
+  // Triangles in the plane and the tetrahedra holding them.
+  std::unordered_map<Face, std::vector<int>, FaceHash> held;
+  std::vector<char> lid(nt, 0);
+  for (int t = 0; t < nt; ++t) {
+    int k = 0;
+    for (int c = 0; c < 4; ++c) k += on(T(t, c));
+    if (k < 3) continue;
+    lid[t] = k == 4;
+    for (int i = 0; i < 4; ++i)
+      if (k == 4 || !on(T(t, i))) held[canonical(oriented_face(T, t, i)).first].push_back(t);
+  }
+  std::vector<int> parent(nt);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<char> bad(lid);
+  for (const auto& [f, ts] : held) {
+    if (ts.size() < 2) continue;
+    for (int t : ts) bad[t] = 1;
+    for (size_t k = 1; k < ts.size(); ++k) parent[find(parent, ts[k])] = find(parent, ts[0]);
+  }
+  std::map<int, std::vector<int>> clusters;
+  for (int t = 0; t < nt; ++t)
+    if (bad[t]) clusters[find(parent, t)].push_back(t);
+  if (clusters.empty()) return 0;
+
+  std::vector<char> drop(nt, 0);
+  std::vector<Eigen::RowVector4d> extra_v;
+  std::vector<std::array<int, 4>> extra_t;
+  int sealed = 0;
+  for (const auto& [root, ts] : clusters) {
+    // The cluster's oriented boundary: faces whose orientations do not cancel.
+    std::unordered_map<Face, int, FaceHash> sum;
+    for (int t : ts)
+      for (int i = 0; i < 4; ++i) {
+        const auto [f, s] = canonical(oriented_face(T, t, i));
+        sum[f] += s;
+      }
+    std::vector<Face> boundary;
+    std::map<std::pair<int, int>, int> edge_use;  // directed edges of the boundary: a closed surface uses each once
+    bool closed = true;
+    for (const auto& [f, s] : sum) {
+      if (s == 0) continue;
+      if (s != 1 && s != -1) closed = false;
+      Face g = f;
+      if (s < 0) std::swap(g[1], g[2]);
+      boundary.push_back(g);
+      for (int j = 0; j < 3; ++j) closed = closed && ++edge_use[{g[j], g[(j + 1) % 3]}] == 1;
+    }
+    for (const auto& [e, n] : edge_use) closed = closed && edge_use.count({e.second, e.first}) == 1;
+    bool touches_plane_only = true;  // the cone point must see a boundary that leaves the plane
+    for (const Face& g : boundary) touches_plane_only = touches_plane_only && on(g[0]) && on(g[1]) && on(g[2]);
+    if (!closed || boundary.empty() || touches_plane_only) continue;
+    Eigen::RowVector4d y = Eigen::RowVector4d::Zero();
+    int n = 0;
+    for (int t : ts)
+      for (int c = 0; c < 4; ++c)
+        if (on(T(t, c))) y += V.row(T(t, c)), ++n;
+    y /= n;
+    y[3] = inside;
+    const int yi = static_cast<int>(V.rows() + extra_v.size());
+    extra_v.push_back(y);
+    for (const Face& g : boundary) extra_t.push_back({yi, g[0], g[1], g[2]});
+    for (int t : ts) drop[t] = 1;
+    ++sealed;
+  }
+  const int keep = static_cast<int>(std::count(drop.begin(), drop.end(), 0));
+  MatrixX4iRow out(keep + static_cast<int>(extra_t.size()), 4);
+  int r = 0;
+  for (int t = 0; t < nt; ++t)
+    if (!drop[t]) out.row(r++) = T.row(t);
+  for (const auto& t : extra_t) out.row(r++) << t[0], t[1], t[2], t[3];
+  T = std::move(out);
+  const Eigen::Index nv = V.rows();
+  V.conservativeResize(nv + static_cast<Eigen::Index>(extra_v.size()), 4);
+  for (size_t k = 0; k < extra_v.size(); ++k) V.row(nv + static_cast<Eigen::Index>(k)) = extra_v[k];
+  return sealed;
+}
+
+}  // namespace dfm
