@@ -35,7 +35,7 @@ std::uint64_t edge_key(int a, int b) {
 // chose the other diagonal) the surface takes the other diagonal, which changes no geometry;
 // elsewhere the triangle's longest edge missing from the tetrahedralization is split (else its
 // longest edge). Returns the number of triangles that were missing; with fix false it only counts,
-// with split false it only flips.
+// with allow_split false it only flips (and missing_rows lists the rows the flips do not mend).
 int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr, bool allow_split = true) {
   const int n = static_cast<int>(s.V.rows()), ni = static_cast<int>(s.fill.rows());
   std::vector<std::pair<K::Point_3, int>> pts;
@@ -60,8 +60,9 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
   for (int f = 0; f < s.F.rows(); ++f) {
     if (dt.is_facet(vh[s.F(f, 0)], vh[s.F(f, 1)], vh[s.F(f, 2)], c, i, j, k)) continue;
     ++missing;
-    if (missing_rows) missing_rows->push_back(f);
-    if (!fix || changed[f]) continue;
+    // Rows that a flip of this round does not mend (with fix false: every missing row).
+    if (missing_rows && !(fix && !allow_split)) missing_rows->push_back(f);
+    if (!fix || changed[f]) continue;  // (a row a flip rewrote is mended)
     bool flipped = false;
     for (int e = 0; e < 3 && !flipped; ++e) {
       const int a = s.F(f, e), b = s.F(f, (e + 1) % 3), cc = s.F(f, (e + 2) % 3);
@@ -78,6 +79,7 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
       changed[f] = changed[g] = 1;
       flipped = true;
     }
+    if (!flipped && !allow_split && missing_rows) missing_rows->push_back(f);
     if (flipped || !allow_split) continue;
     int best = -1, best_missing = -1;
     double len = -1, len_missing = -1;
@@ -120,11 +122,12 @@ void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates) {
   // go, those inside its diametral sphere first.
   int lost_before = s.missing;
   for (int round = 0; round < 4 && !added.empty(); ++round) {
-    conform_round(s, true, nullptr, false);
     std::vector<int> lost;
-    ConformingSurface probe = s;
-    conform_round(probe, false, &lost);
-    if (static_cast<int>(lost.size()) <= lost_before) return;  // no worse than without the points
+    conform_round(s, true, &lost, false);
+    if (static_cast<int>(lost.size()) <= lost_before) {  // no worse than without the points
+      s.missing = static_cast<int>(lost.size());
+      return;
+    }
     const double grow = 1.0001 + 0.5 * round;  // widen the net when the diametral spheres do not do
     std::vector<char> drop(added.size(), 0);
     for (int f : lost) {
