@@ -50,24 +50,32 @@ int find(std::vector<int>& parent, int x) {
 int seal_key_time(MatrixX4dRow& V, MatrixX4iRow& T, double time, double inside) {
   const int nt = static_cast<int>(T.rows());
   auto on = [&](int v) { return V(v, 3) == time; };
-  // Triangles in the plane and the tetrahedra holding them.
-  std::unordered_map<Face, std::vector<int>, FaceHash> held;
-  std::vector<char> lid(nt, 0);
+  // Triangles in the plane and the tetrahedra holding them, with the orientation each gives.
+  std::unordered_map<Face, std::vector<std::pair<int, int>>, FaceHash> held;
+  std::vector<char> bad(nt, 0);
   for (int t = 0; t < nt; ++t) {
     int k = 0;
     for (int c = 0; c < 4; ++c) k += on(T(t, c));
     if (k < 3) continue;
-    lid[t] = k == 4;
+    bad[t] = k == 4;  // a lid
     for (int i = 0; i < 4; ++i)
-      if (k == 4 || !on(T(t, i))) held[canonical(oriented_face(T, t, i)).first].push_back(t);
+      if (k == 4 || !on(T(t, i))) {
+        const auto [f, sign] = canonical(oriented_face(T, t, i));
+        held[f].push_back({t, sign});
+      }
   }
+  // Two tetrahedra that give a triangle opposite orientations fold along it (a lid and a tetrahedron
+  // on its face, or two on a chord): they go in one cluster; what is left unpaired is the manifold's
+  // boundary in the plane.
   std::vector<int> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<char> bad(lid);
   for (const auto& [f, ts] : held) {
-    if (ts.size() < 2) continue;
-    for (int t : ts) bad[t] = 1;
-    for (size_t k = 1; k < ts.size(); ++k) parent[find(parent, ts[k])] = find(parent, ts[0]);
+    std::vector<int> up, down;
+    for (const auto& [t, sign] : ts) (sign > 0 ? up : down).push_back(t);
+    for (size_t k = 0; k < std::min(up.size(), down.size()); ++k) {
+      bad[up[k]] = bad[down[k]] = 1;
+      parent[find(parent, up[k])] = find(parent, down[k]);
+    }
   }
   std::map<int, std::vector<int>> clusters;
   for (int t = 0; t < nt; ++t)
