@@ -6,6 +6,7 @@
 #include <unordered_map>
 #include <unordered_set>
 #include <set>
+#include <cmath>
 
 #include <Eigen/Geometry>
 
@@ -104,13 +105,23 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
 void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates) {
   if (candidates.rows() == 0) return;
   const Eigen::MatrixXd before = s.fill;
-  std::set<std::array<double, 3>> taken;  // a point the tetrahedralization has already is not added
-  auto fresh = [&](const Eigen::RowVector3d& p) { return taken.insert({p[0], p[1], p[2]}).second; };
+  // A point (nearly) where the tetrahedralization has one already is not added: it would only make
+  // slivers. Near means within 1e-6 of the surface's size, found on a grid of that cell size.
+  const double cell = 1e-6 * std::max(1e-300, (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm());
+  std::set<std::array<std::int64_t, 3>> taken;
+  auto fresh = [&](const Eigen::RowVector3d& p) {
+    std::array<std::int64_t, 3> k;
+    for (int d = 0; d < 3; ++d) k[d] = static_cast<std::int64_t>(std::floor(p[d] / cell));
+    for (int c = 0; c < 27; ++c)
+      if (taken.count({k[0] + c % 3 - 1, k[1] + c / 3 % 3 - 1, k[2] + c / 9 - 1})) return false;
+    taken.insert(k);
+    return true;
+  };
   for (Eigen::Index i = 0; i < s.V.rows(); ++i) fresh(s.V.row(i));
   for (Eigen::Index i = 0; i < s.fill.rows(); ++i) fresh(s.fill.row(i));
   std::vector<Eigen::RowVector3d> added;
   for (Eigen::Index i = 0; i < candidates.rows(); ++i)
-    if (fresh(candidates.row(i))) added.push_back(candidates.row(i));
+    if (candidates.row(i).allFinite() && fresh(candidates.row(i))) added.push_back(candidates.row(i));
   auto store = [&]() {
     s.fill.resize(before.rows() + static_cast<Eigen::Index>(added.size()), 3);
     s.fill.topRows(before.rows()) = before;
@@ -191,9 +202,11 @@ int cover_outside_chords(ConformingSurface& s, int rounds) {
       for (int a = 0; a < 4; ++a)
         for (int b = a + 1; b < 4; ++b) edge = std::max(edge, (p[a] - p[b]).norm());
       const double len = dir.norm();
-      if (len > edge) dir *= edge / len;
+      if (!std::isfinite(len)) dir.setZero();  // a flat tetrahedron: no circumcentre
+      else if (len > edge) dir *= edge / len;
       const Eigen::RowVector3d q = m + dir;
-      if (on == 4 && len > 0 && (winding_number(tree, q.transpose()) < 0.5) == outside) centroids.push_back(q);
+      if (on == 4 && std::isfinite(len) && len > 0 && (winding_number(tree, q.transpose()) < 0.5) == outside)
+        centroids.push_back(q);
       else centroids.push_back(m);
     }
     left = static_cast<int>(centroids.size());

@@ -109,12 +109,16 @@ int seal_key_time(MatrixX4dRow& V, MatrixX4iRow& T, double time, double inside) 
     bool touches_plane_only = true;  // the cone point must see a boundary that leaves the plane
     for (const Face& g : boundary) touches_plane_only = touches_plane_only && on(g[0]) && on(g[1]) && on(g[2]);
     if (!closed || boundary.empty() || touches_plane_only) continue;
-    Eigen::RowVector4d y = Eigen::RowVector4d::Zero();
-    int n = 0;
+    // The cone point: over the cluster's corners in the plane, nudged toward its corners off it
+    // (at the plain centroid of a flat quadrilateral it would be in line with a diagonal).
+    Eigen::RowVector4d y = Eigen::RowVector4d::Zero(), off = Eigen::RowVector4d::Zero();
+    int n = 0, m = 0;
     for (int t : ts)
       for (int c = 0; c < 4; ++c)
         if (on(T(t, c))) y += V.row(T(t, c)), ++n;
+        else off += V.row(T(t, c)), ++m;
     y /= n;
+    if (m > 0) y += 0.01 * (off / m - y);
     y[3] = inside;
     const int yi = static_cast<int>(V.rows() + extra_v.size());
     extra_v.push_back(y);

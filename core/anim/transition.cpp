@@ -335,12 +335,12 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
     }
   };
   add(S.surface.V, 0.0, nullptr, 0, eps);
-  add(S.surface.fill, 0.0, &S.fill_values, 0, eps);
+  add(S.surface.fill, 0.0, &S.fill_values, 0, kAway * h_s);
   const int n0 = static_cast<int>(pts.size());
   for (int k = 1; k <= o.layers; ++k) add(middle[k - 1].first, u[k], &middle[k - 1].second, k, kAway * h_mid);
   const int n_mid = static_cast<int>(pts.size()) - n0;
   add(T.surface.V, 1.0, nullptr, o.layers + 1, eps);
-  add(T.surface.fill, 1.0, &T.fill_values, o.layers + 1, eps);
+  add(T.surface.fill, 1.0, &T.fill_values, o.layers + 1, kAway * h_t);
   const double time_scale = 4.0 * h_mid * o.layers;
   MatrixX4dRow P4(static_cast<Eigen::Index>(pts.size()), 4);
   IsoField field;
