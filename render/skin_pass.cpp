@@ -1,6 +1,9 @@
 #include "render/skin_pass.h"
 
+#include <algorithm>
+#include <cstring>
 #include <string>
+#include <utility>
 
 #include "core/util/error.h"
 
@@ -12,6 +15,16 @@ constexpr int kHandleTexels = 16;  // must match HANDLE_TEXELS in shaders/skin.v
 void put_row(float* dst, const Eigen::Vector4d& v) {
   for (int c = 0; c < 4; ++c) dst[c] = static_cast<float>(v[c]);
 }
+
+// A texture buffer over `buffer` holding `data` (at least one element, so it is never empty).
+template <class T>
+void upload_texture_buffer(Buffer& buffer, Texture& texture, GLenum format, std::vector<T> data) {
+  if (data.empty()) data.resize(1);
+  buffer.upload(GL_TEXTURE_BUFFER, data);
+  glBindTexture(GL_TEXTURE_BUFFER, texture.id());
+  glTexBuffer(GL_TEXTURE_BUFFER, format, buffer.id());
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+}
 }  // namespace
 
 SkinPass::SkinPass(const SkinBinding& b) {
@@ -19,51 +32,46 @@ SkinPass::SkinPass(const SkinBinding& b) {
   num_vertices_ = static_cast<int>(b.V.rows());
   if (b.V.cols() != 3 || inf.num_vertices() != num_vertices_)
     throw Error("GPU skinning: positions and influences disagree on the vertex count");
-  if (inf.k() > 8) throw Error("GPU skinning keeps at most 8 influences per vertex, got " + std::to_string(inf.k()));
   if (b.N.size() && (b.N.rows() != num_vertices_ || b.N.cols() != 3)) throw Error("GPU skinning: normals must be #V x 3");
   if (b.endpoints.size() && (b.endpoints.rows() != num_vertices_ || b.endpoints.cols() != inf.k()))
     throw Error("GPU skinning: endpoint weights must be #V x k");
-  k_ = inf.k() <= 4 ? 4 : 8;
-  num_handles_ = b.num_handles;
-  max_handle_ = inf.index.size() ? inf.index.maxCoeff() : -1;
   if (inf.index.size() && inf.index.minCoeff() < 0) throw Error("GPU skinning: negative handle index");
+  const SparseInfluences sp = sparse_influences(inf, b.endpoints);
+  num_entries_ = sp.num_entries();
+  max_row_ = sp.max_row;
+  num_handles_ = b.num_handles;
+  max_handle_ = sp.handle.empty() ? -1 : *std::max_element(sp.handle.begin(), sp.handle.end());
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (static_cast<long long>(std::max(num_entries_, num_vertices_ + 1)) > max_texels)
+    throw Error("GPU skinning: " + std::to_string(num_entries_) + " influences of " + std::to_string(num_vertices_) +
+                " vertices exceed this driver's texture buffer (" + std::to_string(max_texels) + " texels)");
 
   std::vector<PosNormal> rest(num_vertices_);
-  std::vector<GLint> idx(static_cast<size_t>(num_vertices_) * k_, 0);
-  std::vector<float> w(idx.size(), 0.0f), e(idx.size(), 0.0f);
-  for (int i = 0; i < num_vertices_; ++i) {
+  for (int i = 0; i < num_vertices_; ++i)
     for (int c = 0; c < 3; ++c) {
       rest[i].position[c] = static_cast<float>(b.V(i, c));
       rest[i].normal[c] = b.N.size() ? static_cast<float>(b.N(i, c)) : 0.0f;
     }
-    for (int j = 0; j < inf.k(); ++j) {
-      idx[static_cast<size_t>(i) * k_ + j] = inf.index(i, j);
-      w[static_cast<size_t>(i) * k_ + j] = static_cast<float>(inf.weight(i, j));
-      e[static_cast<size_t>(i) * k_ + j] = b.endpoints.size() ? static_cast<float>(b.endpoints(i, j)) : 0.0f;
-    }
+  // (handle, weight) pairs as RG32I: the weight's float bits, read back by intBitsToFloat.
+  std::vector<GLint> pairs(2 * static_cast<size_t>(num_entries_));
+  std::vector<float> endpoints(num_entries_);
+  for (int e = 0; e < num_entries_; ++e) {
+    const float w = static_cast<float>(sp.weight[e]);
+    pairs[2 * static_cast<size_t>(e)] = sp.handle[e];
+    std::memcpy(&pairs[2 * static_cast<size_t>(e) + 1], &w, sizeof w);
+    endpoints[e] = static_cast<float>(sp.endpoint[e]);
   }
+  upload_texture_buffer(offsets_, offsets_texture_, GL_R32I, std::vector<GLint>(sp.offsets.begin(), sp.offsets.end()));
+  upload_texture_buffer(pairs_, pairs_texture_, GL_RG32I, std::move(pairs));
+  upload_texture_buffer(endpoints_, endpoints_texture_, GL_R32F, std::move(endpoints));
+
   vao_.bind();
   rest_.upload(GL_ARRAY_BUFFER, rest);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(PosNormal), reinterpret_cast<void*>(0));
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(PosNormal), reinterpret_cast<void*>(3 * sizeof(float)));
-  const GLsizei stride = k_ * 4;
-  handle_index_.upload(GL_ARRAY_BUFFER, idx);
-  for (int half = 0; half < k_ / 4; ++half) {
-    glEnableVertexAttribArray(2 + 3 * half);
-    glVertexAttribIPointer(2 + 3 * half, 4, GL_INT, stride, reinterpret_cast<void*>(static_cast<size_t>(half) * 16));
-  }
-  weight_.upload(GL_ARRAY_BUFFER, w);
-  for (int half = 0; half < k_ / 4; ++half) {
-    glEnableVertexAttribArray(3 + 3 * half);
-    glVertexAttribPointer(3 + 3 * half, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(static_cast<size_t>(half) * 16));
-  }
-  endpoint_.upload(GL_ARRAY_BUFFER, e);
-  for (int half = 0; half < k_ / 4; ++half) {
-    glEnableVertexAttribArray(4 + 3 * half);
-    glVertexAttribPointer(4 + 3 * half, 4, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(static_cast<size_t>(half) * 16));
-  }
   glBindVertexArray(0);
   output_.upload(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, sizeof(PosNormal) * static_cast<size_t>(num_vertices_),
                  GL_DYNAMIC_COPY);
@@ -116,7 +124,7 @@ const Program& SkinPass::program(SkinMethod m) {
   const char* define = m == SkinMethod::LBS ? "METHOD_LBS" : m == SkinMethod::DQS ? "METHOD_DQS" : "METHOD_STBS";
   ProgramDesc desc;
   desc.vertex = "skin.vert.glsl";
-  desc.defines = {define, "K " + std::to_string(k_)};
+  desc.defines = {define};
   desc.feedback_varyings = {"out_position", "out_normal"};
   return programs_.emplace(m, Program(desc)).first->second;
 }
@@ -125,9 +133,15 @@ void SkinPass::run(SkinMethod method) {
   if (handle_data_.bytes() == 0) throw Error("GPU skinning: set_pose() before run()");
   const Program& prog = program(method);
   prog.use();
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_BUFFER, handle_texture_.id());
-  glUniform1i(prog.uniform("handles"), 0);
+  const std::pair<const char*, GLuint> textures[] = {{"handles", handle_texture_.id()},
+                                                     {"row_offsets", offsets_texture_.id()},
+                                                     {"pairs", pairs_texture_.id()},
+                                                     {"endpoints", endpoints_texture_.id()}};
+  for (int unit = 0; unit < 4; ++unit) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_BUFFER, textures[unit].second);
+    glUniform1i(prog.uniform(textures[unit].first), unit);
+  }
   vao_.bind();
   glEnable(GL_RASTERIZER_DISCARD);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, output_.id());
@@ -137,7 +151,10 @@ void SkinPass::run(SkinMethod method) {
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   glDisable(GL_RASTERIZER_DISCARD);
   glBindVertexArray(0);
-  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  for (int unit = 3; unit >= 0; --unit) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+  }
   check_error("SkinPass::run");
 }
 

@@ -39,7 +39,8 @@ void to_gl(const Eigen::Matrix4d& m, float out[16]) {
 }
 
 SurfacePass::SurfacePass()
-    : program_(ProgramDesc{"surface.vert.glsl", "surface.geom.glsl", "surface.frag.glsl", {}, {}}) {}
+    : shaded_(ProgramDesc{"surface.vert.glsl", "", "surface.frag.glsl", {}, {}}),
+      wireframe_(ProgramDesc{"surface.vert.glsl", "surface.geom.glsl", "surface.frag.glsl", {"WIREFRAME"}, {}}) {}
 
 void SurfacePass::set_geometry(GLuint vbo, int vertex_count, GLuint ibo, int index_count) {
   vao_.bind();
@@ -85,22 +86,22 @@ void SurfacePass::upload_mesh(const TriMesh& mesh) {
 void SurfacePass::draw(const Camera& cam, const SurfaceStyle& style) {
   const int count = indexed_ ? index_count_ : vertex_count_;
   if (count <= 0) return;
-  program_.use();
+  const Program& prog = style.wireframe ? wireframe_ : shaded_;
+  prog.use();
   float m[16];
   to_gl(view_matrix(cam), m);
-  glUniformMatrix4fv(program_.uniform("u_view"), 1, GL_FALSE, m);
+  glUniformMatrix4fv(prog.uniform("u_view"), 1, GL_FALSE, m);
   to_gl(projection_matrix(cam), m);
-  glUniformMatrix4fv(program_.uniform("u_proj"), 1, GL_FALSE, m);
-  glUniform2f(program_.uniform("u_viewport"), static_cast<float>(cam.width), static_cast<float>(cam.height));
-  glUniform3fv(program_.uniform("u_base_color"), 1, style.base_color.data());
-  glUniform3fv(program_.uniform("u_back_color"), 1, style.back_color.data());
-  glUniform3fv(program_.uniform("u_wire_color"), 1, style.wire_color.data());
+  glUniformMatrix4fv(prog.uniform("u_proj"), 1, GL_FALSE, m);
+  glUniform2f(prog.uniform("u_viewport"), static_cast<float>(cam.width), static_cast<float>(cam.height));
+  glUniform3fv(prog.uniform("u_base_color"), 1, style.base_color.data());
+  glUniform3fv(prog.uniform("u_back_color"), 1, style.back_color.data());
+  glUniform3fv(prog.uniform("u_wire_color"), 1, style.wire_color.data());
   const bool has_data = data_count_ > 0 && data_count_ >= vertex_count_;
   const SurfaceColorMode mode = has_data ? style.mode : SurfaceColorMode::Shaded;
-  glUniform1i(program_.uniform("u_color_mode"), static_cast<int>(mode));
-  glUniform1f(program_.uniform("u_isolines"), style.isolines);
-  glUniform1i(program_.uniform("u_wireframe"), style.wireframe ? 1 : 0);
-  glUniform1i(program_.uniform("u_flat"), style.flat ? 1 : 0);
+  glUniform1i(prog.uniform("u_color_mode"), static_cast<int>(mode));
+  glUniform1f(prog.uniform("u_isolines"), style.isolines);
+  glUniform1i(prog.uniform("u_flat"), style.flat ? 1 : 0);
 
   vao_.bind();
   if (has_data) {

@@ -50,7 +50,9 @@ class SurfacePass {
   int index_count() const { return index_count_; }
 
  private:
-  Program program_;
+  // Shaded only (vertex + fragment) and shaded with the single-pass wireframe (+ geometry shader):
+  // the geometry stage costs a lot on software GL, so it runs only when the wireframe is on.
+  Program shaded_, wireframe_;
   VertexArray vao_;
   Buffer own_vertices_, own_indices_, data_;
   int vertex_count_ = 0, index_count_ = 0, data_count_ = 0;

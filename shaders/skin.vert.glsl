@@ -1,6 +1,10 @@
 // Skinning by transform feedback: rest position + normal -> posed position + normal (PosNormal).
-// One method per compiled program: METHOD_LBS, METHOD_DQS or METHOD_STBS; K = 4 or 8 influences.
+// One method per compiled program: METHOD_LBS, METHOD_DQS or METHOD_STBS.
 // Mirrors core/skin/{lbs,dqs,stbs}.cpp term by term (those are the double-precision references).
+// Influences: every nonzero weight of the vertex, in compressed sparse rows (SparseInfluences):
+//   row_offsets  R32I, #V + 1: vertex i's entries are row_offsets[i] .. row_offsets[i + 1] - 1
+//   pairs        RG32I per entry: handle index, float bits of the weight (largest weight first)
+//   endpoints    R32F per entry: STBS bone endpoint weight e
 // Handle data: a texture buffer (RGBA32F), HANDLE_TEXELS texels per handle:
 //   0-2  rows of [A | t]
 //   3    dual quaternion real part (x y z w)      4  dual part
@@ -13,16 +17,11 @@
 
 layout(location = 0) in vec3 rest_position;
 layout(location = 1) in vec3 rest_normal;
-layout(location = 2) in ivec4 handle0;
-layout(location = 3) in vec4 weight0;
-layout(location = 4) in vec4 endpoint0;
-#if K == 8
-layout(location = 5) in ivec4 handle1;
-layout(location = 6) in vec4 weight1;
-layout(location = 7) in vec4 endpoint1;
-#endif
 
 uniform samplerBuffer handles;
+uniform isamplerBuffer row_offsets;
+uniform isamplerBuffer pairs;
+uniform samplerBuffer endpoints;
 
 out vec3 out_position;
 out vec3 out_normal;
@@ -52,29 +51,18 @@ mat3 axis_rotation(vec3 u, float angle) {
 }
 
 void main() {
-  int hs[K];
-  float ws[K];
-  float es[K];
-  for (int j = 0; j < 4; ++j) {
-    hs[j] = handle0[j];
-    ws[j] = weight0[j];
-    es[j] = endpoint0[j];
-#if K == 8
-    hs[j + 4] = handle1[j];
-    ws[j + 4] = weight1[j];
-    es[j + 4] = endpoint1[j];
-#endif
-  }
+  int first = texelFetch(row_offsets, gl_VertexID).x;
+  int last = texelFetch(row_offsets, gl_VertexID + 1).x;
   vec3 p = rest_position;
   vec3 n = rest_normal;
 
 #if defined(METHOD_LBS) || defined(METHOD_STBS)
   vec3 q = vec3(0.0);
   mat3 A = mat3(0.0);
-  for (int j = 0; j < K; ++j) {
-    float w = ws[j];
-    if (w == 0.0) continue;
-    int h = hs[j];
+  for (int j = first; j < last; ++j) {
+    ivec2 entry = texelFetch(pairs, j).xy;
+    int h = entry.x;
+    float w = intBitsToFloat(entry.y);
 #ifdef METHOD_STBS
     vec4 axis = texel(h, 9);
     if (axis.w > 0.5) {
@@ -82,10 +70,11 @@ void main() {
       mat3 L = transpose(mat3(s0.xyz, s1.xyz, s2.xyz));
       vec3 t = vec3(s0.w, s1.w, s2.w);
       vec4 origin = texel(h, 8);
-      float angle = es[j] * origin.w;
+      float e = texelFetch(endpoints, j).x;
+      float angle = e * origin.w;
       mat3 R = axis_rotation(axis.xyz, angle);
       vec3 rel = p - origin.xyz;
-      vec3 pp = p + (R * rel - rel) + es[j] * texel(h, 10).xyz;
+      vec3 pp = p + (R * rel - rel) + e * texel(h, 10).xyz;
       q += w * (L * pp + t);
       A += w * (L * R);
       continue;
@@ -102,13 +91,13 @@ void main() {
 #endif
 
 #ifdef METHOD_DQS
-  vec4 pivot = texel(hs[0], 3);
+  vec4 pivot = first < last ? texel(texelFetch(pairs, first).x, 3) : vec4(0.0);
   vec4 br = vec4(0.0), bd = vec4(0.0);
   mat3 S = mat3(1.0);
-  for (int j = 0; j < K; ++j) {
-    float w = ws[j];
-    if (w == 0.0) continue;
-    int h = hs[j];
+  for (int j = first; j < last; ++j) {
+    ivec2 entry = texelFetch(pairs, j).xy;
+    int h = entry.x;
+    float w = intBitsToFloat(entry.y);
     vec4 r = texel(h, 3);
     float sw = dot(r, pivot) < 0.0 ? -w : w;
     br += sw * r;

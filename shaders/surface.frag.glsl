@@ -1,15 +1,17 @@
 // Surface shading: a key and a fill light in view space plus a sky/ground ambient; back faces of open
-// meshes in their own colour; optional weight colour map with isolines, vertex colours, wireframe.
+// meshes in their own colour; optional weight colour map with isolines, vertex colours, and (compiled
+// with WIREFRAME, after surface.geom.glsl) the wireframe.
 in vec3 g_pos_view;
 in vec3 g_normal_view;
 in vec4 g_data;
+#ifdef WIREFRAME
 noperspective in vec3 g_edge_dist;
+#endif
 
 uniform vec3 u_base_color;
 uniform vec3 u_back_color;
 uniform int u_color_mode;      // 0 shaded, 1 scalar colour map (data.x) + isolines, 2 vertex colour (data.rgb)
 uniform float u_isolines;      // number of isoline intervals over [0,1]; 0 = none
-uniform int u_wireframe;       // 0/1
 uniform vec3 u_wire_color;
 uniform int u_flat;            // 1: faceted normals from screen-space derivatives
 
@@ -67,11 +69,11 @@ void main() {
                vec3(spec) + rim * vec3(0.55, 0.65, 0.85);
   color = mix(color, vec3(0.05), iso * 0.85);
 
-  if (u_wireframe == 1) {
-    float d = min(g_edge_dist.x, min(g_edge_dist.y, g_edge_dist.z));
-    float a = 1.0 - smoothstep(0.4, 1.2, d);
-    color = mix(color, u_wire_color, a * 0.8);
-  }
+#ifdef WIREFRAME
+  float d = min(g_edge_dist.x, min(g_edge_dist.y, g_edge_dist.z));
+  float a = 1.0 - smoothstep(0.4, 1.2, d);
+  color = mix(color, u_wire_color, a * 0.8);
+#endif
   // Display gamma: shading is computed in linear space.
   frag_color = vec4(pow(clamp(color, 0.0, 1.0), vec3(1.0 / 2.2)), 1.0);
 }

@@ -7,6 +7,14 @@ layout(location = 2) in vec4 a_data;
 uniform mat4 u_view;
 uniform mat4 u_proj;
 
+// Without the wireframe geometry shader (a program without WIREFRAME) the outputs go straight to
+// the fragment shader, under its input names.
+#ifndef WIREFRAME
+#define v_pos_view g_pos_view
+#define v_normal_view g_normal_view
+#define v_data g_data
+#endif
+
 out vec3 v_pos_view;
 out vec3 v_normal_view;
 out vec4 v_data;

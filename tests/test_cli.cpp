@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -18,6 +19,10 @@
 #include <catch2/catch.hpp>
 
 #include "core/mesh/io.h"
+#include "core/rig/pose_io.h"
+#include "core/rig/pose_params.h"
+#include "core/rig/rig_io.h"
+#include "core/skin/skin.h"
 #include "tests/cli_test_util.h"
 #include "tests/test_support.h"
 
@@ -249,6 +254,53 @@ TEST_CASE("deform bind -> pose -> manifold -> export on the knight", "[cli][flow
   CHECK(e2.exit_code == 0);
   CHECK(e2.out.find("3 morph targets") != std::string::npos);
   CHECK(fs::exists(s / "bones.gltf"));
+}
+
+// `deform pose` skins with every weight by default, on the GPU too: the BBW hand (7.3 nonzero weights
+// a row on average, 16 at most) in hand-pose.dmat equals skinning with all of the bind's weights within
+// 1e-6 of the bbox diagonal for every method; -k 4 (the old default) moves vertices by far more.
+TEST_CASE("deform pose: default flags skin with all weights, on the GPU as on the CPU (BBW hand)", "[cli][gl]") {
+  DFM_DATA_OR_SKIP(meshfile, "hand.mesh");
+  DFM_DATA_OR_SKIP(tgf, "hand.tgf");
+  DFM_DATA_OR_SKIP(qfile, "hand-pose.dmat");
+  Scratch s("hand_pose");
+  const RunResult b = deform(s, {"bind", meshfile, "--skeleton", tgf, "-o", s / "W.dmat"});
+  INFO(describe(b));
+  REQUIRE(b.exit_code == 0);
+  const dfm::TetMesh tets = dfm::read_tet_mesh(meshfile);
+  const Eigen::MatrixXd W = dfm::read_dmat(s / "W.dmat");
+  dfm::Rig rig;
+  dfm::add_tgf_to_rig(rig, dfm::read_tgf(tgf), tgf);
+  dfm::PoseParams params = dfm::rest_pose_params(rig);
+  params.bone_rotation = dfm::read_bone_rotations(qfile, rig.skeleton.num_bones());
+  const dfm::Pose pose = dfm::evaluate_pose(rig, params);
+  const dfm::SkinBinding all = dfm::make_skin_binding(tets.V, Eigen::MatrixXd(), W, rig, 0);
+  REQUIRE(dfm::sparse_influences(all.influences).max_row > 8);  // rows no fixed k = 8 would hold
+  const double diag = (tets.V.colwise().maxCoeff() - tets.V.colwise().minCoeff()).norm();
+  const bool display = std::getenv("DISPLAY") != nullptr;
+  auto pose_error = [&](const std::string& method, const std::vector<std::string>& extra) {
+    std::vector<std::string> a = {"pose", meshfile, "--weights", s / "W.dmat", "--skeleton", tgf, "--pose", qfile,
+                                  "--method", method, "-o", s / "posed.obj"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    const RunResult r = deform(s, a);
+    INFO(describe(r));
+    REQUIRE(r.exit_code == 0);
+    if (display) CHECK(r.out.find("on the GPU") != std::string::npos);
+    if (extra.empty()) CHECK(r.out.find("all weights") != std::string::npos);
+    const dfm::TriMesh got = dfm::read_surface(s / "posed.obj");
+    REQUIRE(got.V.rows() == tets.V.rows());
+    const Eigen::MatrixXd ref = dfm::skin(dfm::parse_skin_method(method), all, pose).V;
+    return (got.V - ref).rowwise().norm().maxCoeff() / diag;
+  };
+  for (const char* m : {"lbs", "dqs", "stbs"}) {
+    const double e = pose_error(m, {});
+    WARN("deform pose --method " << m << " (default flags): max |posed - all-weights " << m << "| = " << e
+                                 << " of the bbox diagonal");
+    CHECK(e <= 1e-6);
+  }
+  const double e4 = pose_error("lbs", {"-k", "4"});
+  WARN("deform pose -k 4: " << e4 << " of the bbox diagonal from all weights");
+  CHECK(e4 > 1e-3);
 }
 
 TEST_CASE("deform rejects hostile flags and files with exit 1 or 2 and a message naming them", "[cli][hostile]") {

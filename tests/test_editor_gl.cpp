@@ -1,12 +1,18 @@
 // Runs the real editor binary under the suite's X server: --screenshot writes a PNG showing a lit
 // mesh; without a display the editor exits 1 naming xvfb-run; a script drives the document.
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -87,6 +93,46 @@ TEST_CASE("editor --screenshot renders a lit mesh and exits", "[editor][gl]") {
   REQUIRE(c.luminance_stddev > 8.0);  // lit: shading varies
 }
 
+// CPU time (user + system, seconds) a process has used so far, from /proc/PID/stat.
+double cpu_seconds(pid_t pid) {
+  std::ifstream f("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const size_t close = stat.rfind(')');  // the command name may hold spaces
+  if (close == std::string::npos) return -1;
+  std::istringstream rest(stat.substr(close + 2));
+  std::string field;
+  double utime = 0, stime = 0;
+  for (int i = 3; i <= 15 && rest >> field; ++i) {  // fields 14 and 15: utime, stime (clock ticks)
+    if (i == 14) utime = std::stod(field);
+    if (i == 15) stime = std::stod(field);
+  }
+  return (utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+}
+
+// An idle interactive editor (no input, no job, not playing) sleeps in glfwWaitEventsTimeout: it
+// used more than a whole core (1.66 cores on llvmpipe) redrawing as fast as it could.
+TEST_CASE("an idle editor window sleeps", "[editor][gl]") {
+  DFM_DATA_OR_SKIP(knight, "decimated-knight.off");
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1), ::dup2(null, 2);
+    ::execl(DFM_EDITOR_EXE, DFM_EDITOR_EXE, knight.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  REQUIRE(pid > 0);
+  ::sleep(5);  // start-up: context, shaders, the first frames
+  const double c0 = cpu_seconds(pid);
+  ::sleep(4);
+  const double c1 = cpu_seconds(pid);
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  INFO("idle editor: " << c1 - c0 << " s of CPU in 4 s");
+  REQUIRE(c0 >= 0);
+  REQUIRE(c1 - c0 < 0.2 * 4);  // under 20% of one core (measured: 0%)
+}
+
 TEST_CASE("editor without a display exits 1 and names xvfb-run", "[editor][gl]") {
   const Run r = run(std::string("env -u DISPLAY -u WAYLAND_DISPLAY \"") + DFM_EDITOR_EXE + "\" --quit");
   REQUIRE(r.code == 1);
@@ -117,6 +163,13 @@ TEST_CASE("a script on the default scene binds, poses, keys, scrubs and saves", 
   INFO(r.output);
   REQUIRE(r.code == 0);
   REQUIRE(fs::file_size(posed) > 1000);
+  // The bind's wall time, and the HUD's figures as measured (not "0 fps 0.0 ms" in scripts).
+  std::smatch m;
+  REQUIRE(std::regex_search(r.output, m, std::regex("bind: wall time ([0-9.]+) s")));
+  CHECK(std::stod(m[1]) > 0.0);
+  REQUIRE(std::regex_search(r.output, m, std::regex("screenshot: .*scrub\\.png \\(HUD: ([0-9]+) fps  ([0-9.]+) ms")));
+  CHECK(std::stoi(m[1]) > 0);
+  CHECK(std::stod(m[2]) > 0.0);
   const Coverage c = mesh_coverage(dfm::gl::read_png(shot));
   INFO("mesh fraction " << c.fraction);
   REQUIRE(c.fraction > 0.05);

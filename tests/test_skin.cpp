@@ -80,6 +80,37 @@ TEST_CASE("influences: k largest, sorted, renormalized; dense round trip", "[ski
   REQUIRE_THROWS_AS(top_influences(W, 0), Error);
 }
 
+TEST_CASE("sparse influences: every nonzero weight in rows, largest first (the GPU layout)", "[skin][influences]") {
+  MatrixXd W(4, 5);
+  W << 0.1, 0.0, 0.6, 0.0, 0.3,  // 3 nonzeros
+      0.0, 0.0, 0.0, 0.0, 0.0,   // none: an empty row
+      0.2, 0.2, 0.2, 0.2, 0.2,   // all 5
+      0.0, 0.0, 0.0, -0.1, 1.1;  // a negative weight is kept
+  MatrixXd E = MatrixXd::Zero(4, 5);
+  E(0, 0) = 0.5;  // endpoint weight of vertex 0's largest influence (handle 2)
+  const Influences inf = all_influences(W);
+  const SparseInfluences s = sparse_influences(inf, E);
+  REQUIRE(s.offsets == std::vector<int>{0, 3, 3, 8, 10});
+  REQUIRE(s.num_entries() == 10);
+  REQUIRE(s.max_row == 5);
+  REQUIRE(s.handle[0] == 2);
+  REQUIRE(s.weight[0] == 0.6);
+  REQUIRE(s.endpoint[0] == 0.5);
+  REQUIRE(s.handle[1] == 4);
+  REQUIRE(s.handle[2] == 0);
+  REQUIRE(s.handle[8] == 4);
+  REQUIRE(s.weight[9] == -0.1);
+  // Back to dense: exactly W.
+  MatrixXd D = MatrixXd::Zero(4, 5);
+  for (int i = 0; i < 4; ++i)
+    for (int e = s.offsets[i]; e < s.offsets[i + 1]; ++e) D(i, s.handle[e]) += s.weight[e];
+  REQUIRE(D == W);
+  // A k-truncation's sparse rows hold at most k.
+  REQUIRE(sparse_influences(top_influences(W, 2)).max_row == 2);
+  REQUIRE(sparse_influences(inf).endpoint == std::vector<double>(10, 0.0));
+  REQUIRE_THROWS_AS(sparse_influences(inf, MatrixXd::Zero(4, 2)), Error);
+}
+
 TEST_CASE("LBS: identity pose reproduces the rest mesh", "[skin][lbs]") {
   const MatrixXd V = random_points(500, 1), W = random_weights(500, 7, 2);
   const MatrixXd U = lbs(V, W, identity_pose(7));

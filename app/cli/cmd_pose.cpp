@@ -28,10 +28,11 @@ const char* kUsage =
     "  --pose Q.dmat      one rotation per bone relative to its parent, quaternions (x y z w)\n"
     "  --points-pose P.txt  one translation per point handle ('x y z' per line)\n"
     "  --method M         lbs (default), dqs or stbs\n"
-    "  -k K               influences per vertex on the GPU and in the saved result: 4 (default) or 8\n"
+    "  -k K               keep only the K = 4 or 8 largest weights per vertex (renormalized), as glTF\n"
+    "                     does; default: every nonzero weight (exact, on the GPU too)\n"
     "  --cpu              skin on the CPU even when an OpenGL context is available\n"
     "Uses the GPU when an OpenGL 3.3 context can be created, the CPU otherwise, and says which. Prints\n"
-    "the largest vertex error the k-influence truncation causes on this pose (vs. all weights).";
+    "with -k the largest vertex error the truncation causes on this pose (vs. all weights).";
 
 struct Input {
   Eigen::MatrixXd V;
@@ -54,8 +55,8 @@ Input read_input(const std::string& path) {
 
 int run(const dfm::cli::Args& args) {
   std::string input, out, weights, skeleton, pose_file, points_pose, method_name = "lbs";
-  int k = 4;
-  bool force_cpu = false;
+  int k = 0;  // 0: every weight
+  bool k_given = false, force_cpu = false;
   dfm::cli::ArgReader a(args);
   while (!a.done()) {
     const std::string f = a.next();
@@ -65,7 +66,7 @@ int run(const dfm::cli::Args& args) {
     else if (f == "--pose") pose_file = a.value(f);
     else if (f == "--points-pose") points_pose = a.value(f);
     else if (f == "--method") method_name = a.value(f);
-    else if (f == "-k") k = a.integer(f);
+    else if (f == "-k") k = a.integer(f), k_given = true;
     else if (f == "--cpu") force_cpu = true;
     else if (!f.empty() && f[0] == '-') throw dfm::cli::UsageError("unknown option " + f);
     else if (input.empty()) input = f;
@@ -74,7 +75,7 @@ int run(const dfm::cli::Args& args) {
   if (input.empty()) throw dfm::cli::UsageError("INPUT is required");
   if (out.empty()) throw dfm::cli::UsageError("-o OUT is required");
   if (weights.empty()) throw dfm::cli::UsageError("--weights W.dmat is required");
-  if (k != 4 && k != 8) throw dfm::cli::UsageError("-k must be 4 or 8");
+  if (k_given && k != 4 && k != 8) throw dfm::cli::UsageError("-k must be 4 or 8");
   if (!pose_file.empty() && skeleton.empty()) throw dfm::cli::UsageError("--pose needs --skeleton");
   dfm::SkinMethod method;
   try {
@@ -105,7 +106,6 @@ int run(const dfm::cli::Args& args) {
   const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);
 
   const Eigen::MatrixXd N = dfm::vertex_normals(in.V, in.F);
-  const dfm::SkinBinding full = dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0);
   const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, k);
 
   dfm::SkinResult posed;
@@ -128,7 +128,9 @@ int run(const dfm::cli::Args& args) {
     where = force_cpu ? "CPU (--cpu)" : "CPU (no OpenGL context)";
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  const double trunc = dfm::truncation_error(method, full, kept, pose, stbs);
+  const double trunc =
+      k > 0 ? dfm::truncation_error(method, dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0), kept, pose, stbs)
+            : 0.0;
   const double diag = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
 
   dfm::TriMesh result;
@@ -136,11 +138,16 @@ int run(const dfm::cli::Args& args) {
   result.F = in.F;
   result.N = posed.N;
   dfm::write_surface(out, result);
-  std::printf("pose: %d vertices, %d triangles, %d handles, %s, k = %d, skinned on the %s in %.1f ms\n",
-              static_cast<int>(in.V.rows()), static_cast<int>(in.F.rows()), nh, dfm::skin_method_name(method), k,
+  const dfm::SparseInfluences rows = dfm::sparse_influences(kept.influences);
+  const std::string kept_text = k > 0 ? "k = " + std::to_string(k) : "all weights";
+  std::printf("pose: %d vertices, %d triangles, %d handles, %s, %s (%.2f per vertex on average, %d at most), "
+              "skinned on the %s in %.1f ms\n",
+              static_cast<int>(in.V.rows()), static_cast<int>(in.F.rows()), nh, dfm::skin_method_name(method),
+              kept_text.c_str(), in.V.rows() ? double(rows.num_entries()) / in.V.rows() : 0.0, rows.max_row,
               where.c_str(), ms);
-  std::printf("pose: largest truncation error of %d influences on this pose: %.3g (%.3g of the bbox diagonal)\n", k,
-              trunc, diag > 0 ? trunc / diag : 0.0);
+  if (k > 0)
+    std::printf("pose: largest truncation error of %d influences on this pose: %.3g (%.3g of the bbox diagonal)\n", k,
+                trunc, diag > 0 ? trunc / diag : 0.0);
   std::printf("pose: wrote %s\n", out.c_str());
   return 0;
 }

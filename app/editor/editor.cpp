@@ -71,7 +71,27 @@ int auto_msaa() {
 
 void drop_callback(GLFWwindow* w, int count, const char** paths) {
   auto* ed = static_cast<Editor*>(glfwGetWindowUserPointer(w));
+  ed->note_event();
   for (int i = 0; i < count; ++i) ed->open_any(paths[i]);
+}
+
+// Every input or window event asks for a redraw: the idle loop sleeps until one arrives.
+void note(GLFWwindow* w) { static_cast<Editor*>(glfwGetWindowUserPointer(w))->note_event(); }
+
+// Installed before ImGui's backend, which chains to them (its own callbacks call these after).
+void install_event_callbacks(GLFWwindow* w) {
+  glfwSetKeyCallback(w, [](GLFWwindow* win, int, int, int, int) { note(win); });
+  glfwSetCharCallback(w, [](GLFWwindow* win, unsigned) { note(win); });
+  glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int, int, int) { note(win); });
+  glfwSetScrollCallback(w, [](GLFWwindow* win, double, double) { note(win); });
+  glfwSetCursorPosCallback(w, [](GLFWwindow* win, double, double) { note(win); });
+  glfwSetCursorEnterCallback(w, [](GLFWwindow* win, int) { note(win); });
+  glfwSetWindowFocusCallback(w, [](GLFWwindow* win, int) { note(win); });
+  glfwSetWindowSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
+  glfwSetFramebufferSizeCallback(w, [](GLFWwindow* win, int, int) { note(win); });
+  glfwSetWindowRefreshCallback(w, [](GLFWwindow* win) { note(win); });
+  glfwSetWindowIconifyCallback(w, [](GLFWwindow* win, int) { note(win); });
+  glfwSetWindowCloseCallback(w, [](GLFWwindow* win) { note(win); });
 }
 
 }  // namespace
@@ -82,6 +102,7 @@ Editor::Editor(const EditorOptions& opts)
   window_ = ctx_.window();
   glfwSetWindowUserPointer(window_, this);
   glfwSetDropCallback(window_, drop_callback);
+  install_event_callbacks(window_);
   glfwSwapInterval(opts.quit ? 0 : 1);
   init_imgui();
   view_ = std::make_unique<SceneView>();
@@ -265,6 +286,7 @@ void Editor::request_quit() {
 }
 
 void Editor::render_frame() {
+  frame_stats_.begin(glfwGetTime());
   int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
   glfwGetFramebufferSize(window_, &fb_w, &fb_h);
   glfwGetWindowSize(window_, &win_w, &win_h);
@@ -323,11 +345,61 @@ void Editor::render_frame() {
   stage_end(t, stages_.imgui);
 }
 
+void Editor::present_frame() {
+  glfwSwapBuffers(window_);
+  const double now = glfwGetTime();
+  frame_stats_.end(now);
+  pacer_.drew(frame_stats_.last_start());
+}
+
+std::string Editor::job_progress_signature() const {
+  if (bind_.running()) {
+    const BindProgress p = bind_.progress();
+    return p.stage + " " + std::to_string(static_cast<int>(100.0 * p.fraction)) + "% " +
+           std::to_string(static_cast<long>(10.0 * bind_.elapsed_seconds())) + (bind_.cancel_requested() ? " cancel" : "");
+  }
+  return view_->manifold_building() ? view_->manifold_progress() : std::string();
+}
+
+bool Editor::next_job_frame(JobFrameClock& c) {
+  const double now = glfwGetTime();
+  const PacingOptions& o = pacer_.options();
+  const std::string shown = job_progress_signature();
+  if ((shown != c.shown || now - c.last >= o.job_heartbeat_s) && now - c.last >= 1.0 / o.progress_hz) {
+    c.shown = shown;
+    c.last = now;
+    return true;
+  }
+  glfwWaitEventsTimeout(0.005);
+  return false;
+}
+
+void Editor::wait_for_frame() {
+  for (;;) {
+    LoopActivity a;
+    a.input = events_ != events_seen_;
+    events_seen_ = events_;
+    a.playing = playing_ && doc_.keys().size() >= 2;
+    a.job_running = bind_.running() || view_->manifold_building();
+    const std::string progress = job_progress_signature();
+    a.job_progress = progress != job_progress_seen_;
+    job_progress_seen_ = progress;
+    const double wait = pacer_.next(a, glfwGetTime());
+    if (wait <= 0) return;
+    if (!a.job_running) frame_stats_.pause();  // idle: the next frame does not follow on (a job's pacing does)
+    glfwWaitEventsTimeout(wait);
+    if (glfwWindowShouldClose(window_)) return;
+    const std::string before = status_;
+    autosave_if_due();  // timers run while idle too; a new status line is worth a frame
+    if (status_ != before) ++events_;
+  }
+}
+
 void Editor::save_screenshot(const std::string& path) {
   // Two frames first: ImGui sizes auto-fitting windows on the frame after they appear.
   for (int i = 0; i < 2; ++i) {
     render_frame();
-    glfwSwapBuffers(window_);
+    present_frame();
     glfwPollEvents();
   }
   render_frame();
@@ -336,7 +408,7 @@ void Editor::save_screenshot(const std::string& path) {
   glfwGetFramebufferSize(window_, &fb_w, &fb_h);
   glReadBuffer(GL_BACK);
   gl::write_png(path, gl::read_framebuffer(fb_w, fb_h));
-  glfwSwapBuffers(window_);
+  present_frame();
   status("screenshot " + path);
 }
 
@@ -344,10 +416,14 @@ void Editor::wait_for_manifold() {
   render_frame();  // syncs the view: starts a build the last edits need
   if (!view_->manifold_building()) return;
   const double t0 = glfwGetTime();
-  while (view_->manifold_building()) {
-    glfwSwapBuffers(window_);
+  present_frame();
+  JobFrameClock clock;
+  clock.last = glfwGetTime();
+  while (view_->manifold_building()) {  // frames as its progress changes (at most progress_hz): the worker needs the CPU
+    if (!next_job_frame(clock)) continue;
+    render_frame();  // also collects the finished build
+    present_frame();
     glfwPollEvents();
-    render_frame();
   }
   std::printf("animation manifold (transition) built on the worker in %.2f s%s%s\n", glfwGetTime() - t0,
               view_->last_error().empty() ? "" : ": ", view_->last_error().c_str());
@@ -366,13 +442,12 @@ void Editor::play_benchmark(int frames) {
   FrameStages sum_st;
   int empty = 0;
   double first_empty_t = 0;
-  double last = glfwGetTime();
   for (int i = 0; i < frames + 3; ++i) {
     const double t0 = glfwGetTime();
     tick(1.0 / 30.0);
     render_frame();
     glFinish();
-    glfwSwapBuffers(window_);
+    present_frame();
     glfwPollEvents();
     const double now = glfwGetTime();
     if (i >= 3) {  // the first frames compile shaders and upload
@@ -380,9 +455,6 @@ void Editor::play_benchmark(int frames) {
       sum_st.ui += stages_.ui, sum_st.sync += stages_.sync, sum_st.scene += stages_.scene, sum_st.imgui += stages_.imgui;
     }
     if (view_->display_vertex_count() == 0 && doc_.surface().num_vertices() > 0 && empty++ == 0) first_empty_t = doc_.time();
-    frame_ms_.push_back(1000.0 * (now - last));
-    if (frame_ms_.size() > 60) frame_ms_.pop_front();
-    last = now;
   }
   playing_ = false;
   profile_stages_ = false;
@@ -469,23 +541,31 @@ int Editor::run() {
     const std::vector<ScriptLine> lines = read_script(opts_.script);  // checks every line first
     ScriptHost host;
     host.screenshot = [this](const std::string& png) {
+      frame_stats_.pause();  // the script's commands ran since the last frame
       wait_for_manifold();  // a script's picture shows the animation it keyed, not the build in progress
       save_screenshot(png);
+      std::printf("screenshot: %s (HUD: %s)\n", png.c_str(), hud_text().c_str());
+      std::fflush(stdout);
     };
     host.bind = [this](Document& d) {
       // The window as the user sees it before pressing Bind: the first frame ever drawn pays one-off
       // costs (shader compiles, mesh and font uploads) that are not the bind's.
+      frame_stats_.pause();
       render_frame();
-      glfwSwapBuffers(window_);
+      present_frame();
       glfwPollEvents();
+      const double bind_t0 = glfwGetTime();
       bind_.start(make_document_bind_job(d));
       bind_frames_ = 0, bind_frame_max_ms_ = 0, bind_frame_sum_ms_ = 0, bind_frames_over_100_ = 0;
-      // Keep drawing (progress bar) while the worker runs, as in the interactive editor, and time
-      // each frame as the user would see it (drawn, finished and swapped).
+      // Keep drawing (progress bar) while the worker runs, as in the interactive editor: a frame when
+      // the progress shown changes, at most progress_hz a second, sleeping between them so the bind's threads
+      // get the CPU. Each frame is timed as the user would see it (drawn, finished and swapped).
+      JobFrameClock clock;
       while (bind_.running()) {
+        if (!next_job_frame(clock)) continue;
         const double t0 = glfwGetTime();
         render_frame();
-        glfwSwapBuffers(window_);
+        present_frame();
         glfwPollEvents();
         glFinish();
         const double ms = 1000.0 * (glfwGetTime() - t0);
@@ -497,11 +577,15 @@ int Editor::run() {
           opts_.bind_screenshot.clear();
         }
       }
+      const double bind_wall = glfwGetTime() - bind_t0;
       std::printf("bind: %d frames drawn while binding, mean %.1f ms, max %.1f ms, %d over 100 ms\n", bind_frames_,
                   bind_frames_ ? bind_frame_sum_ms_ / bind_frames_ : 0.0, bind_frame_max_ms_, bind_frames_over_100_);
       std::fflush(stdout);
       auto r = bind_.take_result();
       if (!r || !r->ok) throw Error(r ? r->error : "bind produced no result");
+      std::printf("bind: wall time %.2f s (the bind's own stages %.2f s)\n", bind_wall,
+                  r->result->report.total_seconds);
+      std::fflush(stdout);
       apply_bind_result(d, *r->result);
     };
     host.export_gltf = [this](const std::string& path, int influences) {
@@ -509,6 +593,7 @@ int Editor::run() {
       std::fflush(stdout);
     };
     host.after_command = [this](const ScriptLine& line) {
+      frame_stats_.pause();  // the command ran since the last frame
       if (!line.words.empty() && (line.words[0] == "open" || line.words[0] == "load-scene")) {
         view_->sync(doc_, {});
         if (line.words[0] == "open" && file_extension(line.words[1]) != "json") {
@@ -517,7 +602,7 @@ int Editor::run() {
         }
       }
       render_frame();
-      glfwSwapBuffers(window_);
+      present_frame();
       glfwPollEvents();
     };
     const ScriptResult r = run_script(doc_, lines, opts_.script, host);
@@ -528,23 +613,27 @@ int Editor::run() {
   if (!opts_.screenshot.empty()) wait_for_manifold(), save_screenshot(opts_.screenshot);
   if (opts_.quit || should_quit_) return 0;
 
+  // Idle: sleeps until an event (glfwWaitEventsTimeout); input, playback and a running job's
+  // progress (at most progress_hz) draw frames (frame_pacing.h).
   double last = glfwGetTime();
+  bool was_playing = false;
   while (!should_quit_) {
     glfwPollEvents();
+    wait_for_frame();
     if (glfwWindowShouldClose(window_)) request_quit();
     const double now = glfwGetTime();
-    const double dt = now - last;
+    // Playback advances by the time between its frames, not by the idle time before it started.
+    const double dt = was_playing ? now - last : 0.0;
     last = now;
-    frame_ms_.push_back(dt * 1000.0);
-    if (frame_ms_.size() > 60) frame_ms_.pop_front();
-    double sum = 0;
-    for (double m : frame_ms_) sum += m;
-    fps_ = sum > 0 ? 1000.0 * frame_ms_.size() / sum : 0;
-    if (bind_.running())
-      ++bind_frames_, bind_frame_sum_ms_ += dt * 1000.0, bind_frame_max_ms_ = std::max(bind_frame_max_ms_, dt * 1000.0);
+    const bool binding = bind_.running();
     tick(dt);
+    was_playing = playing_;
     render_frame();
-    glfwSwapBuffers(window_);
+    present_frame();
+    if (binding) {
+      const double ms = frame_stats_.last_ms();
+      ++bind_frames_, bind_frame_sum_ms_ += ms, bind_frame_max_ms_ = std::max(bind_frame_max_ms_, ms);
+    }
   }
   return 0;
 }

@@ -3,7 +3,6 @@
 // viewport tools and the ImGui panels. Every edit calls a Document member; panels only read it.
 #include <chrono>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,6 +12,7 @@
 
 #include "app/editor/bind_worker.h"
 #include "app/editor/file_panel.h"
+#include "app/editor/frame_pacing.h"
 #include "app/editor/gizmo.h"
 #include "app/editor/scene_view.h"
 #include "core/scene/document.h"
@@ -53,6 +53,8 @@ class Editor {
 
   // Public for the script host and tests.
   void render_frame();                       // one full frame (scene + UI), no swap
+  void present_frame();                      // swaps the frame render_frame drew; times it for the HUD
+  void note_event() { ++events_; }           // GLFW callbacks: input or a window change (redraw)
   // Milliseconds of the last render_frame's stages when profiling (glFinish between stages).
   struct FrameStages {
     double ui = 0, sync = 0, scene = 0, imgui = 0;
@@ -72,6 +74,21 @@ class Editor {
   void status(const std::string& msg, bool error = false);
   void request_quit();
   void autosave_if_due();
+  // The interactive loop's wait: draws on input, while playing, and at most 30 Hz while a job runs;
+  // otherwise sleeps in glfwWaitEventsTimeout.
+  void wait_for_frame();
+  // The HUD's first line (fps, ms, counts, view), also printed by a script's `screenshot`.
+  std::string hud_text() const;
+  // What a running job shows (bind stage, percent, elapsed tenths; the transition build's text), ""
+  // without one: a frame is due when it changes.
+  std::string job_progress_signature() const;
+  // A script waiting on a job: true when a frame is due (the job's display changed, at most
+  // progress_hz, or the heartbeat), else sleeps a few milliseconds handling events.
+  struct JobFrameClock {
+    double last = -1e300;
+    std::string shown;
+  };
+  bool next_job_frame(JobFrameClock& clock);
   void play_benchmark(int frames);
   void apply_ui_options(const std::string& spec);
   // editor_input.cpp
@@ -169,8 +186,10 @@ class Editor {
   std::optional<Eigen::Vector2d> forced_cursor_;
   bool frame_selection_after_script_ = false;  // --ui frame=selection  // --ui cursor=XxY: the mouse held there (screenshots)  // render_frame: glFinish after each stage and time it (play-frames)
   FrameStages stages_;
-  std::deque<double> frame_ms_;
-  double fps_ = 0;
+  FrameStats frame_stats_;
+  FramePacer pacer_;
+  std::uint64_t events_ = 0, events_seen_ = 0;
+  std::string job_progress_seen_;
   std::string status_;
   bool status_error_ = false;
   std::string error_popup_;

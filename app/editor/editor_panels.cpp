@@ -450,15 +450,20 @@ void Editor::draw_transform_section() {
   if (ImGui::Button("Reset pose", ImVec2(-1, 0))) doc_.reset_pose();
 }
 
+// fps: frames drawn per second where they follow one another (a frame after an idle wait counts as
+// its own drawing time: the rate the editor can draw); ms: the mean time to draw one (frame_pacing.h).
+std::string Editor::hud_text() const {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%.0f fps  %.1f ms   %d verts  %d faces   %s%s", frame_stats_.fps(), frame_stats_.ms(),
+                view_->display_vertex_count(), view_->showing_slice() ? view_->display_vertex_count() / 3 : doc_.surface().num_faces(),
+                cam_.orthographic ? "ortho" : "persp", view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
+  return buf;
+}
+
 void Editor::draw_viewport_hud() {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const ImVec2 o(float(viewport_.x) + 10, float(viewport_.y) + 8);
-  char buf[256];
-  const double ms = frame_ms_.empty() ? 0 : frame_ms_.back();
-  std::snprintf(buf, sizeof buf, "%.0f fps  %.1f ms   %d verts  %d faces   %s%s", fps_, ms,
-                view_->display_vertex_count(), view_->showing_slice() ? view_->display_vertex_count() / 3 : doc_.surface().num_faces(),
-                cam_.orthographic ? "ortho" : "persp", view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
-  dl->AddText(o, IM_COL32(200, 204, 212, 220), buf);
+  dl->AddText(o, IM_COL32(200, 204, 212, 220), hud_text().c_str());
   if (!status_.empty())
     dl->AddText(ImVec2(o.x, float(viewport_.y + viewport_.h) - 24),
                 status_error_ ? IM_COL32(255, 120, 110, 255) : IM_COL32(170, 176, 186, 220), status_.c_str());

@@ -225,9 +225,8 @@ void SceneView::update_skin(const Document& doc) {
     return;
   }
   const Eigen::MatrixXd& W = doc.weights();
-  const int max_inf = doc.bind_settings().max_influences;
-  // The GPU takes at most 8 influences per vertex.
-  const int k = std::min(8, max_inf > 0 ? max_inf : static_cast<int>(W.cols()));
+  // Every weight the bind computed (sparse rows on the GPU), unless the scene prunes to k.
+  const int k = doc.bind_settings().max_influences;
   if (d.skin && W.data() == d.weights_data && W.rows() == d.weights_rows && W.cols() == d.weights_cols &&
       rest.V.data() == d.surface_data && k == d.k)
     return;

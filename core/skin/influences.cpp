@@ -63,4 +63,27 @@ Eigen::MatrixXd gather_by_influence(const Influences& inf, const Eigen::MatrixXd
   return out;
 }
 
+SparseInfluences sparse_influences(const Influences& inf, const Eigen::MatrixXd& E) {
+  const int n = inf.num_vertices(), k = inf.k();
+  if (E.size() && (E.rows() != n || E.cols() != k))
+    throw Error("sparse influences: endpoint weights are " + std::to_string(E.rows()) + " x " +
+                std::to_string(E.cols()) + " for " + std::to_string(n) + " x " + std::to_string(k) + " influences");
+  SparseInfluences s;
+  s.offsets.reserve(static_cast<size_t>(n) + 1);
+  s.offsets.push_back(0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < k; ++j) {
+      const double w = inf.weight(i, j);
+      if (w == 0) continue;
+      if (inf.index(i, j) < 0) throw Error("sparse influences: negative handle index at vertex " + std::to_string(i));
+      s.handle.push_back(inf.index(i, j));
+      s.weight.push_back(w);
+      s.endpoint.push_back(E.size() ? E(i, j) : 0.0);
+    }
+    s.offsets.push_back(s.num_entries());
+    s.max_row = std::max(s.max_row, s.offsets[i + 1] - s.offsets[i]);
+  }
+  return s;
+}
+
 }  // namespace dfm

@@ -1,6 +1,9 @@
 #pragma once
-// Per-vertex influences: the k handles with the largest weights (sorted, largest first) and their
-// weights. The GPU keeps k = 4 or 8 per vertex; the CPU reference keeps all of them.
+// Per-vertex influences: handle indices and weights, sorted largest first. Either every weight (the
+// exact reference, and what the GPU skins by default, as sparse rows) or the k largest (glTF's 4 or
+// 8, `deform pose -k 4|8`).
+#include <vector>
+
 #include <Eigen/Core>
 
 namespace dfm {
@@ -22,5 +25,21 @@ Influences all_influences(const Eigen::MatrixXd& W);
 Eigen::MatrixXd influences_to_dense(const Influences& inf, int num_handles);
 // Per-vertex, per-handle data (#V x #handles) gathered into influence order (#V x k).
 Eigen::MatrixXd gather_by_influence(const Influences& inf, const Eigen::MatrixXd& per_handle);
+
+// Every nonzero influence in compressed sparse rows (the GPU skinning layout): row i is entries
+// offsets[i] .. offsets[i + 1] - 1, in influence order (largest weight first, so entry offsets[i]
+// is the DQS sign-fix pivot). Zero weights are dropped; a row may be empty.
+struct SparseInfluences {
+  std::vector<int> offsets;       // #V + 1, offsets[0] = 0
+  std::vector<int> handle;        // one per entry
+  std::vector<double> weight;     // one per entry
+  std::vector<double> endpoint;   // one per entry: STBS endpoint weight (0 when none given)
+  int max_row = 0;                // the most entries in one row
+  int num_entries() const { return static_cast<int>(handle.size()); }
+};
+
+// E: #V x k endpoint weights in influence order, or empty (zeros). Throws dfm::Error on a size
+// mismatch or a negative handle index.
+SparseInfluences sparse_influences(const Influences& inf, const Eigen::MatrixXd& E = {});
 
 }  // namespace dfm

@@ -18,3 +18,6 @@ endif()
 # The editor's bind job (worker thread, same core call as the CLI, painted mask) without a window.
 dfm_test(test_editor_bind SOURCES test_editor_bind.cpp ${PROJECT_SOURCE_DIR}/app/editor/bind_job.cpp
          ${PROJECT_SOURCE_DIR}/app/editor/bind_worker.cpp LIBS dfm_scene TIMEOUT 300)
+
+# The editor loop's pacing (idle sleeps, 30 Hz while a job runs) and the HUD's frame figures.
+dfm_test(test_editor_pacing SOURCES test_editor_pacing.cpp ${PROJECT_SOURCE_DIR}/app/editor/frame_pacing.cpp)
