@@ -253,7 +253,6 @@ TEST_CASE("transition: one closed piece to two", "[transition]") {
   // Four flat tetrahedra under the stretched sphere's surface cannot be filled: the level set folds
   // onto them, and the key slice is exact only because those folds are sealed (key_time_seal.h).
   Expect want;
-  want.no_slivers = false;
   TransitionStats st;
   build_transition(blob, 0, two, 1, {}, &st);
   CHECK(st.sealed > 0);

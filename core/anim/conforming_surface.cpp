@@ -204,6 +204,15 @@ int cover_outside_chords(ConformingSurface& s, int rounds) {
       const double len = dir.norm();
       if (!std::isfinite(len)) dir.setZero();  // a flat tetrahedron: no circumcentre
       else if (len > edge) dir *= edge / len;
+      // A small pseudo-random offset: mirror-symmetric keys would give mirror-image points, and the
+      // level set through a symmetric configuration has flat pieces (zero-area slice triangles).
+      Eigen::RowVector3d wobble;
+      std::uint64_t h = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(centroids.size() + 1);
+      for (int d = 0; d < 3; ++d) {
+        h ^= h >> 31, h *= 0xBF58476D1CE4E5B9ull, h ^= h >> 27;
+        wobble[d] = static_cast<double>(h >> 11) * 0x1.0p-53 - 0.5;
+      }
+      m += 0.02 * edge * wobble;
       const Eigen::RowVector3d q = m + dir;
       if (on == 4 && std::isfinite(len) && len > 0 && (winding_number(tree, q.transpose()) < 0.5) == outside)
         centroids.push_back(q);
