@@ -468,6 +468,25 @@ void Editor::play_benchmark(int frames) {
   std::printf("play-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
               sum_st.ui / n, sum_st.sync / n, sum_st.scene / n, sum_st.imgui / n);
   if (empty) std::printf("play-frames: %d frames showed no vertices (first at t=%.6g)\n", empty, first_empty_t);
+  // The baseline in the same process: as many frames of the current pose, skinned, not playing.
+  view_->show_pose();
+  std::vector<double> posed;
+  for (int i = 0; i < frames + 3; ++i) {
+    const double t0 = glfwGetTime();
+    render_frame();
+    glFinish();
+    present_frame();
+    glfwPollEvents();
+    if (i >= 3) posed.push_back(1000.0 * (glfwGetTime() - t0));
+  }
+  if (!view_->showing_slice() && !posed.empty()) {
+    double psum = 0;
+    for (double m : posed) psum += m;
+    const double pmean = psum / double(posed.size());
+    std::printf("play-frames: playback mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, sum / n / pmean);
+  } else {
+    std::printf("play-frames: no posed baseline (the scene has no skinned pose to show)\n");
+  }
   std::fflush(stdout);
 }
 

@@ -399,4 +399,8 @@ void SceneView::draw_overlays(const Document& doc, const gl::Camera& cam, const 
   overlay_.draw_points(cam, pts, 14.0f, false);
 }
 
+void SceneView::show_pose() {
+  if (deformer_) deformer_->prefer_pose = true;
+}
+
 }  // namespace dfm::editor

@@ -48,6 +48,9 @@ class SceneView {
   const Eigen::MatrixXi& display_faces();
   int display_vertex_count() const { return display_count_; }
   bool showing_slice() const { return showing_slice_; }
+  // Shows the current pose (skinned) instead of the manifold slice until the time changes, as a pose
+  // edit after a scrub does.
+  void show_pose();
   bool display_is_rest() const { return display_is_rest_; }
   Eigen::AlignedBox3d surface_bounds() const { return bounds_; }
   // Handle glyph positions as displayed (posed when posing), rows in handle order; joints separately.
