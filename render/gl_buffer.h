@@ -80,6 +80,20 @@ class VertexArray {
   GLuint id_ = 0;
 };
 
+// Runs the bound program's vertex shader once per point of `vao` (count points) with the rasterizer
+// off, capturing its outputs into `out` by transform feedback (the skin and interval-slice passes).
+inline void capture_points(const VertexArray& vao, const Buffer& out, int count) {
+  vao.bind();
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, out.id());
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, count);
+  glEndTransformFeedback();
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+  glDisable(GL_RASTERIZER_DISCARD);
+  glBindVertexArray(0);
+}
+
 class Texture {
  public:
   Texture() { glGenTextures(1, &id_); }

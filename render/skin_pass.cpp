@@ -142,15 +142,7 @@ void SkinPass::run(SkinMethod method) {
     glBindTexture(GL_TEXTURE_BUFFER, textures[unit].second);
     glUniform1i(prog.uniform(textures[unit].first), unit);
   }
-  vao_.bind();
-  glEnable(GL_RASTERIZER_DISCARD);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, output_.id());
-  glBeginTransformFeedback(GL_POINTS);
-  glDrawArrays(GL_POINTS, 0, num_vertices_);
-  glEndTransformFeedback();
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-  glDisable(GL_RASTERIZER_DISCARD);
-  glBindVertexArray(0);
+  capture_points(vao_, output_, num_vertices_);
   for (int unit = 3; unit >= 0; --unit) {
     glActiveTexture(GL_TEXTURE0 + unit);
     glBindTexture(GL_TEXTURE_BUFFER, 0);

@@ -440,8 +440,10 @@ void Editor::play_benchmark(int frames) {
   profile_stages_ = true;
   std::vector<double> ms;
   FrameStages sum_st;
-  int empty = 0;
+  int empty = 0, cached = 0;
   double first_empty_t = 0;
+  const int built0 = view_->intervals_built();
+  const double build_ms0 = view_->interval_build_ms();
   for (int i = 0; i < frames + 3; ++i) {
     const double t0 = glfwGetTime();
     tick(1.0 / 30.0);
@@ -452,6 +454,7 @@ void Editor::play_benchmark(int frames) {
     const double now = glfwGetTime();
     if (i >= 3) {  // the first frames compile shaders and upload
       ms.push_back(1000.0 * (now - t0));
+      cached += view_->slice_from_cache();
       sum_st.ui += stages_.ui, sum_st.sync += stages_.sync, sum_st.scene += stages_.scene, sum_st.imgui += stages_.imgui;
     }
     if (view_->display_vertex_count() == 0 && doc_.surface().num_vertices() > 0 && empty++ == 0) first_empty_t = doc_.time();
@@ -467,22 +470,35 @@ void Editor::play_benchmark(int frames) {
               sum / n, ms[ms.size() / 2], ms[std::min(ms.size() - 1, size_t(0.95 * ms.size()))], ms.back());
   std::printf("play-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
               sum_st.ui / n, sum_st.sync / n, sum_st.scene / n, sum_st.imgui / n);
+  std::printf("play-frames: %d of %d frames drawn from the interval cache, %d interval topologies built in %.1f ms "
+              "(%d distinct vertex times)\n",
+              cached, int(ms.size()), view_->intervals_built() - built0, view_->interval_build_ms() - build_ms0,
+              view_->vertex_time_count());
   if (empty) std::printf("play-frames: %d frames showed no vertices (first at t=%.6g)\n", empty, first_empty_t);
   // The baseline in the same process: as many frames of the current pose, skinned, not playing.
   view_->show_pose();
   std::vector<double> posed;
+  FrameStages posed_st;
+  profile_stages_ = true;
   for (int i = 0; i < frames + 3; ++i) {
     const double t0 = glfwGetTime();
     render_frame();
     glFinish();
     present_frame();
     glfwPollEvents();
-    if (i >= 3) posed.push_back(1000.0 * (glfwGetTime() - t0));
+    if (i >= 3) {
+      posed.push_back(1000.0 * (glfwGetTime() - t0));
+      posed_st.ui += stages_.ui, posed_st.sync += stages_.sync, posed_st.scene += stages_.scene,
+          posed_st.imgui += stages_.imgui;
+    }
   }
+  profile_stages_ = false;
   if (!view_->showing_slice() && !posed.empty()) {
     double psum = 0;
     for (double m : posed) psum += m;
-    const double pmean = psum / double(posed.size());
+    const double pn = double(posed.size()), pmean = psum / pn;
+    std::printf("play-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
+                posed_st.ui / pn, posed_st.sync / pn, posed_st.scene / pn, posed_st.imgui / pn);
     std::printf("play-frames: playback mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, sum / n / pmean);
   } else {
     std::printf("play-frames: no posed baseline (the scene has no skinned pose to show)\n");

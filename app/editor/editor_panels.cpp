@@ -455,7 +455,7 @@ void Editor::draw_transform_section() {
 std::string Editor::hud_text() const {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%.0f fps  %.1f ms   %d verts  %d faces   %s%s", frame_stats_.fps(), frame_stats_.ms(),
-                view_->display_vertex_count(), view_->showing_slice() ? view_->display_vertex_count() / 3 : doc_.surface().num_faces(),
+                view_->display_vertex_count(), view_->display_face_count(),
                 cam_.orthographic ? "ortho" : "persp", view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
   return buf;
 }

@@ -5,12 +5,16 @@
 #include <cmath>
 
 #include "app/editor/manifold_builder.h"
+#include "app/editor/slice_cache.h"
 #include "core/anim/interpolate.h"
+#include "core/anim/interval_slice.h"
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
+#include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
 #include "core/skin/skin.h"
 #include "core/skin/stbs.h"
+#include "render/interval_slice_pass.h"
 #include "render/skin_pass.h"
 #include "render/slice_pass.h"
 
@@ -58,6 +62,9 @@ std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W) {
 // shader) and, with two or more keys, the slice pass cuts the animation manifold at the current time.
 // The manifold is built on the CPU exactly as the saved frames are (key_surfaces: same track,
 // inbetweens, method, mesh keys), and rebuilt only when the keys, weights or method change.
+// A time slice inside an interval between consecutive distinct vertex times is drawn from that
+// interval's cached topology (an interpolation in the vertex shader, welded, costing what posing
+// costs); IntervalCachePolicy (slice_cache.h) says when the general per-tetrahedron pass runs instead.
 struct SceneView::Deformer {
   // Skin binding identity: rebuilt when the weights, surface, rig size or influence count change.
   const double* weights_data = nullptr;
@@ -69,6 +76,13 @@ struct SceneView::Deformer {
   // The animation manifold (its signature covers key times, poses and meshes, weights, method).
   ManifoldBuilder builder;
   std::unique_ptr<gl::SlicePass> slice;
+  Eigen::MatrixXd normals4;  // the manifold's unit 4D vertex normals
+  IntervalCachePolicy interval_policy{4};
+  std::vector<std::unique_ptr<gl::IntervalSlicePass>> interval_slots;  // one per policy slot
+  int shown_slot = -1;  // the interval slot on display, -1 for the general pass
+  bool have_slice_time = false;  // the last frame was a time slice at slice_time
+  double slice_time = 0;
+  double interval_build_ms = 0;  // total for the current manifold
   bool has_manifold = false;
   std::uint64_t pose_sig = 0;
   bool prefer_pose = false;  // the pose was edited after the last time change: show it, not the slice
@@ -111,7 +125,9 @@ void SceneView::sync(const Document& doc, const ViewSettings& s) {
   const bool sel_changed = doc.selection().handles != synced_selection_;
   if (time_changed) deformer_->prefer_pose = false;
   // While the manifold builds on its worker, keep polling it (the result uploads when it lands).
-  if (content || time_changed || settings_changed || deformer_->builder.busy()) update_surface(doc, s);
+  if (content || time_changed || settings_changed || surface_requested_ || deformer_->builder.busy())
+    update_surface(doc, s);
+  surface_requested_ = false;
   if (content || time_changed || settings_changed || sel_changed || !colors_valid_) update_colors(doc, s);
   update_handles(doc, s);
   synced_revision_ = doc.revision();
@@ -124,11 +140,15 @@ const Eigen::MatrixXd& SceneView::display_vertices() {
   Deformer& d = *deformer_;
   if (d.gpu_output_stale && !display_is_rest_) {
     std::vector<gl::PosNormal> v;
-    if (showing_slice_ && d.slice) v = d.slice->read_back();
+    const bool cached = showing_slice_ && d.shown_slot >= 0;
+    if (cached) v = d.interval_slots[d.shown_slot]->read_back();
+    else if (showing_slice_ && d.slice) v = d.slice->read_back();
     else if (d.skin) v = d.skin->read_back();
     display_V_.resize(v.size(), 3);
     for (size_t i = 0; i < v.size(); ++i) display_V_.row(i) << v[i].position[0], v[i].position[1], v[i].position[2];
-    if (showing_slice_) {
+    if (cached) {
+      display_F_ = d.interval_slots[d.shown_slot]->faces();
+    } else if (showing_slice_) {
       display_F_.resize(v.size() / 3, 3);
       for (int f = 0; f < display_F_.rows(); ++f) display_F_.row(f) << 3 * f, 3 * f + 1, 3 * f + 2;
     }
@@ -148,6 +168,7 @@ void SceneView::show_rest(const TriMesh& rest) {
   display_is_rest_ = true;
   showing_slice_ = false;
   display_count_ = rest.num_vertices();
+  display_faces_ = rest.num_faces();
   surface_.upload_mesh(rest);
 }
 
@@ -167,7 +188,15 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     // made of changes; one with a transition builds on a worker (the pose or rest shows meanwhile).
     if (d.builder.update(doc)) {
       if (!d.slice) d.slice = std::make_unique<gl::SlicePass>();
-      d.slice->upload(d.builder.manifold());
+      const AnimationManifold& m = d.builder.manifold();
+      d.normals4 = manifold_vertex_normals(m);
+      d.slice->upload(m, &d.normals4);
+      d.interval_policy.reset(manifold_vertex_times(m));
+      d.interval_slots.clear();
+      d.interval_slots.resize(d.interval_policy.capacity());
+      d.shown_slot = -1;
+      d.have_slice_time = false;
+      d.interval_build_ms = 0;
     }
     d.has_manifold = d.builder.has_manifold();
     error_ = d.builder.error();
@@ -188,16 +217,51 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
         const double lo = m.V.col(s.sweep_axis).minCoeff(), hi = m.V.col(s.sweep_axis).maxCoeff();
         value = lo + s.sweep_value * (hi - lo);
       }
-      const int tris = d.slice->slice(axis, value);
-      surface_.set_geometry(d.slice->output().id(), 3 * tris, 0, 0);
-      display_count_ = 3 * tris;
+      const bool time_axis = axis == SliceAxis::T;
+      const double step = time_axis && d.have_slice_time ? value - d.slice_time : 0.0;
+      SliceDecision route = d.interval_policy.choose(time_axis, value, step);
+      if (route.route == SliceRoute::Build) {
+        const auto b0 = std::chrono::steady_clock::now();
+        try {
+          const AnimationManifold& m = d.builder.manifold();
+          const auto& times = d.interval_policy.times();
+          const IntervalSlice topology =
+              build_interval_slice(m, d.normals4, times[route.interval], times[route.interval + 1]);
+          auto& pass = d.interval_slots[route.slot];
+          if (!pass) pass = std::make_unique<gl::IntervalSlicePass>();
+          pass->upload(topology, m, d.normals4);
+        } catch (const std::exception&) {  // not a clean interval: the general pass draws it
+          d.interval_policy.forget(route.slot);
+          route = SliceDecision{};
+        }
+        d.interval_build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b0).count();
+      }
+      if (route.route != SliceRoute::General) {
+        gl::IntervalSlicePass& pass = *d.interval_slots[route.slot];
+        pass.evaluate(value);
+        surface_.set_geometry(pass.output_buffer(), pass.num_vertices(), pass.index_buffer(), pass.index_count());
+        display_count_ = pass.num_vertices();
+        display_faces_ = pass.num_triangles();
+        d.shown_slot = route.slot;
+      } else {
+        const int tris = d.slice->slice(axis, value);
+        surface_.set_geometry(d.slice->output().id(), 3 * tris, 0, 0);
+        display_count_ = 3 * tris;
+        display_faces_ = tris;
+        d.shown_slot = -1;
+      }
+      d.have_slice_time = time_axis;
+      d.slice_time = value;
       showing_slice_ = true;
     } else if (d.skin) {
       d.skin->set_pose(pose, stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
       d.skin->run(doc.method());
       surface_.set_geometry(d.skin->output_buffer(), d.skin->num_vertices(), d.indices.id(), d.index_count);
       display_count_ = d.skin->num_vertices();
+      display_faces_ = d.index_count / 3;
       showing_slice_ = false;
+      d.shown_slot = -1;
+      d.have_slice_time = false;
       display_F_ = rest.F;
     } else {
       show_rest(rest);
@@ -243,6 +307,11 @@ void SceneView::update_skin(const Document& doc) {
   d.indices.upload(GL_ARRAY_BUFFER, idx);
   d.index_count = static_cast<int>(idx.size());
 }
+
+bool SceneView::slice_from_cache() const { return showing_slice_ && deformer_->shown_slot >= 0; }
+int SceneView::intervals_built() const { return deformer_->interval_policy.builds(); }
+double SceneView::interval_build_ms() const { return deformer_->interval_build_ms; }
+int SceneView::vertex_time_count() const { return static_cast<int>(deformer_->interval_policy.times().size()); }
 
 bool SceneView::manifold_building() const { return deformer_->builder.busy(); }
 std::string SceneView::manifold_progress() const { return deformer_->builder.progress_text(); }
@@ -401,6 +470,7 @@ void SceneView::draw_overlays(const Document& doc, const gl::Camera& cam, const 
 
 void SceneView::show_pose() {
   if (deformer_) deformer_->prefer_pose = true;
+  surface_requested_ = true;  // the next sync shows it even when nothing else changed
 }
 
 }  // namespace dfm::editor

@@ -47,6 +47,12 @@ class SceneView {
   const Eigen::MatrixXd& display_vertices();
   const Eigen::MatrixXi& display_faces();
   int display_vertex_count() const { return display_count_; }
+  int display_face_count() const { return display_faces_; }
+  // The time slice on display came from the interval cache (an interpolation), not the general pass.
+  bool slice_from_cache() const;
+  int intervals_built() const;  // interval topologies built for the current manifold
+  double interval_build_ms() const;  // ...and the time spent building them (CPU topology + upload)
+  int vertex_time_count() const;  // distinct vertex times of the current manifold
   bool showing_slice() const { return showing_slice_; }
   // Shows the current pose (skinned) instead of the manifold slice until the time changes, as a pose
   // edit after a scrub does.
@@ -78,7 +84,7 @@ class SceneView {
   Eigen::MatrixXi display_F_;
   bool display_is_rest_ = true;
   bool showing_slice_ = false;
-  int display_count_ = 0;
+  int display_count_ = 0, display_faces_ = 0;
   Eigen::Index bounds_rows_ = -1;
   Eigen::AlignedBox3d bounds_;
   Eigen::MatrixXd handle_pos_, joint_pos_;
@@ -90,6 +96,7 @@ class SceneView {
   ViewSettings synced_settings_;
   std::vector<int> synced_selection_;
   bool colors_valid_ = false;
+  bool surface_requested_ = false;  // show_pose(): update the surface at the next sync
   std::string error_;
   double deform_ms_ = 0;
 };

@@ -1,0 +1,49 @@
+#include "app/editor/slice_cache.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dfm::editor {
+
+IntervalCachePolicy::IntervalCachePolicy(int capacity) : slots_(std::max(capacity, 1)) {}
+
+void IntervalCachePolicy::reset(std::vector<double> vertex_times) {
+  times_ = std::move(vertex_times);
+  for (Slot& s : slots_) s = Slot{};
+  clock_ = 0;
+  builds_ = 0;
+}
+
+SliceDecision IntervalCachePolicy::choose(bool time_axis, double t, double frame_step) {
+  SliceDecision d;
+  if (!time_axis || times_.size() < 2) return d;
+  // The open interval (times[i], times[i + 1]) holding t (as core/anim/interval_slice.h's open_interval_of).
+  const auto it = std::upper_bound(times_.begin(), times_.end(), t);
+  if (it == times_.begin() || it == times_.end()) return d;
+  const int i = static_cast<int>(it - times_.begin()) - 1;
+  if (!(times_[i] < t)) return d;  // on a vertex time: another topology
+  ++clock_;
+  for (int s = 0; s < capacity(); ++s)
+    if (slots_[s].interval == i) {
+      slots_[s].used = clock_;
+      return {SliceRoute::Cached, i, s};
+    }
+  if (times_[i + 1] - times_[i] < std::abs(frame_step)) return d;  // gone before a cache pays back
+  int victim = -1;  // the first empty slot, else the least recently used
+  for (int s = 0; s < capacity() && victim < 0; ++s)
+    if (slots_[s].interval < 0) victim = s;
+  if (victim < 0) {
+    victim = 0;
+    for (int s = 1; s < capacity(); ++s)
+      if (slots_[s].used < slots_[victim].used) victim = s;
+  }
+  slots_[victim] = Slot{i, clock_};
+  ++builds_;
+  return {SliceRoute::Build, i, victim};
+}
+
+void IntervalCachePolicy::forget(int slot) {
+  if (slot >= 0 && slot < capacity()) slots_[slot] = Slot{};
+}
+
+}  // namespace dfm::editor

@@ -1,0 +1,102 @@
+// core/anim/interval_slice: one interval's slice topology, evaluated at any time inside it, equals the
+// CPU slicer there (same vertices in the same order, same triangles, same normals).
+#include <algorithm>
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "core/anim/interval_slice.h"
+#include "core/anim/manifold_normals.h"
+#include "core/anim/slice.h"
+#include "core/util/error.h"
+#include "tests/interval_slice_test_manifolds.h"
+
+using namespace dfm;
+
+namespace {
+
+// Times strictly inside (lo, hi): near both ends, the middle, and between.
+std::vector<double> times_inside(double lo, double hi) {
+  const double w = hi - lo;
+  return {lo + 1e-9 * w, lo + 0.013 * w, lo + 0.25 * w, lo + 0.5 * w, lo + 0.77 * w, hi - 1e-9 * w};
+}
+
+// The interval's evaluation equals slice_manifold at t, and the slice is not empty.
+void require_equal_to_cpu_slice(const IntervalSlice& s, const AnimationManifold& M, const Eigen::MatrixXd& N4,
+                                double t) {
+  INFO("t = " << t << " in (" << s.t_lo << ", " << s.t_hi << ")");
+  const ManifoldSlice cpu = slice_manifold(M, SliceAxis::T, t, &N4);
+  const TriMesh mine = evaluate_interval_slice(s, M, N4, t);
+  REQUIRE(cpu.mesh.num_faces() > 0);
+  REQUIRE(mine.num_vertices() == cpu.mesh.num_vertices());
+  REQUIRE(mine.num_faces() == cpu.mesh.num_faces());
+  REQUIRE(mine.F == cpu.mesh.F);
+  const double scale = std::max(1.0, cpu.mesh.V.cwiseAbs().maxCoeff());
+  REQUIRE((mine.V - cpu.mesh.V).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+  REQUIRE((mine.N - cpu.mesh.N).cwiseAbs().maxCoeff() <= 1e-12);
+  for (int v = 0; v < s.num_vertices(); ++v) {
+    const int a = std::min(s.edges[v][0], s.edges[v][1]), b = std::max(s.edges[v][0], s.edges[v][1]);
+    REQUIRE(cpu.edges[v] == std::array<int, 2>{a, b});
+  }
+}
+
+}  // namespace
+
+TEST_CASE("vertex times and the open interval holding a time", "[manifold][interval]") {
+  const AnimationManifold M = test::deforming_sphere_manifold();
+  const std::vector<double> times = manifold_vertex_times(M);
+  REQUIRE(times == std::vector<double>{0.0, 1.0, 2.5});
+  REQUIRE(open_interval_of(times, -0.1) == -1);
+  REQUIRE(open_interval_of(times, 0.0) == -1);  // on a vertex time: another topology
+  REQUIRE(open_interval_of(times, 0.5) == 0);
+  REQUIRE(open_interval_of(times, 1.0) == -1);
+  REQUIRE(open_interval_of(times, std::nextafter(1.0, 2.0)) == 1);
+  REQUIRE(open_interval_of(times, std::nextafter(1.0, 0.0)) == 0);
+  REQUIRE(open_interval_of(times, 2.4) == 1);
+  REQUIRE(open_interval_of(times, 2.5) == -1);
+  REQUIRE(open_interval_of(times, 3.0) == -1);
+  REQUIRE(open_interval_of({}, 0.0) == -1);
+}
+
+TEST_CASE("an interval's topology gives the CPU slice at every time inside it (prism manifold)", "[manifold][interval]") {
+  const AnimationManifold M = test::deforming_sphere_manifold();
+  const Eigen::MatrixXd N4 = manifold_vertex_normals(M);
+  const std::vector<double> times = manifold_vertex_times(M);
+  for (size_t i = 0; i + 1 < times.size(); ++i) {
+    const IntervalSlice s = build_interval_slice(M, N4, times[i], times[i + 1]);
+    REQUIRE(s.num_faces() > 0);
+    for (int v = 0; v < s.num_vertices(); ++v) REQUIRE(M.V(s.edges[v][0], 3) > M.V(s.edges[v][1], 3));
+    for (double t : times_inside(times[i], times[i + 1])) require_equal_to_cpu_slice(s, M, N4, t);
+    // Not at the ends (a vertex time has its own topology) nor beyond.
+    REQUIRE_THROWS_AS(evaluate_interval_slice(s, M, N4, times[i]), Error);
+    REQUIRE_THROWS_AS(evaluate_interval_slice(s, M, N4, times[i + 1]), Error);
+  }
+  // Two intervals have different topologies: one does not stand for the other.
+  const IntervalSlice a = build_interval_slice(M, N4, times[0], times[1]);
+  const IntervalSlice b = build_interval_slice(M, N4, times[1], times[2]);
+  REQUIRE(a.edges != b.edges);
+  // An interval with a vertex time inside is refused.
+  REQUIRE_THROWS_AS(build_interval_slice(M, N4, times[0], times[2]), Error);
+  REQUIRE_THROWS_AS(build_interval_slice(M, N4, 1.0, 1.0), Error);
+}
+
+TEST_CASE("intervals of a transition (many vertex times) give its CPU slices", "[manifold][interval][transition]") {
+  const AnimationManifold M = test::sphere_to_box_transition();
+  const Eigen::MatrixXd N4 = manifold_vertex_normals(M);
+  const std::vector<double> times = manifold_vertex_times(M);
+  INFO(times.size() << " distinct vertex times, " << M.num_layers() << " layers");
+  REQUIRE(static_cast<int>(times.size()) > 3 * M.num_layers());  // far more than the layers
+  const int n = static_cast<int>(times.size()) - 1;
+  std::vector<int> picks = {0, 1, n / 7, n / 3, n / 2, (2 * n) / 3, n - 2, n - 1};
+  int checked = 0;
+  for (int i : picks) {
+    const IntervalSlice s = build_interval_slice(M, N4, times[i], times[i + 1]);
+    for (double t : {times[i] + 0.1 * (times[i + 1] - times[i]), times[i] + 0.5 * (times[i + 1] - times[i]),
+                     times[i] + 0.9 * (times[i + 1] - times[i])}) {
+      if (!(times[i] < t && t < times[i + 1])) continue;  // an interval too short for these fractions
+      require_equal_to_cpu_slice(s, M, N4, t);
+      ++checked;
+    }
+  }
+  REQUIRE(checked >= 12);
+}

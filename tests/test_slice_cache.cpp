@@ -1,0 +1,101 @@
+// app/editor/slice_cache: when the editor draws a time slice from a cached interval, builds one, or
+// runs the general per-tetrahedron pass (no GL).
+#include <cmath>
+
+#include <catch2/catch.hpp>
+
+#include "app/editor/slice_cache.h"
+
+using dfm::editor::IntervalCachePolicy;
+using dfm::editor::SliceDecision;
+using dfm::editor::SliceRoute;
+
+namespace {
+const double kStep = 1.0 / 30.0;
+}
+
+TEST_CASE("slice cache: build once per interval, then draw from it", "[editor][interval]") {
+  IntervalCachePolicy p(2);
+  p.reset({0.0, 0.2, 0.4, 1.0});
+  SliceDecision d = p.choose(true, 0.05, kStep);
+  REQUIRE(d.route == SliceRoute::Build);
+  REQUIRE(d.interval == 0);
+  const int slot0 = d.slot;
+  REQUIRE(p.slot_interval(slot0) == 0);
+  for (double t = 0.05 + kStep; t < 0.2; t += kStep) {
+    d = p.choose(true, t, kStep);
+    REQUIRE(d.route == SliceRoute::Cached);
+    REQUIRE(d.slot == slot0);
+  }
+  REQUIRE(p.builds() == 1);
+  // Crossing the boundary builds the next interval, in the other slot.
+  d = p.choose(true, 0.21, kStep);
+  REQUIRE(d.route == SliceRoute::Build);
+  REQUIRE(d.interval == 1);
+  REQUIRE(d.slot != slot0);
+  const int slot1 = d.slot;
+  REQUIRE(p.builds() == 2);
+  // Back into the first: still cached (a small cache of recent intervals).
+  d = p.choose(true, 0.1, kStep);
+  REQUIRE(d.route == SliceRoute::Cached);
+  REQUIRE(d.slot == slot0);
+  // A third interval evicts the least recently used one (interval 1, not the one just drawn).
+  d = p.choose(true, 0.5, kStep);
+  REQUIRE(d.route == SliceRoute::Build);
+  REQUIRE(d.interval == 2);
+  REQUIRE(d.slot == slot1);
+  REQUIRE(p.slot_interval(slot0) == 0);
+  d = p.choose(true, 0.3, kStep);
+  REQUIRE(d.route == SliceRoute::Build);  // interval 1 was evicted: rebuilt
+  REQUIRE(d.slot == slot0);               // ...over interval 0, now the least recent
+  REQUIRE(p.builds() == 4);
+}
+
+TEST_CASE("slice cache: the general pass where the cache does not apply", "[editor][interval]") {
+  IntervalCachePolicy p(4);
+  p.reset({0.0, 0.2, 0.4, 1.0});
+  // The x, y, z sweep.
+  REQUIRE(p.choose(false, 0.1, 0.0).route == SliceRoute::General);
+  // On a vertex time (another topology), before the start and after the end.
+  for (double t : {0.0, 0.2, 0.4, 1.0, -0.5, 1.5}) {
+    const SliceDecision d = p.choose(true, t, kStep);
+    REQUIRE(d.route == SliceRoute::General);
+    REQUIRE(d.slot == -1);
+  }
+  REQUIRE(p.builds() == 0);
+  // No manifold (fewer than two vertex times).
+  IntervalCachePolicy empty;
+  REQUIRE(empty.choose(true, 0.5, 0.0).route == SliceRoute::General);
+  empty.reset({1.0});
+  REQUIRE(empty.choose(true, 1.0, 0.0).route == SliceRoute::General);
+}
+
+TEST_CASE("slice cache: an interval shorter than the frame step is not worth building", "[editor][interval]") {
+  // A transition's many vertex times: intervals of 0.001 while playback steps 1/30 a frame.
+  std::vector<double> times;
+  for (int i = 0; i <= 1000; ++i) times.push_back(i * 0.001);
+  times.push_back(2.0);  // and one long interval (1, 2)
+  IntervalCachePolicy p(4);
+  p.reset(times);
+  for (double t = 0.0005; t < 1.0; t += kStep) REQUIRE(p.choose(true, t, kStep).route == SliceRoute::General);
+  REQUIRE(p.builds() == 0);
+  // Backwards steps count by their size.
+  REQUIRE(p.choose(true, 0.5005, -kStep).route == SliceRoute::General);
+  // A still frame (step 0, e.g. a scrub that stopped) or a small step does build the short interval...
+  SliceDecision d = p.choose(true, 0.5005, 0.0);
+  REQUIRE(d.route == SliceRoute::Build);
+  REQUIRE(d.interval == 500);
+  // ...and once built it is used whatever the step.
+  REQUIRE(p.choose(true, 0.5006, kStep).route == SliceRoute::Cached);
+  // The long interval is cached at playback speed.
+  REQUIRE(p.choose(true, 1.2, kStep).route == SliceRoute::Build);
+  REQUIRE(p.choose(true, 1.2 + kStep, kStep).route == SliceRoute::Cached);
+  // A failed build is forgotten; a new manifold forgets everything.
+  d = p.choose(true, 1.5, kStep);
+  REQUIRE(d.route == SliceRoute::Cached);
+  p.forget(d.slot);
+  REQUIRE(p.choose(true, 1.5, kStep).route == SliceRoute::Build);
+  p.reset(times);
+  REQUIRE(p.builds() == 0);
+  REQUIRE(p.choose(true, 1.5, kStep).route == SliceRoute::Build);
+}
