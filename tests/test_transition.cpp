@@ -193,7 +193,6 @@ TEST_CASE("iso_manifold: the zero set of |p|^2 - r^2 over a 4D triangulation is 
     for (int d = 0; d < 4; ++d) f.points(i, d) = u(rng);
     f.values[i] = f.points.row(i).squaredNorm() - 0.49;  // r = 0.7
   }
-  f.layer.assign(n, 0);
   f.anchored.assign(n, 0);
   const IsoManifold iso = iso_manifold(f, delaunay_4d(f.points));
   REQUIRE(iso.T.rows() > 100);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/anim/interval_slice.h"
+
 namespace dfm::editor {
 
 IntervalCachePolicy::IntervalCachePolicy(int capacity) : slots_(std::max(capacity, 1)) {}
@@ -17,11 +19,8 @@ void IntervalCachePolicy::reset(std::vector<double> vertex_times) {
 SliceDecision IntervalCachePolicy::choose(bool time_axis, double t, double frame_step) {
   SliceDecision d;
   if (!time_axis || times_.size() < 2) return d;
-  // The open interval (times[i], times[i + 1]) holding t (as core/anim/interval_slice.h's open_interval_of).
-  const auto it = std::upper_bound(times_.begin(), times_.end(), t);
-  if (it == times_.begin() || it == times_.end()) return d;
-  const int i = static_cast<int>(it - times_.begin()) - 1;
-  if (!(times_[i] < t)) return d;  // on a vertex time: another topology
+  const int i = open_interval_of(times_, t);
+  if (i < 0) return d;  // outside, or on a vertex time: another topology
   ++clock_;
   for (int s = 0; s < capacity(); ++s)
     if (slots_[s].interval == i) {

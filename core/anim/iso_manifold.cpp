@@ -66,7 +66,6 @@ class Writer {
     M.T.resize(static_cast<Eigen::Index>(T_.size()), 4);
     for (size_t t = 0; t < T_.size(); ++t)
       for (int c = 0; c < 4; ++c) M.T(static_cast<Eigen::Index>(t), c) = T_[t][c];
-    M.anchored = anchored_;
     return M;
   }
 
@@ -81,10 +80,10 @@ class Writer {
     w[b] = la;
     int v;
     if (f_.anchored[pa]) {
-      v = vertex_of(anchors_, static_cast<std::uint64_t>(pa), [&] { return f_.points.row(pa).eval(); }, pa);
+      v = vertex_of(anchors_, static_cast<std::uint64_t>(pa), [&] { return f_.points.row(pa).eval(); });
     } else {
       const std::uint64_t key = static_cast<std::uint64_t>(pa) << 32 | static_cast<std::uint32_t>(pb);
-      v = vertex_of(edges_, key, [&] { return ((1 - la) * f_.points.row(pa) + la * f_.points.row(pb)).eval(); }, -1);
+      v = vertex_of(edges_, key, [&] { return ((1 - la) * f_.points.row(pa) + la * f_.points.row(pb)).eval(); });
     }
     slots_[nslots_] = {v, w};
     id_[nslots_] = v;
@@ -92,12 +91,9 @@ class Writer {
   }
 
   template <class Make>
-  int vertex_of(std::unordered_map<std::uint64_t, int>& map, std::uint64_t key, const Make& make, int anchor) {
+  int vertex_of(std::unordered_map<std::uint64_t, int>& map, std::uint64_t key, const Make& make) {
     auto [it, fresh] = map.emplace(key, static_cast<int>(V_.size()));
-    if (fresh) {
-      V_.push_back(make());
-      anchored_.push_back(anchor);
-    }
+    if (fresh) V_.push_back(make());
     return it->second;
   }
 
@@ -130,7 +126,6 @@ class Writer {
   int nslots_ = 0;
   std::unordered_map<std::uint64_t, int> edges_, anchors_;
   std::vector<Eigen::RowVector4d> V_;
-  std::vector<int> anchored_;
   std::vector<std::array<int, 4>> T_;
 };
 
@@ -138,9 +133,8 @@ class Writer {
 
 IsoManifold iso_manifold(const IsoField& f, const Delaunay4& D) {
   const Eigen::Index n = f.points.rows();
-  if (f.values.size() != n || static_cast<Eigen::Index>(f.layer.size()) != n ||
-      static_cast<Eigen::Index>(f.anchored.size()) != n)
-    throw Error("iso_manifold: points, values, layers and anchors disagree in size");
+  if (f.values.size() != n || static_cast<Eigen::Index>(f.anchored.size()) != n)
+    throw Error("iso_manifold: points, values and anchors disagree in size");
   for (Eigen::Index p = 0; p < n; ++p)
     if (!std::isfinite(f.values[p]) || f.values[p] == 0)
       throw Error("iso_manifold: the field at point " + std::to_string(p) + " is zero or not finite");

@@ -18,18 +18,15 @@ namespace dfm {
 struct IsoField {
   MatrixX4dRow points;     // the triangulated points (x, y, z, t)
   Eigen::VectorXd values;  // the field at each point, never 0
-  // Per point its layer (points of one key share one), and whether it is anchored: an anchored point
-  // (its value negative) stands for the level set where it is, so a crossing on an edge from it to
-  // a point of its own layer is the point itself (a key's surface vertex seen from the key's own
-  // tetrahedra).
-  std::vector<int> layer;
+  // Per point whether it is anchored: an anchored point (its value negative) stands for the level
+  // set where it is, so every crossing on an edge from it is the point itself (a key's surface
+  // vertex: locally the level set is the cone from it, as if its value were 0).
   std::vector<char> anchored;
 };
 
 struct IsoManifold {
   MatrixX4dRow V;                // crossing points
   MatrixX4iRow T;                // tetrahedra, 4D normals toward positive values (manifold.h)
-  std::vector<int> anchored;     // per vertex of V: the point it is anchored to, or -1
 };
 
 // Throws dfm::Error when a value is 0 or not finite or the sizes disagree.

@@ -1,12 +1,8 @@
 #include "core/anim/transition.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <map>
-#include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -19,6 +15,7 @@
 #include "core/anim/key_distance.h"
 #include "core/anim/key_time_seal.h"
 #include "core/anim/surface_checks.h"
+#include "core/bind/handle_geometry.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -57,12 +54,6 @@ TriMesh compacted(const TriMesh& key) {
   return out;
 }
 
-double mean_edge_length(const TriMesh& s) {
-  double sum = 0;
-  for (int f = 0; f < s.F.rows(); ++f)
-    for (int j = 0; j < 3; ++j) sum += (s.V.row(s.F(f, j)) - s.V.row(s.F(f, (j + 1) % 3))).norm();
-  return s.F.rows() > 0 ? sum / (3.0 * s.F.rows()) : 0.0;
-}
 
 // ---- the points and the field ------------------------------------------------------------------
 
@@ -278,7 +269,7 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   if (o.layers < 1 || !(o.spacing > 0)) throw Error("transition: needs at least one layer and a positive spacing");
   TransitionStats st;
   const TriMesh source = compacted(source_in), target = compacted(target_in);
-  const double h_s = o.spacing * mean_edge_length(source), h_t = o.spacing * mean_edge_length(target);
+  const double h_s = o.spacing * mean_edge_length(source.V, source.F), h_t = o.spacing * mean_edge_length(target.V, target.F);
   const double h_mid = std::max(h_s, h_t);
   Box box{source.V.colwise().minCoeff().cwiseMin(target.V.colwise().minCoeff()),
           source.V.colwise().maxCoeff().cwiseMax(target.V.colwise().maxCoeff())};
@@ -320,27 +311,25 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   // that layer's points).
   std::vector<Eigen::RowVector4d> pts;
   std::vector<double> vals;
-  std::vector<int> layer;
   std::vector<char> anchored;
   // Values are kept at least `away` from 0: a crossing that close to a point would make slivers.
   // (Snapping such points onto the level set instead, as Raman and Wenger's snap marching cubes do,
   // can pinch it where the field has a saddle; moving the level set by `away` cannot.) The keys'
   // surface vertices are anchored: the level set passes through them.
-  auto add = [&](const Eigen::MatrixXd& X, double time, const Eigen::VectorXd* f, int k, double away) {
+  auto add = [&](const Eigen::MatrixXd& X, double time, const Eigen::VectorXd* f, double away) {
     for (Eigen::Index i = 0; i < X.rows(); ++i) {
       pts.push_back(Eigen::RowVector4d(X(i, 0), X(i, 1), X(i, 2), time));
       vals.push_back(f ? clamp_away_from_zero((*f)[i], away) : -eps);
-      layer.push_back(k);
       anchored.push_back(f == nullptr);
     }
   };
-  add(S.surface.V, 0.0, nullptr, 0, eps);
-  add(S.surface.fill, 0.0, &S.fill_values, 0, kAway * h_s);
+  add(S.surface.V, 0.0, nullptr, eps);
+  add(S.surface.fill, 0.0, &S.fill_values, kAway * h_s);
   const int n0 = static_cast<int>(pts.size());
-  for (int k = 1; k <= o.layers; ++k) add(middle[k - 1].first, u[k], &middle[k - 1].second, k, kAway * h_mid);
+  for (int k = 1; k <= o.layers; ++k) add(middle[k - 1].first, u[k], &middle[k - 1].second, kAway * h_mid);
   const int n_mid = static_cast<int>(pts.size()) - n0;
-  add(T.surface.V, 1.0, nullptr, o.layers + 1, eps);
-  add(T.surface.fill, 1.0, &T.fill_values, o.layers + 1, kAway * h_t);
+  add(T.surface.V, 1.0, nullptr, eps);
+  add(T.surface.fill, 1.0, &T.fill_values, kAway * h_t);
   const double time_scale = 4.0 * h_mid * o.layers;
   MatrixX4dRow P4(static_cast<Eigen::Index>(pts.size()), 4);
   IsoField field;
@@ -351,7 +340,6 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
     field.points.row(r) << pts[i].head<3>(), t0 + pts[i][3] * (t1 - t0);
   }
   field.values = Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()));
-  field.layer = layer;
   field.anchored = anchored;
 
   t = Clock::now();
