@@ -1,6 +1,7 @@
 #include "core/skin/lbs.h"
 
 #include <string>
+#include <vector>
 
 #include "core/util/error.h"
 
@@ -71,6 +72,25 @@ Eigen::MatrixXd pose_matrix(const Pose& pose) {
   Eigen::MatrixXd T(4 * pose.size(), 3);
   for (int j = 0; j < pose.size(); ++j) T.block<4, 3>(4 * j, 0) = pose.transforms[j].matrix().topRows<3>().transpose();
   return T;
+}
+
+Pose pose_from_matrix(const Eigen::MatrixXd& T) {
+  if (T.cols() != 3 || T.rows() % 4) throw Error("pose_from_matrix: T must be 4#H x 3");
+  Pose pose = identity_pose(static_cast<int>(T.rows() / 4));
+  for (int j = 0; j < pose.size(); ++j) pose.transforms[j].matrix().topRows<3>() = T.block<4, 3>(4 * j, 0).transpose();
+  return pose;
+}
+
+Eigen::SparseMatrix<double, Eigen::RowMajor> sparse_lbs_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXd& W) {
+  if (V.rows() != W.rows()) throw Error("lbs_matrix: V and W row counts differ");
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int i = 0; i < W.rows(); ++i)
+    for (int j = 0; j < W.cols(); ++j)
+      if (W(i, j) != 0.0)
+        for (int c = 0; c < 4; ++c) trip.emplace_back(i, 4 * j + c, W(i, j) * (c < 3 ? V(i, c) : 1.0));
+  Eigen::SparseMatrix<double, Eigen::RowMajor> M(W.rows(), 4 * W.cols());
+  M.setFromTriplets(trip.begin(), trip.end());
+  return M;
 }
 
 }  // namespace dfm

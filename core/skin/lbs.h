@@ -3,6 +3,7 @@
 // Normals: n' = normalize(cof(sum_j w_j A_j) n), the cofactor matrix being how surface normals
 // (cross products of tangents) transform under a linear map.
 #include <Eigen/Core>
+#include <Eigen/Sparse>
 
 #include "core/rig/pose.h"
 #include "core/skin/influences.h"
@@ -20,6 +21,10 @@ Eigen::MatrixXd lbs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& W, const Po
 // U = M * pose_matrix(pose), pose_matrix being the 4#H x 3 stack of each [A_h t_h]^T.
 Eigen::MatrixXd lbs_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXd& W);
 Eigen::MatrixXd pose_matrix(const Pose& pose);
+// The inverse of pose_matrix: one affine per 4-row block.
+Pose pose_from_matrix(const Eigen::MatrixXd& T);
+// The same M with only the nonzero weights stored (bind weights are sparse), row-major.
+Eigen::SparseMatrix<double, Eigen::RowMajor> sparse_lbs_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXd& W);
 
 // cof(M) n, normalized (zero stays zero).
 Eigen::Vector3d transform_normal(const Eigen::Matrix3d& M, const Eigen::Vector3d& n);

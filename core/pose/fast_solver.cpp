@@ -1,0 +1,123 @@
+#include "core/pose/fast_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "core/pose/best_rotation.h"
+#include "core/skin/lbs.h"
+#include "core/util/error.h"
+
+namespace dfm {
+namespace {
+
+// Rows (or columns) of the 4-row blocks of the given handles.
+std::vector<int> block_indices(const std::vector<int>& handles) {
+  std::vector<int> idx;
+  for (int h : handles)
+    for (int c = 0; c < 4; ++c) idx.push_back(4 * h + c);
+  return idx;
+}
+
+// The best rotations for S (3r x 3), stacked transposed (3r x 3) as R^T of Eq. 7.19.
+Eigen::MatrixXd best_rotations_transposed(const Eigen::MatrixXd& S) {
+  Eigen::MatrixXd Rt(S.rows(), 3);
+  for (int k = 0; 3 * k < S.rows(); ++k)
+    Rt.block<3, 3>(3 * k, 0) = best_rotation(S.block<3, 3>(3 * k, 0)).transpose();
+  return Rt;
+}
+
+double energy_of(const FastModel& model, const Eigen::MatrixXd& T, const Eigen::MatrixXd& Rt) {
+  const Eigen::MatrixXd S = model.Kt * T;
+  return 0.5 * (T.transpose() * model.Lt * T).trace() - Rt.cwiseProduct(S).sum() + model.rest_term;
+}
+
+}  // namespace
+
+double fast_energy(const FastModel& model, const Pose& pose) {
+  const Eigen::MatrixXd T = pose_matrix(pose);
+  return energy_of(model, T, best_rotations_transposed(model.Kt * T));
+}
+
+FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> constraints)
+    : model_(&model), constraints_(std::move(constraints)) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (static_cast<int>(constraints_.size()) != model.handles)
+    throw Error("FAST: " + std::to_string(constraints_.size()) + " constraint states for " +
+                std::to_string(model.handles) + " handles");
+  for (int j = 0; j < model.handles; ++j) {
+    if (constraints_[j].state == HandleConstraint::Fixed) fixed_.push_back(j);
+    else unknown_.push_back(j);
+    if (constraints_[j].state == HandleConstraint::Position) position_.push_back(j);
+  }
+  const std::vector<int> u = block_indices(unknown_), f = block_indices(fixed_);
+  const int nu = static_cast<int>(u.size()), c = static_cast<int>(position_.size());
+  Kt_u_ = model.Kt(Eigen::all, u);
+  Kt_f_ = model.Kt(Eigen::all, f);
+  T_fixed_ = Eigen::MatrixXd::Zero(f.size(), 3);
+  s_fixed_ = Eigen::MatrixXd::Zero(model.Kt.rows(), 3);
+  phi_ = Eigen::MatrixXd::Zero(nu, 3);
+  if (nu == 0) return;
+  // Eq. 7.19 on the unknown blocks: [Lt_uu P^T; P 0], P holding [anchor^T 1] per position constraint.
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nu + c, nu + c);
+  A.topLeftCorner(nu, nu) = model.Lt(u, u);
+  for (int p = 0; p < c; ++p) {
+    const int q = static_cast<int>(std::find(unknown_.begin(), unknown_.end(), position_[p]) - unknown_.begin());
+    const Eigen::Vector3d& a = constraints_[position_[p]].anchor;
+    for (int d = 0; d < 3; ++d) A(nu + p, 4 * q + d) = A(4 * q + d, nu + p) = a(d);
+    A(nu + p, 4 * q + 3) = A(4 * q + 3, nu + p) = 1.0;
+  }
+  // A pseudo-inverse: free handles may leave directions the energy does not see (a global
+  // translation with no position constraint); those get the least-norm solution.
+  const Eigen::MatrixXd Pi = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).pseudoInverse();
+  gamma_ = Pi.topLeftCorner(nu, nu) * Kt_u_.transpose();
+  pi_fixed_ = -Pi.topLeftCorner(nu, nu) * model.Lt(u, f);
+  pi_targets_ = Pi.topRightCorner(nu, c);
+  switch_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void FastSolver::set_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets) {
+  if (pose.size() != model_->handles) throw Error("FAST: the pose has the wrong number of handles");
+  for (size_t q = 0; q < fixed_.size(); ++q) {
+    T_fixed_.block<3, 3>(4 * q, 0) = pose.transforms[fixed_[q]].linear().transpose();
+    T_fixed_.row(4 * q + 3) = pose.transforms[fixed_[q]].translation().transpose();
+  }
+  Eigen::MatrixXd P(position_.size(), 3);
+  for (size_t p = 0; p < position_.size(); ++p) {
+    if (position_[p] >= static_cast<int>(targets.size()))
+      throw Error("FAST: no target for position-constrained handle " + std::to_string(position_[p]));
+    P.row(p) = targets[position_[p]].transpose();
+  }
+  s_fixed_ = Kt_f_ * T_fixed_;
+  if (!unknown_.empty()) phi_ = pi_fixed_ * T_fixed_ + pi_targets_ * P;
+}
+
+Eigen::MatrixXd FastSolver::unknown_blocks(const Pose& pose) const {
+  Eigen::MatrixXd X(4 * unknown_.size(), 3);
+  for (size_t q = 0; q < unknown_.size(); ++q) {
+    X.block<3, 3>(4 * q, 0) = pose.transforms[unknown_[q]].linear().transpose();
+    X.row(4 * q + 3) = pose.transforms[unknown_[q]].translation().transpose();
+  }
+  return X;
+}
+
+void FastSolver::write_unknown_blocks(const Eigen::MatrixXd& X, Pose& pose) const {
+  for (size_t q = 0; q < unknown_.size(); ++q) {
+    pose.transforms[unknown_[q]].linear() = X.block<3, 3>(4 * q, 0).transpose();
+    pose.transforms[unknown_[q]].translation() = X.row(4 * q + 3).transpose();
+  }
+}
+
+double FastSolver::iterate(Pose& pose, bool with_energy) const {
+  if (pose.size() != model_->handles) throw Error("FAST: the pose has the wrong number of handles");
+  if (unknown_.empty()) return with_energy ? fast_energy(*model_, pose) : 0.0;
+  const Eigen::MatrixXd Rt = best_rotations_transposed(Kt_u_ * unknown_blocks(pose) + s_fixed_);
+  const Eigen::MatrixXd X = gamma_ * Rt + phi_;
+  write_unknown_blocks(X, pose);
+  return with_energy ? energy_of(*model_, pose_matrix(pose), Rt) : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace dfm

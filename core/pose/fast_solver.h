@@ -1,0 +1,62 @@
+#pragma once
+// FAST local-global iterations (Jacobson 2013, 7.3.1) for one set of constraint states. Handles are
+// fixed (transform given), position-constrained (the image of an anchor point given, the rest of the
+// transform solved) or free (solved entirely: shape-aware IK). The constructor is Table 7.1's "switch"
+// precomputation: the KKT system of Eq. 7.19 restricted to the unknown blocks, inverted once, giving
+//   T_unknown = Gamma R^T + Phi(targets)
+// so an iteration is S = Kt T, r SVDs, one small product: independent of the mesh size.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/pose/fast_model.h"
+#include "core/rig/pose.h"
+
+namespace dfm {
+
+enum class HandleConstraint { Fixed, Position, Free };
+
+struct FastConstraint {
+  HandleConstraint state = HandleConstraint::Fixed;
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // rest point a Position constraint moves
+};
+
+class FastSolver {
+ public:
+  // One constraint per handle of the model. Throws dfm::Error on a size mismatch.
+  FastSolver(const FastModel& model, std::vector<FastConstraint> constraints);
+
+  // Per-frame inputs: `pose` supplies the transforms of the Fixed handles; targets[j] is where the
+  // anchor of Position handle j must go (entries for other handles are ignored).
+  void set_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets);
+
+  // One iteration: local step from the current transforms of `pose` (warm start), global step written
+  // back into its non-fixed handles. Returns E(T, R) after the global step (Eq. 7.15 plus the rest
+  // term), which never increases from one iteration to the next for fixed targets; NaN when
+  // with_energy is false (the energy costs as much as the iteration).
+  double iterate(Pose& pose, bool with_energy = true) const;
+
+  const std::vector<FastConstraint>& constraints() const { return constraints_; }
+  double switch_seconds() const { return switch_seconds_; }
+
+ private:
+  Eigen::MatrixXd unknown_blocks(const Pose& pose) const;
+  void write_unknown_blocks(const Eigen::MatrixXd& X, Pose& pose) const;
+
+  const FastModel* model_;
+  std::vector<FastConstraint> constraints_;
+  std::vector<int> unknown_, fixed_, position_;  // handle indices by state
+  Eigen::MatrixXd Kt_u_, Kt_f_;     // Kt's columns of unknown / fixed blocks
+  Eigen::MatrixXd gamma_;           // 4u x 3r
+  Eigen::MatrixXd pi_fixed_;        // 4u x 4f: -Pi11 Lt_uf
+  Eigen::MatrixXd pi_targets_;      // 4u x c:   Pi12
+  Eigen::MatrixXd phi_;             // 4u x 3 for the current targets
+  Eigen::MatrixXd s_fixed_;         // 3r x 3: Kt_f T_f for the current fixed transforms
+  Eigen::MatrixXd T_fixed_;         // 4f x 3
+  double switch_seconds_ = 0;
+};
+
+// E(T, R) for given transforms with the best rotations for them (the energy a local step reaches).
+double fast_energy(const FastModel& model, const Pose& pose);
+
+}  // namespace dfm
