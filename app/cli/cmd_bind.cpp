@@ -53,12 +53,7 @@ int run(const dfm::cli::Args& args) {
   if (threads < 1) throw UsageError("--threads must be >= 1");
 
   dfm::Rig rig;
-  if (!points.empty()) {
-    const Eigen::MatrixXd P = dfm::read_points(points);
-    if (P.rows() == 0) throw dfm::file_error(points, 0, "holds no points (expected one 'x y z' a line)");
-    for (int i = 0; i < P.rows(); ++i)
-      rig.points.push_back({P.row(i).transpose(), "point " + std::to_string(i + 1)});
-  }
+  if (!points.empty()) dfm::add_points_file_to_rig(rig, points);
   if (!skeleton.empty()) dfm::add_tgf_to_rig(rig, dfm::read_tgf(skeleton), skeleton);
   for (const std::string& c : cages) {
     dfm::Cage cage;

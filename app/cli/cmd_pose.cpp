@@ -7,6 +7,9 @@
 #include "app/cli/command.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
+#include "core/pose/fast_model.h"
+#include "core/pose/fast_rig.h"
+#include "core/pose/fast_solver.h"
 #include "core/rig/pose_io.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
@@ -19,14 +22,22 @@
 namespace {
 
 const char* kUsage =
-    "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat] [--points-pose P.txt]\n"
+    "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat] [--points P.txt]\n"
+    "                   [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
     "                   [--method lbs|dqs|stbs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
     "  INPUT              surface (.obj .off .ply .stl) or tet mesh (.mesh .node/.ele: all its vertices\n"
     "                     are posed, its surface triangles saved)\n"
     "  --weights W.dmat   #V x #handles weights (handle order: point handles, then bones)\n"
+    "  --points P.txt     point handles, one 'x y z' a line (before the TGF's, as `deform bind` orders them)\n"
     "  --skeleton S.tgf   bones and point handles (joints on no bone)\n"
     "  --pose Q.dmat      one rotation per bone relative to its parent, quaternions (x y z w)\n"
     "  --points-pose P.txt  one translation per point handle ('x y z' per line)\n"
+    "  --fast             solve the transforms nobody set (FAST, Jacobson 2013 ch. 7): handles in --free\n"
+    "                     entirely, other point handles keep their --points-pose position (rotation solved),\n"
+    "                     bones keep their --pose; energy: spokes and rims on a surface INPUT, tets on a\n"
+    "                     tet-mesh INPUT. Prints 'fast: iteration I energy E' per iteration\n"
+    "  --free H,H,...     handles solved entirely: 0-based indices or names ('point 2', 'bone 3')\n"
+    "  --iterations N     local-global iterations (default 20)\n"
     "  --method M         lbs (default), dqs or stbs\n"
     "  -k K               keep only the K = 4 or 8 largest weights per vertex (renormalized), as glTF\n"
     "                     does; default: every nonzero weight (exact, on the GPU too)\n"
@@ -37,6 +48,7 @@ const char* kUsage =
 struct Input {
   Eigen::MatrixXd V;
   Eigen::MatrixXi F;
+  Eigen::MatrixXi T;  // tets, for a tet-mesh INPUT
 };
 
 Input read_input(const std::string& path) {
@@ -44,6 +56,7 @@ Input read_input(const std::string& path) {
   if (dfm::is_tet_mesh_path(path)) {
     dfm::TetMesh t = dfm::read_tet_mesh(path);
     in.V = t.V;
+    in.T = t.T;
     in.F = t.T.rows() ? dfm::tet_boundary_faces(t.T) : t.F;
   } else {
     dfm::TriMesh m = dfm::read_surface(path);
@@ -53,10 +66,38 @@ Input read_input(const std::string& path) {
   return in;
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// FAST from the pose the files give: its fixed handles and position targets, free handles warm-started
+// at that pose; prints the stages and one line per iteration.
+void solve_fast(const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig, const std::vector<int>& free,
+                int iterations, dfm::Pose& pose) {
+  const dfm::FastModel model = dfm::fast_model(in.V, in.T.rows() ? in.T : in.F, W);
+  const std::vector<dfm::FastConstraint> constraints = dfm::default_fast_constraints(rig, free);
+  dfm::FastSolver solver(model, constraints);
+  solver.set_targets(pose, dfm::fast_targets(constraints, pose));
+  std::printf("fast: %s energy, %d handles (%d free), %d rotation clusters; precompute %.3f s (clusters %.3f s, "
+              "reduction %.3f s), switch %.2f ms\n",
+              in.T.rows() ? "tet" : "spokes-and-rims", model.handles, static_cast<int>(free.size()), model.clusters,
+              model.cluster_seconds + model.assembly_seconds, model.cluster_seconds, model.assembly_seconds,
+              1e3 * solver.switch_seconds());
+  double iterating = 0;
+  for (int i = 1; i <= iterations; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    solver.iterate(pose, false);
+    iterating += seconds_since(t0);
+    std::printf("fast: iteration %d energy %.9g\n", i, dfm::fast_energy(model, pose));
+  }
+  std::printf("fast: %d iterations, %.2f us per iteration\n", iterations, 1e6 * iterating / iterations);
+}
+
 int run(const dfm::cli::Args& args) {
-  std::string input, out, weights, skeleton, pose_file, points_pose, method_name = "lbs";
+  std::string input, out, weights, skeleton, pose_file, points, points_pose, free_list, method_name = "lbs";
   int k = 0;  // 0: every weight
-  bool k_given = false, force_cpu = false;
+  int iterations = 20;
+  bool k_given = false, force_cpu = false, fast = false;
   dfm::cli::ArgReader a(args);
   while (!a.done()) {
     const std::string f = a.next();
@@ -65,6 +106,10 @@ int run(const dfm::cli::Args& args) {
     else if (f == "--skeleton") skeleton = a.value(f);
     else if (f == "--pose") pose_file = a.value(f);
     else if (f == "--points-pose") points_pose = a.value(f);
+    else if (f == "--points") points = a.value(f);
+    else if (f == "--fast") fast = true;
+    else if (f == "--free") free_list = a.value(f);
+    else if (f == "--iterations") iterations = a.integer(f);
     else if (f == "--method") method_name = a.value(f);
     else if (f == "-k") k = a.integer(f), k_given = true;
     else if (f == "--cpu") force_cpu = true;
@@ -77,6 +122,8 @@ int run(const dfm::cli::Args& args) {
   if (weights.empty()) throw dfm::cli::UsageError("--weights W.dmat is required");
   if (k_given && k != 4 && k != 8) throw dfm::cli::UsageError("-k must be 4 or 8");
   if (!pose_file.empty() && skeleton.empty()) throw dfm::cli::UsageError("--pose needs --skeleton");
+  if (!fast && (!free_list.empty())) throw dfm::cli::UsageError("--free needs --fast");
+  if (iterations < 1) throw dfm::cli::UsageError("--iterations must be >= 1");
   dfm::SkinMethod method;
   try {
     method = dfm::parse_skin_method(method_name);
@@ -89,9 +136,10 @@ int run(const dfm::cli::Args& args) {
 
   const Input in = read_input(input);
   dfm::Rig rig;
+  if (!points.empty()) dfm::add_points_file_to_rig(rig, points);
   if (!skeleton.empty()) dfm::add_tgf_to_rig(rig, dfm::read_tgf(skeleton), skeleton);
   const int nh = dfm::num_handles(rig);
-  if (nh == 0) throw dfm::Error("pose: the rig has no handles (give --skeleton)");
+  if (nh == 0) throw dfm::Error("pose: the rig has no handles (give --skeleton or --points)");
   const Eigen::MatrixXd W = dfm::read_dmat(weights);
   if (W.rows() != in.V.rows() || W.cols() != nh)
     throw dfm::file_error(weights, 0, "is " + std::to_string(W.rows()) + " x " + std::to_string(W.cols()) +
@@ -102,7 +150,11 @@ int run(const dfm::cli::Args& args) {
   if (!pose_file.empty()) params.bone_rotation = dfm::read_bone_rotations(pose_file, rig.skeleton.num_bones());
   if (!points_pose.empty())
     params.point_translation = dfm::read_point_translations(points_pose, dfm::num_point_handles(rig));
-  const dfm::Pose pose = dfm::evaluate_pose(rig, params);
+  dfm::Pose pose = dfm::evaluate_pose(rig, params);
+  if (fast) {
+    if (method != dfm::SkinMethod::LBS) throw dfm::cli::UsageError("--fast solves for linear blend skinning: use --method lbs");
+    solve_fast(in, W, rig, dfm::parse_handle_list(rig, free_list), iterations, pose);
+  }
   const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);
 
   const Eigen::MatrixXd N = dfm::vertex_normals(in.V, in.F);

@@ -9,27 +9,39 @@
 
 namespace dfm {
 
+namespace {
+
+// K corners (3: triangle, 4: tet), fixed-size so the 300K tets of a bind volume cost no allocation.
+template <int K>
+void element_matrices(const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements, Eigen::MatrixXd& out) {
+  Eigen::Matrix<double, 3, K - 1> E;
+  Eigen::Matrix<double, 3, K> G;
+  for (int e = 0; e < elements.rows(); ++e) {
+    const Eigen::Vector3d p0 = V.row(elements(e, 0)).transpose();
+    for (int c = 1; c < K; ++c) E.col(c - 1) = V.row(elements(e, c)).transpose() - p0;
+    // Hat gradients of corners 1..K-1 are the columns of E (E^T E)^-1; corner 0's is minus their sum.
+    const Eigen::Matrix<double, K - 1, K - 1> gram = E.transpose() * E;
+    const double det = gram.determinant();
+    const double scale = E.colwise().squaredNorm().maxCoeff();
+    if (!(det > 1e-20 * std::pow(scale, K - 1)))
+      throw Error(std::string(K == 3 ? "triangle " : "tet ") + std::to_string(e) + " is degenerate");
+    G.template rightCols<K - 1>() = E * gram.inverse();
+    G.col(0) = -G.template rightCols<K - 1>().rowwise().sum();
+    const double measure = std::sqrt(det) / (K == 3 ? 2.0 : 6.0);
+    Eigen::Map<Eigen::Matrix<double, K, K>>(out.col(e).data()) = measure * G.transpose() * G;
+  }
+}
+
+}  // namespace
+
 Eigen::MatrixXd arap_element_matrices(const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements) {
   const int k = static_cast<int>(elements.cols());
   if (k != 3 && k != 4) throw Error("ARAP elements must be triangles or tets, got " + std::to_string(k) + " columns");
   if (elements.size() && (elements.minCoeff() < 0 || elements.maxCoeff() >= V.rows()))
     throw Error("ARAP element index out of range (" + std::to_string(V.rows()) + " vertices)");
   Eigen::MatrixXd out(k * k, elements.rows());
-  Eigen::MatrixXd E(3, k - 1), G(3, k);
-  for (int e = 0; e < elements.rows(); ++e) {
-    const Eigen::Vector3d p0 = V.row(elements(e, 0)).transpose();
-    for (int c = 1; c < k; ++c) E.col(c - 1) = V.row(elements(e, c)).transpose() - p0;
-    // Hat gradients of corners 1..k-1 are the columns of E (E^T E)^-1; corner 0's is minus their sum.
-    const Eigen::MatrixXd gram = E.transpose() * E;
-    const double det = gram.determinant();
-    const double scale = E.colwise().squaredNorm().maxCoeff();
-    if (!(det > 1e-20 * std::pow(scale, k - 1)))
-      throw Error(std::string(k == 3 ? "triangle " : "tet ") + std::to_string(e) + " is degenerate");
-    G.rightCols(k - 1) = E * gram.inverse();
-    G.col(0) = -G.rightCols(k - 1).rowwise().sum();
-    const double measure = std::sqrt(det) / (k == 3 ? 2.0 : 6.0);
-    Eigen::Map<Eigen::MatrixXd>(out.col(e).data(), k, k) = measure * G.transpose() * G;
-  }
+  if (k == 3) element_matrices<3>(V, elements, out);
+  else element_matrices<4>(V, elements, out);
   return out;
 }
 

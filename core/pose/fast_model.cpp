@@ -25,16 +25,24 @@ Eigen::MatrixXd reduced_rotation_term(const Eigen::MatrixXd& V, const Eigen::Mat
                                       const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, int clusters) {
   const int k = static_cast<int>(elements.cols());
   Eigen::MatrixXd Kt = Eigen::MatrixXd::Zero(3 * clusters, M.cols());
-  Eigen::MatrixXd Y(k, 3);
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 4, 3>;  // no heap per element
+  Small Y(k, 3), Q(k, 3);
   for (int e = 0; e < elements.rows(); ++e) {
     for (int i = 0; i < k; ++i) Y.row(i) = V.row(elements(e, i));
-    const Eigen::MatrixXd Q = Eigen::Map<const Eigen::MatrixXd>(Le.col(e).data(), k, k) * Y;  // row i: sum_j Le_ij v_j
+    Q.noalias() = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>>(Le.col(e).data(), k, k) * Y;
+    // Corners sharing a cluster add the same term: once, times their count.
+    int cl[4], mult[4], distinct = 0;
     for (int corner = 0; corner < k; ++corner) {
-      const int cl = cluster(elements(e, corner));
+      const int c = cluster(elements(e, corner));
+      int d = 0;
+      while (d < distinct && cl[d] != c) ++d;
+      if (d == distinct) cl[distinct] = c, mult[distinct++] = 0;
+      ++mult[d];
+    }
+    for (int d = 0; d < distinct; ++d)
       for (int i = 0; i < k; ++i)
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(M, elements(e, i)); it; ++it)
-          Kt.block<3, 1>(3 * cl, it.col()) += it.value() * Q.row(i).transpose();
-    }
+          Kt.block<3, 1>(3 * cl[d], it.col()) += (mult[d] * it.value()) * Q.row(i).transpose();
   }
   return Kt;
 }

@@ -60,6 +60,9 @@ FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> const
   T_fixed_ = Eigen::MatrixXd::Zero(f.size(), 3);
   s_fixed_ = Eigen::MatrixXd::Zero(model.Kt.rows(), 3);
   phi_ = Eigen::MatrixXd::Zero(nu, 3);
+  X_.resize(nu, 3);
+  S_.resize(model.Kt.rows(), 3);
+  Rt_.resize(model.Kt.rows(), 3);
   if (nu == 0) return;
   // Eq. 7.19 on the unknown blocks: [Lt_uu P^T; P 0], P holding [anchor^T 1] per position constraint.
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nu + c, nu + c);
@@ -95,29 +98,27 @@ void FastSolver::set_targets(const Pose& pose, const std::vector<Eigen::Vector3d
   if (!unknown_.empty()) phi_ = pi_fixed_ * T_fixed_ + pi_targets_ * P;
 }
 
-Eigen::MatrixXd FastSolver::unknown_blocks(const Pose& pose) const {
-  Eigen::MatrixXd X(4 * unknown_.size(), 3);
-  for (size_t q = 0; q < unknown_.size(); ++q) {
-    X.block<3, 3>(4 * q, 0) = pose.transforms[unknown_[q]].linear().transpose();
-    X.row(4 * q + 3) = pose.transforms[unknown_[q]].translation().transpose();
-  }
-  return X;
+void FastSolver::read_unknown_blocks(const Pose& pose) const {
+  for (size_t q = 0; q < unknown_.size(); ++q)
+    X_.block<4, 3>(4 * q, 0) = pose.transforms[unknown_[q]].matrix().topRows<3>().transpose();
 }
 
-void FastSolver::write_unknown_blocks(const Eigen::MatrixXd& X, Pose& pose) const {
-  for (size_t q = 0; q < unknown_.size(); ++q) {
-    pose.transforms[unknown_[q]].linear() = X.block<3, 3>(4 * q, 0).transpose();
-    pose.transforms[unknown_[q]].translation() = X.row(4 * q + 3).transpose();
-  }
+void FastSolver::write_unknown_blocks(Pose& pose) const {
+  for (size_t q = 0; q < unknown_.size(); ++q)
+    pose.transforms[unknown_[q]].matrix().topRows<3>() = X_.block<4, 3>(4 * q, 0).transpose();
 }
 
 double FastSolver::iterate(Pose& pose, bool with_energy) const {
   if (pose.size() != model_->handles) throw Error("FAST: the pose has the wrong number of handles");
   if (unknown_.empty()) return with_energy ? fast_energy(*model_, pose) : 0.0;
-  const Eigen::MatrixXd Rt = best_rotations_transposed(Kt_u_ * unknown_blocks(pose) + s_fixed_);
-  const Eigen::MatrixXd X = gamma_ * Rt + phi_;
-  write_unknown_blocks(X, pose);
-  return with_energy ? energy_of(*model_, pose_matrix(pose), Rt) : std::numeric_limits<double>::quiet_NaN();
+  read_unknown_blocks(pose);
+  S_.noalias() = Kt_u_ * X_;
+  S_ += s_fixed_;
+  for (int k = 0; 3 * k < S_.rows(); ++k) Rt_.block<3, 3>(3 * k, 0) = best_rotation(S_.block<3, 3>(3 * k, 0)).transpose();
+  X_.noalias() = gamma_ * Rt_;
+  X_ += phi_;
+  write_unknown_blocks(pose);
+  return with_energy ? energy_of(*model_, pose_matrix(pose), Rt_) : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace dfm

@@ -40,8 +40,8 @@ class FastSolver {
   double switch_seconds() const { return switch_seconds_; }
 
  private:
-  Eigen::MatrixXd unknown_blocks(const Pose& pose) const;
-  void write_unknown_blocks(const Eigen::MatrixXd& X, Pose& pose) const;
+  void read_unknown_blocks(const Pose& pose) const;
+  void write_unknown_blocks(Pose& pose) const;
 
   const FastModel* model_;
   std::vector<FastConstraint> constraints_;
@@ -54,6 +54,8 @@ class FastSolver {
   Eigen::MatrixXd s_fixed_;         // 3r x 3: Kt_f T_f for the current fixed transforms
   Eigen::MatrixXd T_fixed_;         // 4f x 3
   double switch_seconds_ = 0;
+  // Per-iteration scratch, sized once: an iteration allocates nothing.
+  mutable Eigen::MatrixXd X_, S_, Rt_;
 };
 
 // E(T, R) for given transforms with the best rotations for them (the energy a local step reaches).

@@ -107,4 +107,10 @@ TgfData rig_to_tgf(const Rig& rig) {
   return t;
 }
 
+void add_points_file_to_rig(Rig& rig, const std::string& path) {
+  const Eigen::MatrixXd P = read_points(path);
+  if (P.rows() == 0) throw file_error(path, 0, "holds no points (expected one 'x y z' a line)");
+  for (int i = 0; i < P.rows(); ++i) rig.points.push_back({P.row(i).transpose(), "point " + std::to_string(i + 1)});
+}
+
 }  // namespace dfm

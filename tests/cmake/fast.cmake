@@ -1,2 +1,6 @@
 # FAST posing (core/pose): ARAP elements, rotation clusters, the local-global solver.
 dfm_test(test_fast SOURCES test_fast.cpp LIBS dfm_pose dfm_bind dfm_mesh dfm_rig)
+# Runs the `deform` executable end to end.
+dfm_test(test_fast_cli SOURCES test_fast_cli.cpp LIBS dfm_mesh)
+target_compile_definitions(test_fast_cli PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
+add_dependencies(test_fast_cli deform)

@@ -1,0 +1,70 @@
+#include "core/pose/fast_rig.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "core/util/error.h"
+
+namespace dfm {
+
+Eigen::Vector3d handle_anchor(const Rig& rig, int handle, const Eigen::MatrixXd& surface) {
+  const HandleRef ref = handle_ref(rig, handle);
+  switch (ref.kind) {
+    case HandleKind::Point: return rig.points[ref.index].position;
+    case HandleKind::Bone: return rig.skeleton.joints.row(rig.skeleton.bones[ref.index].b).transpose();
+    case HandleKind::CageVertex: return rig.cages[ref.cage].mesh.V.row(ref.index).transpose();
+    case HandleKind::Region: {
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      const auto& verts = rig.regions[ref.index].vertices;
+      if (surface.rows() == 0 || verts.empty()) return c;
+      for (int v : verts) c += surface.row(v).transpose();
+      return c / static_cast<double>(verts.size());
+    }
+  }
+  return Eigen::Vector3d::Zero();
+}
+
+std::vector<FastConstraint> default_fast_constraints(const Rig& rig, const std::vector<int>& free_handles) {
+  const int n = num_handles(rig);
+  std::vector<FastConstraint> c(n);
+  for (int h = 0; h < n; ++h) {
+    const HandleKind kind = handle_ref(rig, h).kind;
+    c[h].anchor = handle_anchor(rig, h);
+    if (kind == HandleKind::Point || kind == HandleKind::CageVertex) c[h].state = HandleConstraint::Position;
+  }
+  for (int h : free_handles) {
+    if (h < 0 || h >= n) throw Error("free handle " + std::to_string(h) + " is not in the rig's " + std::to_string(n));
+    c[h].state = HandleConstraint::Free;
+  }
+  return c;
+}
+
+std::vector<Eigen::Vector3d> fast_targets(const std::vector<FastConstraint>& constraints, const Pose& pose) {
+  std::vector<Eigen::Vector3d> t(constraints.size(), Eigen::Vector3d::Zero());
+  for (size_t h = 0; h < constraints.size() && static_cast<int>(h) < pose.size(); ++h)
+    t[h] = pose.transforms[h] * constraints[h].anchor;
+  return t;
+}
+
+std::vector<int> parse_handle_list(const Rig& rig, const std::string& list) {
+  std::vector<int> out;
+  std::stringstream ss(list);
+  std::string item;
+  const int n = num_handles(rig);
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) continue;
+    int h = -1;
+    if (std::all_of(item.begin(), item.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
+      h = std::stoi(item);
+      if (h >= n) throw Error("handle " + item + " is out of range: the rig has " + std::to_string(n) + " handles");
+    } else {
+      for (int k = 0; k < n && h < 0; ++k)
+        if (handle_name(rig, k) == item) h = k;
+      if (h < 0) throw Error("no handle named '" + item + "' in the rig");
+    }
+    out.push_back(h);
+  }
+  return out;
+}
+
+}  // namespace dfm

@@ -1,0 +1,31 @@
+#pragma once
+// FAST constraints from a rig (Jacobson 2013, 7.3.1): what each handle kind pins by default, and the
+// targets a pose gives the position-constrained handles.
+//   point handles, cage vertices: position-constrained at their rest point (rotation solved);
+//   bones, regions: fixed (their transform as posed);
+//   handles listed as free: solved entirely.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/pose/fast_solver.h"
+#include "core/rig/pose.h"
+#include "core/rig/rig.h"
+
+namespace dfm {
+
+// The rest point a handle's position constraint moves: a point's position, a cage vertex, a bone's
+// second joint (its tip, what IK drags), a region's centroid on `surface` (#V x 3; may be empty).
+Eigen::Vector3d handle_anchor(const Rig& rig, int handle, const Eigen::MatrixXd& surface = {});
+
+std::vector<FastConstraint> default_fast_constraints(const Rig& rig, const std::vector<int>& free_handles);
+
+// targets[h] = pose(h) * anchor(h), for every handle (FastSolver reads the position-constrained ones).
+std::vector<Eigen::Vector3d> fast_targets(const std::vector<FastConstraint>& constraints, const Pose& pose);
+
+// "2,point 3,bone 1": handle indices or names (rig.h order), in any mix. Throws dfm::Error naming an
+// unknown entry.
+std::vector<int> parse_handle_list(const Rig& rig, const std::string& list);
+
+}  // namespace dfm
