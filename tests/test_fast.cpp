@@ -13,6 +13,7 @@
 #include "core/pose/arap_elements.h"
 #include "core/pose/best_rotation.h"
 #include "core/pose/fast_model.h"
+#include "core/pose/fast_posing.h"
 #include "core/pose/fast_solver.h"
 #include "core/pose/weight_clusters.h"
 #include "core/rig/rig_io.h"
@@ -274,4 +275,41 @@ TEST_CASE("FAST on the arm: drag the hand, pin the shoulder, free elbow: it bend
   // It bends: the free elbow moved and the hand handle turned.
   CHECK((pose.transforms[1] * rig.points[1].position - rig.points[1].position).norm() > 0.02 * length);
   CHECK(Eigen::AngleAxisd(best_rotation(pose.transforms[2].linear().transpose())).angle() > 0.1);
+}
+
+TEST_CASE("FastPosing: solved transforms land in the params, caches rebuild only when they must", "[fast]") {
+  const Tube t;
+  Rig rig;
+  for (int h = 0; h < 3; ++h) rig.points.push_back({t.anchors[h], "point " + std::to_string(h + 1)});
+  std::vector<HandleConstraint> states = default_constraint_states(rig);
+  REQUIRE(states == std::vector<HandleConstraint>(3, HandleConstraint::Position));
+  states[0] = parse_constraint_state("pinned");
+  states[1] = parse_constraint_state("free");
+  CHECK_THROWS_WITH(parse_constraint_state("loose"), Catch::Contains("unknown handle state 'loose'"));
+  PoseParams params = rest_pose_params(rig);
+  params.point_translation[2] = Vector3d(-0.5, 1.5, 0.2);
+  FastPosing fast;
+  const FastSolveReport first = fast.solve(rig, t.mesh.V, t.mesh.F, t.W, states, 10, params);
+  CHECK(first.precomputed);
+  CHECK(first.switched);
+  CHECK(params.solved.size() == 2);
+  CHECK(params.solved.count(0) == 0);
+  const Pose posed = evaluate_pose(rig, params);
+  CHECK((posed.transforms[2] * t.anchors[2] - (t.anchors[2] + params.point_translation[2])).norm() < 1e-10);
+  CHECK(posed.transforms[0].matrix() == Eigen::Matrix4d::Identity());
+  // Same inputs: warm start from the solved transforms, nothing rebuilt, the energy does not rise.
+  const FastSolveReport again = fast.solve(rig, t.mesh.V, t.mesh.F, t.W, states, 10, params);
+  CHECK(!again.precomputed);
+  CHECK(!again.switched);
+  CHECK(again.energy <= first.energy * (1 + 1e-12));
+  states[1] = HandleConstraint::Position;
+  const FastSolveReport switched = fast.solve(rig, t.mesh.V, t.mesh.F, t.W, states, 1, params);
+  CHECK(switched.switched);
+  CHECK(!switched.precomputed);
+  // New weights in the same matrix (what a rebind does): the fingerprint notices.
+  MatrixXd W = t.W;
+  CHECK(fast.solve(rig, t.mesh.V, t.mesh.F, W, states, 1, params).precomputed);  // another matrix: rebuilt
+  CHECK(!fast.solve(rig, t.mesh.V, t.mesh.F, W, states, 1, params).precomputed);
+  W = hat_weights(t.mesh.V * 1.1, 4.0);
+  CHECK(fast.solve(rig, t.mesh.V, t.mesh.F, W, states, 1, params).precomputed);
 }

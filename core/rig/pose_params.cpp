@@ -57,6 +57,8 @@ Pose evaluate_pose(const Rig& rig, const PoseParams& params) {
   }
   for (int i = 0; i < static_cast<int>(rig.regions.size()); ++i)
     pose.transforms.push_back(at_or(params.region_transform, i, Eigen::Affine3d::Identity()));
+  for (const auto& [h, T] : params.solved)
+    if (h >= 0 && h < pose.size()) pose.transforms[h] = T;
   return pose;
 }
 

@@ -6,6 +6,7 @@
 //           for a point with no pseudo-edge, the explicit rotation given here (about the point);
 //   cage vertices: a translation;  regions: a full affine.
 // All vectors are sized by resize_pose_params(); missing entries mean identity.
+#include <map>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -31,11 +32,15 @@ struct PoseParams {
   std::vector<Eigen::Affine3d> region_transform;
   // Twist/stretch per bone: in the bone transforms (children follow); STBS spreads them along the bone.
   std::vector<BoneTwistStretch> bone_twist_stretch;
+  // Transforms solved by FAST (core/pose/fast_posing.h), keyed by handle (rig.h order): each replaces
+  // the transform the fields above give that handle, so a key holds exactly what the solver found.
+  std::map<int, Eigen::Affine3d> solved;
 };
 
 // Sizes every vector to the rig, identity entries.
 PoseParams rest_pose_params(const Rig& rig);
-// Forward kinematics + pseudo-edge rotation inference -> one affine per handle (rig.h order).
+// Forward kinematics + pseudo-edge rotation inference -> one affine per handle (rig.h order), then the
+// solved transforms in place of theirs (entries past the rig's handles are ignored).
 Pose evaluate_pose(const Rig& rig, const PoseParams& params);
 
 }  // namespace dfm

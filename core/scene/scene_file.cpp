@@ -97,6 +97,11 @@ json params_json(const PoseParams& p) {
   j["point_rotation"] = list(p.point_rotation, quat);
   j["cage_translation"] = list(p.cage_translation, vec3);
   j["region_transform"] = list(p.region_transform, affine);
+  if (!p.solved.empty()) {
+    json solved = json::array();
+    for (const auto& [h, T] : p.solved) solved.push_back({{"handle", h}, {"transform", affine(T)}});
+    j["solved"] = solved;
+  }
   return j;
 }
 
@@ -256,6 +261,18 @@ class SceneReader {
     list("point_rotation", np, [&](const json& x, const std::string& c) { return quat(x, c); }, p.point_rotation);
     list("cage_translation", nc, [&](const json& x, const std::string& c) { return vec3(x, c); }, p.cage_translation);
     list("region_transform", nr, [&](const json& x, const std::string& c) { return affine(x, c); }, p.region_transform);
+    if (j.contains("solved")) {  // optional: scenes saved before FAST posing have none
+      const std::string c = ctx + ".solved";
+      const json& a = array(j["solved"], c, -1);
+      const long long nh = num_handles(rig);
+      for (size_t i = 0; i < a.size(); ++i) {
+        const std::string ci = c + "[" + std::to_string(i) + "]";
+        const double h = number(field(a[i], "handle", ci), ci + ".handle");
+        if (!(h >= 0 && h < nh) || h != std::floor(h))
+          fail("'" + ci + ".handle' must be a handle index in [0, " + std::to_string(nh) + ")");
+        p.solved[static_cast<int>(h)] = affine(field(a[i], "transform", ci), ci + ".transform");
+      }
+    }
     return p;
   }
 

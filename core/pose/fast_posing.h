@@ -1,0 +1,54 @@
+#pragma once
+// FAST posing for the editor and the script (one code path): turns a pose's parameters into solved
+// transforms for every handle that is not fixed, caching the precomputation (rebuilt when the weights
+// or the energy mesh change) and the constraint switch (rebuilt when the states change), and warm
+// starting from the transforms solved last time (Jacobson 2013, 7.3: local-global from the last frame).
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/pose/fast_model.h"
+#include "core/pose/fast_solver.h"
+#include "core/rig/pose_params.h"
+#include "core/rig/rig.h"
+
+namespace dfm {
+
+// Per handle (rig.h order): points and cage vertices position-constrained, bones and regions fixed.
+std::vector<HandleConstraint> default_constraint_states(const Rig& rig);
+const char* constraint_state_name(HandleConstraint s);  // "pinned", "position", "free"
+HandleConstraint parse_constraint_state(const std::string& name);  // throws dfm::Error naming the word
+
+struct FastSolveReport {
+  bool precomputed = false, switched = false;  // whether this call rebuilt them
+  double precompute_seconds = 0, switch_seconds = 0, iterate_seconds = 0;
+  int iterations = 0, clusters = 0;
+  double energy = 0;  // after the last iteration
+};
+
+class FastPosing {
+ public:
+  // V, elements, W: the energy mesh (the surface with its triangles, or the bind's tets) and its weights.
+  // Fixed transforms and position targets come from evaluate_pose(params) without solved entries;
+  // params.solved is rewritten to hold exactly the non-fixed handles' solved transforms.
+  // Throws dfm::Error when sizes disagree with the rig.
+  FastSolveReport solve(const Rig& rig, const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements,
+                        const Eigen::MatrixXd& W, const std::vector<HandleConstraint>& states, int iterations,
+                        PoseParams& params);
+  void invalidate();
+
+ private:
+  struct Signature {
+    const void* data[3] = {nullptr, nullptr, nullptr};
+    Eigen::Index size[3] = {0, 0, 0};
+    double fingerprint[3] = {0, 0, 0};
+    bool operator==(const Signature& o) const;
+  };
+  Signature model_signature_;
+  std::unique_ptr<FastModel> model_;
+  std::vector<FastConstraint> constraints_;
+  std::unique_ptr<FastSolver> solver_;
+};
+
+}  // namespace dfm
