@@ -299,6 +299,9 @@ int main(int argc, char** argv) {
     cam.target = {0, 0, 0};
     doc.set_camera(cam);
     doc.set_selection({});
+    dfm::PosingSettings posing;
+    posing.fast = true;  // posing by dragging is the editor's default (FAST solves once bound)
+    doc.set_posing(posing);
     doc.save_scene((out / "default.scene.json").string());
     std::printf("default scene: %d vertices, %d faces, %d handles -> %s\n", surface.num_vertices(),
                 surface.num_faces(), doc.num_handles(), (out / "default.scene.json").string().c_str());

@@ -143,7 +143,7 @@ void Editor::open_any(const std::string& path) {
       from_document_camera(doc_.camera(), c);
       cam_ = c;
       view_->sync(doc_, {});
-      cam_.scene_radius = std::max(1e-6, 0.5 * view_->surface_bounds().diagonal().norm());
+      fit_scene_radius();
     } else if (ext == "tgf") {
       doc_.load_skeleton(path);
     } else if (doc_.surface().num_vertices() > 0 && (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl") &&
@@ -171,7 +171,7 @@ void Editor::load_initial() {
         doc_.load_scene(opts_.file);
         from_document_camera(doc_.camera(), cam_);
         view_->sync(doc_, {});
-        cam_.scene_radius = std::max(1e-6, 0.5 * view_->surface_bounds().diagonal().norm());
+        fit_scene_radius();
       } else {
         doc_.open_mesh(opts_.file);
         view_->sync(doc_, {});
@@ -191,15 +191,19 @@ void Editor::load_initial() {
   doc_.load_scene(def);
   from_document_camera(doc_.camera(), cam_);
   view_->sync(doc_, {});
-  cam_.scene_radius = std::max(1e-6, 0.5 * view_->surface_bounds().diagonal().norm());
+  fit_scene_radius();
   // The default scene is a template: saving it should ask for a new name, not overwrite the asset.
   status("default scene: " + def);
+}
+
+void Editor::fit_scene_radius() {
+  cam_.scene_radius = std::max(1e-6, 0.5 * view_->surface_bounds().diagonal().norm());
 }
 
 void Editor::frame_all() {
   const Eigen::AlignedBox3d b = view_->surface_bounds();
   if (b.isEmpty()) return;
-  cam_.scene_radius = std::max(1e-6, 0.5 * b.diagonal().norm());
+  fit_scene_radius();
   gl::frame_box(cam_, b.min(), b.max());
   sync_camera_to_doc();
 }

@@ -23,6 +23,9 @@ struct GLFWwindow;
 
 namespace dfm::editor {
 
+// "pin", "pos", "free": the outliner's tag for a handle's FAST state.
+const char* handle_state_tag(HandleConstraint s);
+
 struct EditorOptions {
   std::string file;        // scene or mesh to open ("" = default scene)
   std::string script;      // --script
@@ -67,6 +70,7 @@ class Editor {
   // editor.cpp
   void init_imgui();
   void load_initial();
+  void fit_scene_radius();  // from the surface's bounds (pan/zoom speeds, gizmo size)
   void frame_all();
   void frame_selection();
   void sync_camera_to_doc();
@@ -112,6 +116,7 @@ class Editor {
   void draw_bind_section();
   void draw_weights_section();
   void draw_transform_section();
+  void draw_posing_section();  // posing_panel.cpp
   void draw_viewport_hud();
   void draw_quit_prompt();
   void draw_error_popup();

@@ -232,7 +232,9 @@ void Editor::draw_outliner() {
                                               to_u32(handle_color(h)), 2.0f);
     ImGui::Dummy(ImVec2(sz - 2, sz));
     ImGui::SameLine();
-    const std::string label = handle_name(rig, h);
+    const std::string label = doc_.posing().fast
+                                  ? handle_name(rig, h) + "  [" + handle_state_tag(doc_.handle_states()[h]) + "]"
+                                  : handle_name(rig, h);
     if (ImGui::Selectable(label.c_str(), is_sel)) select_handle(h, ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl);
     if (ImGui::BeginPopupContextItem("ctx")) {
       static char buf[128];
@@ -301,6 +303,7 @@ void Editor::draw_right_panel() {
   if (ImGui::CollapsingHeader("Bind", ImGuiTreeNodeFlags_DefaultOpen)) draw_bind_section();
   if (ImGui::CollapsingHeader("Weights", ImGuiTreeNodeFlags_DefaultOpen)) draw_weights_section();
   if (ImGui::CollapsingHeader("Transform", ImGuiTreeNodeFlags_DefaultOpen)) draw_transform_section();
+  if (ImGui::CollapsingHeader("Posing", ImGuiTreeNodeFlags_DefaultOpen)) draw_posing_section();
 }
 
 void Editor::draw_view_section() {

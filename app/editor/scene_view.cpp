@@ -1,5 +1,7 @@
 #include "app/editor/scene_view.h"
 
+#include "core/util/hash.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -92,13 +94,8 @@ struct SceneView::Deformer {
 };
 
 namespace {
-std::uint64_t mix_hash(std::uint64_t h, const void* p, size_t n) {
-  const unsigned char* b = static_cast<const unsigned char*>(p);
-  for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;  // FNV-1a
-  return h;
-}
 std::uint64_t pose_hash(std::uint64_t h, const Pose& p) {
-  for (const auto& T : p.transforms) h = mix_hash(h, T.matrix().data(), sizeof(double) * 16);
+  for (const auto& T : p.transforms) h = fnv1a(h, T.matrix().data(), sizeof(double) * 16);
   return h;
 }
 }  // namespace
@@ -202,7 +199,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     error_ = d.builder.error();
     // Pose edits after the last scrub show the pose being edited; scrubbing shows the slice.
     const Pose pose = doc.pose();
-    const std::uint64_t psig = pose_hash(1469598103934665603ull, pose);
+    const std::uint64_t psig = pose_hash(kFnv1aBasis, pose);
     if (psig != d.pose_sig) {
       if (d.pose_sig != 0) d.prefer_pose = true;
       d.pose_sig = psig;
@@ -437,7 +434,7 @@ void SceneView::draw_overlays(const Document& doc, const gl::Camera& cam, const 
     const Bone& b = rig.skeleton.bones[i];
     const int h = np + i;
     const Eigen::Vector4f c = color_of(h, 1.0f);
-    lines.push_back(gl::overlay_vertex(joint_pos_.row(b.a), c));
+    lines.push_back(gl::overlay_vertex(handle_pos_.row(h), c));  // its own transform's first joint
     lines.push_back(gl::overlay_vertex(joint_pos_.row(b.b), Eigen::Vector4f(0.5f * c.head<3>().x(), 0.5f * c.y(), 0.5f * c.z(), 1.0f)));
   }
   for (int j = 0; j < joint_pos_.rows(); ++j)
@@ -466,6 +463,20 @@ void SceneView::draw_overlays(const Document& doc, const gl::Camera& cam, const 
   overlay_.draw_lines(cam, lines, 5.0f, false);
   overlay_.draw_points(cam, small_pts, 8.0f, false);
   overlay_.draw_points(cam, pts, 14.0f, false);
+  // FAST states on the handles (bones: at the tip IK drags): a dark centre is pinned, a white one free.
+  if (doc.posing().fast) {
+    std::vector<gl::OverlayVertex> marks;
+    const std::vector<HandleConstraint> states = doc.handle_states();
+    for (int k = 0; k < static_cast<int>(states.size()) && k < handle_pos_.rows(); ++k) {
+      if (states[k] == HandleConstraint::Position) continue;
+      const HandleRef r = handle_ref(rig, k);
+      const Eigen::Vector3d at = r.kind == HandleKind::Bone ? Eigen::Vector3d(joint_pos_.row(rig.skeleton.bones[r.index].b))
+                                                            : Eigen::Vector3d(handle_pos_.row(k));
+      marks.push_back(gl::overlay_vertex(at, states[k] == HandleConstraint::Fixed ? Eigen::Vector4f(0.08f, 0.08f, 0.1f, 1.0f)
+                                                                                 : Eigen::Vector4f(1.0f, 1.0f, 1.0f, 1.0f)));
+    }
+    overlay_.draw_points(cam, marks, 6.0f, false);
+  }
 }
 
 void SceneView::show_pose() {

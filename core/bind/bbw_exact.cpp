@@ -1,5 +1,7 @@
 #include "core/bind/bbw_exact.h"
 
+#include "core/util/hash.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -85,9 +87,7 @@ void solve_face(const Eigen::SparseMatrix<double>& H, const Eigen::MatrixXd& G, 
 }
 
 uint64_t hash_status(const Status& st) {
-  uint64_t h = 1469598103934665603ull;
-  for (int k = 0; k < st.size(); ++k) h = (h ^ static_cast<uint64_t>(st.data()[k] + 1)) * 1099511628211ull;
-  return h;
+  return fnv1a(kFnv1aBasis, st.data(), sizeof(*st.data()) * static_cast<size_t>(st.size()));
 }
 
 // Every row keeps at least one free entry (the sum constraint needs somewhere to live).

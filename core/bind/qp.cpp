@@ -1,5 +1,7 @@
 #include "core/bind/qp.h"
 
+#include "core/util/hash.h"
+
 #include <cholmod.h>
 
 #include <algorithm>
@@ -307,9 +309,7 @@ class FaceSolver {
 };
 
 uint64_t hash_status(const std::vector<signed char>& st) {
-  uint64_t h = 1469598103934665603ull;
-  for (signed char s : st) h = (h ^ static_cast<uint64_t>(s + 1)) * 1099511628211ull;
-  return h;
+  return fnv1a(kFnv1aBasis, st.data(), st.size());
 }
 
 // grad = H x + g for a symmetric H stored in full: column i is read as row i, so each entry is a gather

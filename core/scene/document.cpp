@@ -104,7 +104,7 @@ void swap_parts(SceneData& a, SceneData& b, unsigned parts) {
     swap(a.surface_to_tet, b.surface_to_tet);
   }
   if (parts & 2u) swap(a.rig, b.rig);
-  if (parts & 4u) swap(a.pose, b.pose);
+  if (parts & 4u) swap(a.pose, b.pose), swap(a.posing, b.posing);
   if (parts & 8u) swap(a.keys, b.keys);
   if (parts & 16u) {
     swap(a.weights, b.weights);
@@ -126,7 +126,7 @@ void copy_parts(const SceneData& from, SceneData& to, unsigned parts) {
     to.surface_to_tet = from.surface_to_tet;
   }
   if (parts & 2u) to.rig = from.rig;
-  if (parts & 4u) to.pose = from.pose;
+  if (parts & 4u) to.pose = from.pose, to.posing = from.posing;
   if (parts & 8u) to.keys = from.keys;
   if (parts & 16u) {
     to.weights = from.weights;
@@ -701,7 +701,9 @@ void Document::set_pose_params(const PoseParams& p) {
   execute("pose", kPose, "pose", [&](SceneData& s) { s.pose = std::move(q); });
 }
 
-void Document::translate_handle(int handle, const Eigen::Vector3d& d) {
+void Document::translate_handle(int handle, const Eigen::Vector3d& d) { move_handle(handle, d, s_.posing.fast); }
+
+void Document::move_handle(int handle, const Eigen::Vector3d& d, bool solve) {
   check_finite(d, "translation");
   const HandleRef r = handle_ref(s_.rig, handle);
   execute("translate " + handle_name(s_.rig, handle), kPose, "transform " + std::to_string(handle),
@@ -721,6 +723,7 @@ void Document::translate_handle(int handle, const Eigen::Vector3d& d) {
               }
               case HandleKind::Region: p.region_transform[r.index].pretranslate(d); break;
             }
+            if (solve) solve_fast(s);
           });
 }
 
@@ -750,12 +753,53 @@ void Document::rotate_handle(int handle, const Eigen::Quaterniond& q_in) {
               }
               case HandleKind::CageVertex: break;
             }
+            if (s.posing.fast) solve_fast(s);
           });
 }
 
 void Document::reset_pose() {
   PoseParams rest = fit_pose_params(s_.rig, {});
   execute("reset pose", kPose, "", [&](SceneData& s) { s.pose = std::move(rest); });
+}
+
+std::vector<HandleConstraint> Document::handle_states() const {
+  if (static_cast<int>(s_.posing.states.size()) == num_handles()) return s_.posing.states;
+  return default_constraint_states(s_.rig);
+}
+
+void Document::solve_fast(SceneData& s) {
+  if (!has_weights()) return;
+  if (!fast_) fast_ = std::make_unique<FastPosing>();
+  const std::vector<HandleConstraint> states =
+      static_cast<int>(s.posing.states.size()) == dfm::num_handles(s.rig) ? s.posing.states : default_constraint_states(s.rig);
+  last_fast_ = fast_->solve(s.rig, s.surface.V, s.surface.F, s.weights, states, s.posing.iterations, s.pose);
+}
+
+void Document::set_posing(const PosingSettings& p) {
+  if (p.iterations < 1 || p.iterations > 1000) throw Error("FAST iterations must be in [1, 1000]");
+  if (!p.states.empty() && static_cast<int>(p.states.size()) != num_handles())
+    throw Error("handle states: " + std::to_string(p.states.size()) + " for " + std::to_string(num_handles()) + " handles");
+  execute("posing settings", kPose, "", [&](SceneData& s) {
+    s.posing = p;
+    if (s.posing.fast) solve_fast(s);
+  });
+}
+
+void Document::set_handle_state(int handle, HandleConstraint state) {
+  if (handle < 0 || handle >= num_handles()) throw Error("no handle " + std::to_string(handle));
+  PosingSettings p = s_.posing;
+  p.states = handle_states();
+  p.states[handle] = state;
+  execute(std::string("set ") + handle_name(s_.rig, handle) + " " + constraint_state_name(state), kPose, "",
+          [&](SceneData& s) {
+            s.posing = p;
+            if (s.posing.fast) solve_fast(s);
+          });
+}
+
+void Document::drag_handle(int handle, const Eigen::Vector3d& delta) {
+  if (!has_weights()) throw Error("drag: bind first (FAST solves with the weights)");
+  move_handle(handle, delta, true);
 }
 
 // ---- keys ------------------------------------------------------------------------------------------

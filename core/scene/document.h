@@ -24,6 +24,7 @@
 
 #include "core/bind/bind_volume.h"
 #include "core/mesh/mesh.h"
+#include "core/pose/fast_posing.h"
 #include "core/rig/pose.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig.h"
@@ -68,6 +69,19 @@ struct SceneKey {
   bool is_mesh() const { return mesh.num_vertices() > 0; }
 };
 
+// Posing by dragging (FAST, Jacobson 2013 ch. 7): when `fast` is on and the surface is bound, every
+// translate or rotate of a handle re-solves the handles that are not pinned. states: one per handle
+// (rig.h order); a vector of another size (the rig changed) means the defaults of
+// default_constraint_states.
+struct PosingSettings {
+  bool fast = false;
+  int iterations = 8;  // local-global iterations per edit (per drawn frame while dragging)
+  std::vector<HandleConstraint> states;
+  bool operator==(const PosingSettings& o) const {
+    return fast == o.fast && iterations == o.iterations && states == o.states;
+  }
+};
+
 struct Selection {
   std::vector<int> handles;  // global handle indices (rig.h order), first = active
   int joint = -1;            // a selected skeleton joint (joint editing before bind), -1 none
@@ -86,6 +100,7 @@ struct SceneData {
   Eigen::VectorXi surface_to_tet;
   Rig rig;
   PoseParams pose;
+  PosingSettings posing;
   SkinMethod method = SkinMethod::LBS;
   BindSettings bind_settings;
   int inbetweens = 4;       // animation manifold: baked layers strictly inside each key interval
@@ -119,6 +134,11 @@ class Document {
   const Rig& rig() const { return s_.rig; }
   int num_handles() const;
   const PoseParams& pose_params() const { return s_.pose; }
+  const PosingSettings& posing() const { return s_.posing; }
+  // posing().states fitted to the rig (the defaults where the sizes differ).
+  std::vector<HandleConstraint> handle_states() const;
+  // Timings of the last FAST solve (precompute and switch are nonzero only when that solve rebuilt them).
+  const FastSolveReport& last_fast_solve() const { return last_fast_; }
   Pose pose() const;  // evaluate_pose(rig, pose_params)
   SkinMethod method() const { return s_.method; }
   int inbetweens() const { return s_.inbetweens; }
@@ -214,6 +234,12 @@ class Document {
   void translate_handle(int handle, const Eigen::Vector3d& delta);
   void rotate_handle(int handle, const Eigen::Quaterniond& q);
   void reset_pose();
+  // FAST settings and handle states (one undo step; re-solves the pose when FAST is on and bound).
+  void set_posing(const PosingSettings& p);
+  void set_handle_state(int handle, HandleConstraint state);
+  // A drag: translate_handle, then the FAST solve whether or not posing().fast is on (what the Pose
+  // tool's drag and the script's `drag` do). Needs weights (dfm::Error otherwise). Merges in a gesture.
+  void drag_handle(int handle, const Eigen::Vector3d& delta);
 
   // Keys: set_key stores the current pose params at time t (replacing a key at the same time, a mesh
   // key included).
@@ -245,6 +271,9 @@ class Document {
   void rig_edit(const std::string& name, const std::string& merge_target,
                 const std::function<void(SceneData&)>& edit);
   void after_change();
+  void move_handle(int handle, const Eigen::Vector3d& delta, bool solve);  // translate_handle, drag_handle
+  // Re-solves s.pose's non-pinned handles (no-op without weights); inside an edit.
+  void solve_fast(SceneData& s);
 
   SceneData s_;
   std::string path_;
@@ -252,6 +281,8 @@ class Document {
   std::vector<std::unique_ptr<Step>> undo_, redo_;
   void replay_step(std::vector<std::unique_ptr<Step>>& from, std::vector<std::unique_ptr<Step>>& to);
   std::uint64_t next_serial_ = 1, saved_serial_ = 0, revision_ = 0;
+  std::unique_ptr<FastPosing> fast_;  // caches only: not part of the scene or of undo
+  FastSolveReport last_fast_;
   bool gesture_open_ = false;
   bool gesture_merge_ok_ = false;  // the top step was made inside the current gesture
 };

@@ -1,5 +1,7 @@
 #include "core/scene/scene_file.h"
 
+#include "core/util/hash.h"
+
 #include <cmath>
 #include <climits>
 #include <cstdint>
@@ -21,15 +23,6 @@ using json = nlohmann::json;
 namespace {
 
 const char* kFormat = "deform-scene";
-
-std::uint64_t fnv1a64(const std::string& bytes) {
-  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64 offset basis
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 std::string hex64(std::uint64_t v) {
   char buf[19];
@@ -195,7 +188,7 @@ class SceneReader {
                                           std::to_string(size) + " (truncated or from another save)");
     blob_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     if (static_cast<long long>(blob_.size()) != size) throw file_error(blob_path_, 0, "short read");
-    if (hex64(fnv1a64(blob_)) != sum)
+    if (hex64(fnv1a(blob_)) != sum)
       throw file_error(blob_path_, 0, "checksum mismatch (sidecar corrupt or from another save)");
   }
 
@@ -345,6 +338,11 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   }
   j["method"] = skin_method_name(s.method);
   j["inbetweens"] = s.inbetweens;
+  {
+    json states = json::array();
+    for (HandleConstraint c : s.posing.states) states.push_back(constraint_state_name(c));
+    j["posing"] = {{"fast", s.posing.fast}, {"iterations", s.posing.iterations}, {"states", states}};
+  }
   j["bind_settings"] = {{"tetgen_switches", s.bind_settings.volume.tetgen_switches},
                         {"robust", robust_name(s.bind_settings.volume.robust)},
                         {"max_influences", s.bind_settings.max_influences}};
@@ -362,7 +360,7 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   const std::string sidecar = scene_sidecar_path(json_path);
   j["sidecar"] = {{"file", std::filesystem::path(sidecar).filename().string()},
                   {"bytes", blob.bytes().size()},
-                  {"fnv1a64", hex64(fnv1a64(blob.bytes()))}};
+                  {"fnv1a64", hex64(fnv1a(blob.bytes()))}};
   // Both files are written to temps before either replaces its previous version, so a full disk or a
   // refused folder leaves the previous scene loadable. Sidecar renamed first: a crash between the two
   // renames leaves the old JSON, whose checksum then rejects the new sidecar with a clear message
@@ -496,6 +494,23 @@ SceneData read_scene(const std::string& path) {
     R.fail(std::string("'method': ") + e.what());
   }
   s.inbetweens = static_cast<int>(R.integer(R.field(j, "inbetweens", "scene"), "inbetweens", 0, 1000));
+  if (j.contains("posing")) {  // optional: scenes from before FAST posing pose by hand
+    const json& p = j["posing"];
+    s.posing.fast = R.boolean(R.field(p, "fast", "posing"), "posing.fast");
+    s.posing.iterations = static_cast<int>(R.integer(R.field(p, "iterations", "posing"), "posing.iterations", 1, 1000));
+    const json& st = R.array(R.field(p, "states", "posing"), "posing.states");
+    for (size_t i = 0; i < st.size(); ++i) {
+      const std::string c = "posing.states[" + std::to_string(i) + "]";
+      try {
+        s.posing.states.push_back(parse_constraint_state(R.string(st[i], c)));
+      } catch (const Error& e) {
+        R.fail("'" + c + "': " + e.what());
+      }
+    }
+    if (!s.posing.states.empty() && static_cast<long long>(s.posing.states.size()) != num_handles(s.rig))
+      R.fail("'posing.states' has " + std::to_string(s.posing.states.size()) + " entries for " +
+             std::to_string(num_handles(s.rig)) + " handles");
+  }
   const json& bs = R.field(j, "bind_settings", "scene");
   s.bind_settings.volume.tetgen_switches =
       R.string(R.field(bs, "tetgen_switches", "bind_settings"), "bind_settings.tetgen_switches");

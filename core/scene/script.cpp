@@ -40,6 +40,9 @@ const std::map<std::string, Spec>& specs() {
       {"select", {1, 1000, -1, "select HANDLE [HANDLE ...]"}},
       {"translate", {3, 3, -1, "translate DX DY DZ"}},
       {"rotate", {4, 4, -1, "rotate DEGREES AX AY AZ"}},
+      {"drag", {4, 4, -1, "drag HANDLE DX DY DZ"}},
+      {"handle-state", {2, 2, 0, "handle-state HANDLE pinned|position|free"}},
+      {"fast", {1, 2, 0, "fast on|off [ITERATIONS]"}},
       {"set-method", {1, 1, 0, "set-method lbs|dqs|stbs"}},
       {"set-key", {0, 1, -1, "set-key [TIME]"}},
       {"key-mesh", {1, 2, 0, "key-mesh FILE [TIME]"}},
@@ -218,6 +221,22 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
         if (axis.norm() < 1e-12) throw Error("rotation axis is zero");
         const Eigen::Quaterniond q(Eigen::AngleAxisd(num(l, 1) * M_PI / 180.0, axis.normalized()));
         for (int h : selected_or_fail(doc)) doc.rotate_handle(h, q);
+      } else if (cmd == "drag") {
+        doc.drag_handle(integer_arg(l, 1), Eigen::Vector3d(num(l, 2), num(l, 3), num(l, 4)));
+      } else if (cmd == "handle-state") {
+        double h = 0;
+        if (!parse_number(l.words[1], h) || h != std::floor(h)) throw Error("'" + l.words[1] + "' is not a handle index");
+        doc.set_handle_state(static_cast<int>(h), parse_constraint_state(l.words[2]));
+      } else if (cmd == "fast") {
+        if (l.words[1] != "on" && l.words[1] != "off") throw Error("fast: expected on or off, got '" + l.words[1] + "'");
+        PosingSettings p = doc.posing();
+        p.fast = l.words[1] == "on";
+        if (l.words.size() > 2) {
+          double n = 0;
+          if (!parse_number(l.words[2], n) || n != std::floor(n)) throw Error("'" + l.words[2] + "' is not an iteration count");
+          p.iterations = static_cast<int>(n);
+        }
+        doc.set_posing(p);
       } else if (cmd == "set-method") {
         doc.set_method(parse_skin_method(l.words[1]));
       } else if (cmd == "set-key") {

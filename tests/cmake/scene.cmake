@@ -13,3 +13,5 @@ dfm_test(test_scene_default SOURCES test_scene_default.cpp LIBS dfm_scene)
 add_dependencies(test_scene_default make_default_scene)
 target_compile_definitions(test_scene_default PRIVATE DFM_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets"
   DFM_MAKE_DEFAULT_SCENE="$<TARGET_FILE:make_default_scene>")
+# Posing by dragging (FAST) through the document and the script.
+dfm_test(test_posing SOURCES test_posing.cpp LIBS dfm_scene dfm_export)

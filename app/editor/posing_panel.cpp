@@ -1,0 +1,73 @@
+// The Posing section: FAST on or off, iterations per frame, the selected handle's state (pinned,
+// position, free), an IK chain shortcut for bones, and the last solve's timings. Every change is a
+// document command (undoable); the solve itself runs inside the document's pose edits.
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "app/editor/editor.h"
+#include "core/rig/rig.h"
+
+namespace dfm::editor {
+
+const char* handle_state_tag(HandleConstraint s) {
+  switch (s) {
+    case HandleConstraint::Fixed: return "pin";
+    case HandleConstraint::Position: return "pos";
+    case HandleConstraint::Free: return "free";
+  }
+  return "";
+}
+
+void Editor::draw_posing_section() {
+  PosingSettings p = doc_.posing();
+  if (ImGui::Checkbox("Drag solves the free handles (FAST)", &p.fast)) doc_.set_posing(p);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Jacobson 2013 ch. 7: handles not pinned get the transforms that keep the shape as rigid\n"
+                      "as possible; a point you drag keeps its position and gets its rotation solved.");
+  if (!doc_.has_weights()) ImGui::TextDisabled("bind first: FAST solves with the weights");
+  static int iterations = p.iterations;
+  if (!ImGui::IsAnyItemActive()) iterations = p.iterations;
+  ImGui::SetNextItemWidth(-110);
+  ImGui::SliderInt("iterations/frame", &iterations, 1, 50);
+  if (ImGui::IsItemDeactivatedAfterEdit()) p.iterations = iterations, doc_.set_posing(p);
+
+  const auto& sel = doc_.selection().handles;
+  if (!sel.empty()) {
+    const int h = sel.front();
+    const std::vector<HandleConstraint> states = doc_.handle_states();
+    int s = static_cast<int>(states[h]);
+    ImGui::Text("%s:", handle_name(doc_.rig(), h).c_str());
+    ImGui::SameLine();
+    bool changed = ImGui::RadioButton("pinned", &s, static_cast<int>(HandleConstraint::Fixed));
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("position", &s, static_cast<int>(HandleConstraint::Position));
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("free", &s, static_cast<int>(HandleConstraint::Free));
+    if (changed) doc_.set_handle_state(h, static_cast<HandleConstraint>(s));
+    const HandleRef r = handle_ref(doc_.rig(), h);
+    if (r.kind == HandleKind::Bone && ImGui::Button("IK chain: drag this bone's tip, the bones above follow", ImVec2(-1, 0))) {
+      // The chain up to its root is free, the root pinned, this bone position-constrained at its tip.
+      PosingSettings q = doc_.posing();
+      q.fast = true;
+      q.states = states;
+      const Skeleton& sk = doc_.rig().skeleton;
+      const int np = num_point_handles(doc_.rig());
+      q.states[h] = HandleConstraint::Position;
+      for (int b = sk.bones[r.index].parent; b >= 0; b = sk.bones[b].parent)
+        q.states[np + b] = sk.bones[b].parent < 0 ? HandleConstraint::Fixed : HandleConstraint::Free;
+      doc_.set_posing(q);
+    }
+  }
+  const FastSolveReport& f = doc_.last_fast_solve();
+  if (f.iterations > 0)
+    ImGui::TextDisabled("last solve: %d iterations, %.1f us each, %d clusters, energy %.3g%s", f.iterations,
+                        1e6 * f.iterate_seconds / f.iterations, f.clusters, f.energy,
+                        f.precomputed ? "  (precomputed now)" : "");
+  static double precompute = 0, switched = 0;
+  if (f.precomputed) precompute = f.precompute_seconds;
+  if (f.switched) switched = f.switch_seconds;
+  if (precompute > 0) ImGui::TextDisabled("precompute %.2f s, last switch %.2f ms", precompute, 1e3 * switched);
+}
+
+}  // namespace dfm::editor
