@@ -37,8 +37,7 @@ void Editor::draw_posing_section() {
     const int h = sel.front();
     const std::vector<HandleConstraint> states = doc_.handle_states();
     int s = static_cast<int>(states[h]);
-    ImGui::Text("%s:", handle_name(doc_.rig(), h).c_str());
-    ImGui::SameLine();
+    ImGui::Text("%s is", handle_name(doc_.rig(), h).c_str());
     bool changed = ImGui::RadioButton("pinned", &s, static_cast<int>(HandleConstraint::Fixed));
     ImGui::SameLine();
     changed |= ImGui::RadioButton("position", &s, static_cast<int>(HandleConstraint::Position));
@@ -46,7 +45,7 @@ void Editor::draw_posing_section() {
     changed |= ImGui::RadioButton("free", &s, static_cast<int>(HandleConstraint::Free));
     if (changed) doc_.set_handle_state(h, static_cast<HandleConstraint>(s));
     const HandleRef r = handle_ref(doc_.rig(), h);
-    if (r.kind == HandleKind::Bone && ImGui::Button("IK chain: drag this bone's tip, the bones above follow", ImVec2(-1, 0))) {
+    if (r.kind == HandleKind::Bone && ImGui::Button("IK chain to this bone's tip", ImVec2(-1, 0))) {
       // The chain up to its root is free, the root pinned, this bone position-constrained at its tip.
       PosingSettings q = doc_.posing();
       q.fast = true;
@@ -58,12 +57,15 @@ void Editor::draw_posing_section() {
         q.states[np + b] = sk.bones[b].parent < 0 ? HandleConstraint::Fixed : HandleConstraint::Free;
       doc_.set_posing(q);
     }
+    if (r.kind == HandleKind::Bone && ImGui::IsItemHovered())
+      ImGui::SetTooltip("Frees the bones above this one (the chain's root stays pinned) and makes this bone's\n"
+                        "tip the point you drag: move it and the chain follows.");
   }
   const FastSolveReport& f = doc_.last_fast_solve();
-  if (f.iterations > 0)
-    ImGui::TextDisabled("last solve: %d iterations, %.1f us each, %d clusters, energy %.3g%s", f.iterations,
-                        1e6 * f.iterate_seconds / f.iterations, f.clusters, f.energy,
-                        f.precomputed ? "  (precomputed now)" : "");
+  if (f.iterations > 0) {
+    ImGui::TextDisabled("last solve: %d iterations, %.1f us each", f.iterations, 1e6 * f.iterate_seconds / f.iterations);
+    ImGui::TextDisabled("%d rotation clusters, energy %.3g", f.clusters, f.energy);
+  }
   static double precompute = 0, switched = 0;
   if (f.precomputed) precompute = f.precompute_seconds;
   if (f.switched) switched = f.switch_seconds;
