@@ -23,9 +23,6 @@ struct GLFWwindow;
 
 namespace dfm::editor {
 
-// "pin", "pos", "free": the outliner's tag for a handle's FAST state.
-const char* handle_state_tag(HandleConstraint s);
-
 struct EditorOptions {
   std::string file;        // scene or mesh to open ("" = default scene)
   std::string script;      // --script

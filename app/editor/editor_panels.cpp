@@ -233,7 +233,7 @@ void Editor::draw_outliner() {
     ImGui::Dummy(ImVec2(sz - 2, sz));
     ImGui::SameLine();
     const std::string label = doc_.posing().fast
-                                  ? handle_name(rig, h) + "  [" + handle_state_tag(doc_.handle_states()[h]) + "]"
+                                  ? handle_name(rig, h) + "  [" + constraint_state_name(doc_.handle_states()[h]) + "]"
                                   : handle_name(rig, h);
     if (ImGui::Selectable(label.c_str(), is_sel)) select_handle(h, ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl);
     if (ImGui::BeginPopupContextItem("ctx")) {

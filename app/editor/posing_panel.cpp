@@ -10,15 +10,6 @@
 
 namespace dfm::editor {
 
-const char* handle_state_tag(HandleConstraint s) {
-  switch (s) {
-    case HandleConstraint::Fixed: return "pin";
-    case HandleConstraint::Position: return "pos";
-    case HandleConstraint::Free: return "free";
-  }
-  return "";
-}
-
 void Editor::draw_posing_section() {
   PosingSettings p = doc_.posing();
   if (ImGui::Checkbox("Drag solves the free handles (FAST)", &p.fast)) doc_.set_posing(p);
