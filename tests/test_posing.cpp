@@ -2,6 +2,8 @@
 // where it was dragged, solves the free handles, keeps pinned ones, is one undo step, keys exactly,
 // survives a scene file, and the script's `drag` reproduces it exactly.
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
@@ -85,6 +87,24 @@ TEST_CASE("FAST posing: translate re-solves only with fast on; states and solved
   REQUIRE(e.pose_params().solved.size() == 3);
   for (int h = 0; h < 3; ++h) CHECK(e.pose().transforms[h].isApprox(d.pose().transforms[h], 1e-12));
   CHECK_THROWS_WITH(d.set_posing(PosingSettings{true, 0, {}}), Catch::Contains("iterations must be in [1, 1000]"));
+  // A bad state word in a scene file names the file and the field; the document keeps what it had.
+  std::string text;
+  {
+    std::ifstream in(file);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const size_t at = text.find("\"free\"");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 6, "\"loose\"");
+  const std::string bad = (dir / "bad.scene.json").string();
+  fs::copy_file(dir / "posed.scene.bin", dir / "bad.scene.bin", fs::copy_options::overwrite_existing);
+  {
+    std::ofstream out(bad);
+    out << text;
+  }
+  CHECK_THROWS_WITH(e.load_scene(bad), Catch::Contains("bad.scene.json") && Catch::Contains("posing.states[1]") &&
+                                           Catch::Contains("unknown handle state 'loose'"));
+  CHECK(e.posing() == d.posing());
   fs::remove_all(dir);
 }
 
