@@ -127,3 +127,31 @@ TEST_CASE("script drag / handle-state / fast reproduce the document commands exa
   unbound.add_point(Eigen::Vector3d(0, 0, 0));
   CHECK_THROWS_WITH(run_script(unbound, parse_script("drag 0 1 0 0\n", "s.txt"), "s.txt"), Catch::Contains("bind first"));
 }
+
+TEST_CASE("IK chain: the dragged bone's tip lands on the target, the root stays, the chain follows",
+          "[fast][script]") {
+  Document d;
+  d.set_surface(test::tube(31, 16, 4.0, 0.4), "tube");
+  d.add_bone_chain({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4.0 / 3, 0, 0), Eigen::Vector3d(8.0 / 3, 0, 0),
+                    Eigen::Vector3d(4, 0, 0)});
+  REQUIRE(d.num_handles() == 3);
+  const Eigen::MatrixXd& V = d.surface().V;
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(V.rows(), 3);  // smooth blends across the two inner joints
+  for (int i = 0; i < V.rows(); ++i) {
+    const double x = V(i, 0) * 3 / 4;  // 0..3 along the chain
+    const double a = std::clamp(x - 0.5, 0.0, 1.0), b = std::clamp(x - 1.5, 0.0, 1.0);
+    W(i, 0) = 1 - a, W(i, 1) = a - b, W(i, 2) = b;
+  }
+  d.set_weights(W, BindStats{});
+  CHECK_THROWS_WITH(run_script(d, parse_script("ik-chain 7\n", "ik.txt"), "ik.txt"), Catch::Contains("is not a bone"));
+  run_script(d, parse_script("ik-chain 2\ndrag 2 -0.6 1.5 0\n", "ik.txt"), "ik.txt");
+  CHECK(d.handle_states() ==
+        std::vector<HandleConstraint>{HandleConstraint::Fixed, HandleConstraint::Free, HandleConstraint::Position});
+  const Pose pose = d.pose();
+  const Eigen::Vector3d tip(4, 0, 0);
+  CHECK((pose.transforms[2] * tip - (tip + Eigen::Vector3d(-0.6, 1.5, 0))).norm() < 1e-9);
+  CHECK(pose.transforms[0].matrix() == Eigen::Matrix4d::Identity());
+  // The middle bone turned toward the target (its tip rose), instead of the mesh shearing at the end.
+  const Eigen::Vector3d mid_tip = pose.transforms[1] * Eigen::Vector3d(8.0 / 3, 0, 0);
+  CHECK(mid_tip.y() > 0.2);
+}

@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include "app/editor/editor.h"
+#include "core/pose/fast_rig.h"
 #include "core/rig/rig.h"
 
 namespace dfm::editor {
@@ -37,15 +38,9 @@ void Editor::draw_posing_section() {
     if (changed) doc_.set_handle_state(h, static_cast<HandleConstraint>(s));
     const HandleRef r = handle_ref(doc_.rig(), h);
     if (r.kind == HandleKind::Bone && ImGui::Button("IK chain to this bone's tip", ImVec2(-1, 0))) {
-      // The chain up to its root is free, the root pinned, this bone position-constrained at its tip.
       PosingSettings q = doc_.posing();
       q.fast = true;
-      q.states = states;
-      const Skeleton& sk = doc_.rig().skeleton;
-      const int np = num_point_handles(doc_.rig());
-      q.states[h] = HandleConstraint::Position;
-      for (int b = sk.bones[r.index].parent; b >= 0; b = sk.bones[b].parent)
-        q.states[np + b] = sk.bones[b].parent < 0 ? HandleConstraint::Fixed : HandleConstraint::Free;
+      q.states = ik_chain_states(doc_.rig(), states, h);
       doc_.set_posing(q);
     }
     if (r.kind == HandleKind::Bone && ImGui::IsItemHovered())

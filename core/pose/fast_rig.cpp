@@ -46,6 +46,18 @@ std::vector<Eigen::Vector3d> fast_targets(const std::vector<FastConstraint>& con
   return t;
 }
 
+std::vector<HandleConstraint> ik_chain_states(const Rig& rig, std::vector<HandleConstraint> states, int bone_handle) {
+  if (static_cast<int>(states.size()) != num_handles(rig)) throw Error("IK chain: one state per handle expected");
+  if (bone_handle < 0 || bone_handle >= num_handles(rig) || handle_ref(rig, bone_handle).kind != HandleKind::Bone)
+    throw Error("IK chain: handle " + std::to_string(bone_handle) + " is not a bone");
+  const Skeleton& sk = rig.skeleton;
+  const int np = num_point_handles(rig);
+  states[bone_handle] = HandleConstraint::Position;
+  for (int b = sk.bones[bone_handle - np].parent; b >= 0; b = sk.bones[b].parent)
+    states[np + b] = sk.bones[b].parent < 0 ? HandleConstraint::Fixed : HandleConstraint::Free;
+  return states;
+}
+
 std::vector<int> parse_handle_list(const Rig& rig, const std::string& list) {
   std::vector<int> out;
   std::stringstream ss(list);

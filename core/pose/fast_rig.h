@@ -24,6 +24,11 @@ std::vector<FastConstraint> default_fast_constraints(const Rig& rig, const std::
 // targets[h] = pose(h) * anchor(h), for every handle (FastSolver reads the position-constrained ones).
 std::vector<Eigen::Vector3d> fast_targets(const std::vector<FastConstraint>& constraints, const Pose& pose);
 
+// IK on a bone chain (what "IK chain" in the Posing panel and the script's `ik-chain` do): `bone_handle`
+// becomes position-constrained at its tip, the bones above it free up to the chain's root, which is
+// pinned; every other state is kept. Throws dfm::Error when the handle is not a bone.
+std::vector<HandleConstraint> ik_chain_states(const Rig& rig, std::vector<HandleConstraint> states, int bone_handle);
+
 // "2,point 3,bone 1": handle indices or names (rig.h order), in any mix. Throws dfm::Error naming an
 // unknown entry.
 std::vector<int> parse_handle_list(const Rig& rig, const std::string& list);

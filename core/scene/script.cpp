@@ -9,6 +9,7 @@
 
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
+#include "core/pose/fast_rig.h"
 #include "core/scene/bind_document.h"
 #include "core/scene/key_surfaces.h"
 #include "core/mesh/io.h"
@@ -43,6 +44,7 @@ const std::map<std::string, Spec>& specs() {
       {"drag", {4, 4, -1, "drag HANDLE DX DY DZ"}},
       {"handle-state", {2, 2, 0, "handle-state HANDLE pinned|position|free"}},
       {"fast", {1, 2, 0, "fast on|off [ITERATIONS]"}},
+      {"ik-chain", {1, 1, -1, "ik-chain BONE_HANDLE"}},
       {"set-method", {1, 1, 0, "set-method lbs|dqs|stbs"}},
       {"set-key", {0, 1, -1, "set-key [TIME]"}},
       {"key-mesh", {1, 2, 0, "key-mesh FILE [TIME]"}},
@@ -227,6 +229,11 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
         double h = 0;
         if (!parse_number(l.words[1], h) || h != std::floor(h)) throw Error("'" + l.words[1] + "' is not a handle index");
         doc.set_handle_state(static_cast<int>(h), parse_constraint_state(l.words[2]));
+      } else if (cmd == "ik-chain") {
+        PosingSettings p = doc.posing();
+        p.fast = true;
+        p.states = ik_chain_states(doc.rig(), doc.handle_states(), integer_arg(l, 1));
+        doc.set_posing(p);
       } else if (cmd == "fast") {
         if (l.words[1] != "on" && l.words[1] != "off") throw Error("fast: expected on or off, got '" + l.words[1] + "'");
         PosingSettings p = doc.posing();
