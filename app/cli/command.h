@@ -4,6 +4,7 @@
 // run() receives the arguments after the subcommand name and returns the exit code:
 // 0 success, 1 bad input (file or data problem), 2 bad usage. It may throw dfm::Error (-> exit 1).
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 

@@ -1,0 +1,231 @@
+#include "core/anim/arap_interpolation.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <string>
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include "core/bind/fem.h"
+#include "core/bind/tetrahedralize.h"
+#include "core/pose/best_rotation.h"
+#include "core/util/error.h"
+
+namespace dfm {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Columns: gradients of tet t's four hat functions on the rest mesh.
+Eigen::Matrix<double, 3, 4> hat_gradients(const TetMesh& m, int t) {
+  Eigen::Matrix3d J;
+  for (int c = 0; c < 3; ++c) J.col(c) = (m.V.row(m.T(t, c + 1)) - m.V.row(m.T(t, 0))).transpose();
+  Eigen::Matrix<double, 3, 4> G;
+  G.rightCols<3>() = J.inverse().transpose();
+  G.col(0) = -G.rightCols<3>().rowwise().sum();
+  return G;
+}
+
+Eigen::Matrix3d deformation_gradient(const Eigen::MatrixXd& X, const Eigen::MatrixXi& T, int t,
+                                     const Eigen::Matrix<double, 3, 4>& G) {
+  Eigen::Matrix3d F = Eigen::Matrix3d::Zero();
+  for (int c = 0; c < 4; ++c) F += X.row(T(t, c)).transpose() * G.col(c).transpose();
+  return F;
+}
+
+// Rows of K P = B for target gradients A_t: row i of B is sum over tets at i of vol (A_t g_i)^T.
+template <class TargetOf>
+Eigen::MatrixXd gradient_rhs(const TetMesh& m, const std::vector<Eigen::Matrix<double, 3, 4>>& grad,
+                             const Eigen::VectorXd& vol, const TargetOf& target_of) {
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(m.V.rows(), 3);
+  for (int t = 0; t < m.num_tets(); ++t) {
+    const Eigen::Matrix3d A = target_of(t);
+    for (int c = 0; c < 4; ++c) B.row(m.T(t, c)) += vol(t) * (A * grad[t].col(c)).transpose();
+  }
+  return B;
+}
+
+// Rotation vectors on one branch across face-neighbouring tets: breadth first from the tet turning
+// least, each tet takes the vector among theta a, (theta -+ 2 pi) a nearest to its neighbour's.
+std::vector<Eigen::Vector3d> consistent_rotation_vectors(const Eigen::MatrixXi& T, const std::vector<Eigen::Matrix3d>& R) {
+  const int nt = static_cast<int>(T.rows());
+  std::vector<Eigen::Vector3d> principal(nt), out(nt);
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::AngleAxisd aa(R[t]);
+    principal[t] = aa.angle() * aa.axis();
+  }
+  std::vector<std::pair<std::array<int, 3>, int>> faces;
+  faces.reserve(4 * static_cast<size_t>(nt));
+  for (int t = 0; t < nt; ++t)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> f;
+      for (int c = 0, k = 0; c < 4; ++c)
+        if (c != skip) f[k++] = T(t, c);
+      std::sort(f.begin(), f.end());
+      faces.push_back({f, t});
+    }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::vector<int>> nbr(nt);
+  for (size_t i = 0; i + 1 < faces.size(); ++i)
+    if (faces[i].first == faces[i + 1].first) {
+      nbr[faces[i].second].push_back(faces[i + 1].second);
+      nbr[faces[i + 1].second].push_back(faces[i].second);
+    }
+  std::vector<char> done(nt, 0);
+  for (int seed_pass = 0; seed_pass < nt; ++seed_pass) {  // one BFS per connected piece
+    int seed = -1;
+    for (int t = 0; t < nt; ++t)
+      if (!done[t] && (seed < 0 || principal[t].norm() < principal[seed].norm())) seed = t;
+    if (seed < 0) break;
+    out[seed] = principal[seed];
+    done[seed] = 1;
+    std::deque<int> queue{seed};
+    while (!queue.empty()) {
+      const int t = queue.front();
+      queue.pop_front();
+      for (int n : nbr[t]) {
+        if (done[n]) continue;
+        const double theta = principal[n].norm();
+        Eigen::Vector3d best = principal[n];
+        if (theta > 1e-12) {
+          const Eigen::Vector3d axis = principal[n] / theta;
+          for (double k : {-1.0, 1.0}) {
+            const Eigen::Vector3d cand = (theta + 2 * M_PI * k) * axis;
+            if ((cand - out[t]).norm() < (best - out[t]).norm()) best = cand;
+          }
+        }
+        out[n] = best;
+        done[n] = 1;
+        queue.push_back(n);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::MatrixXd linear_interpolation(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double t) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) throw Error("linear interpolation: the keys differ in size");
+  return (1.0 - t) * a + t * b;
+}
+
+ArapInterpolation::ArapInterpolation(const TriMesh& k0, const Eigen::MatrixXd& k1, const ArapInterpolationOptions& opts) {
+  if (k1.rows() != k0.V.rows() || k1.cols() != 3)
+    throw Error("ARAP interpolation: the second key has " + std::to_string(k1.rows()) + " vertices, the first " +
+                std::to_string(k0.V.rows()) + " (the keys must share one triangle list)");
+  keys_[0] = k0.V;
+  keys_[1] = k1;
+  auto t0 = std::chrono::steady_clock::now();
+  const TetgenResult tg = tetrahedralize(Plc{k0.V, k0.F, {}}, opts.tetgen_switches);
+  rest_ = tg.mesh;
+  surface_to_tet_ = tg.input_to_tet;
+  if ((surface_to_tet_.array() < 0).any()) throw Error("ARAP interpolation: TetGen dropped a vertex of the first key");
+  stats_.tets = rest_.num_tets();
+  stats_.tet_vertices = rest_.num_vertices();
+  stats_.tetrahedralize_seconds = seconds_since(t0);
+  const int n = rest_.num_vertices(), nt = rest_.num_tets();
+  grad_.resize(nt);
+  for (int t = 0; t < nt; ++t) grad_[t] = hat_gradients(rest_, t);
+  vol_ = tet_volumes(rest_.V, rest_.T);
+  const Eigen::VectorXd& vol = vol_;
+  const Eigen::SparseMatrix<double> K = cotangent_stiffness(rest_.V, rest_.T);  // sum vol G^T G
+
+  // The second key's interior: boundary at k1, interior harmonic, then local-global ARAP (Sorkine & Alexa 2007).
+  t0 = std::chrono::steady_clock::now();
+  std::vector<char> on_surface(n, 0);
+  target_ = rest_.V;
+  for (int i = 0; i < k1.rows(); ++i) on_surface[surface_to_tet_(i)] = 1, target_.row(surface_to_tet_(i)) = k1.row(i);
+  std::vector<int> interior, slot(n, -1);
+  for (int i = 0; i < n; ++i)
+    if (!on_surface[i]) slot[i] = static_cast<int>(interior.size()), interior.push_back(i);
+  if (!interior.empty()) {
+    std::vector<Eigen::Triplet<double>> ii, ib;
+    for (int j = 0; j < K.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it)
+        if (slot[it.row()] >= 0) (slot[j] >= 0 ? ii : ib).emplace_back(slot[it.row()], slot[j] >= 0 ? slot[j] : j, it.value());
+    Eigen::SparseMatrix<double> Kii(interior.size(), interior.size()), Kib(interior.size(), n);
+    Kii.setFromTriplets(ii.begin(), ii.end());
+    Kib.setFromTriplets(ib.begin(), ib.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> inner(Kii);
+    if (inner.info() != Eigen::Success) throw Error("ARAP interpolation: the interior system did not factor");
+    Eigen::MatrixXd boundary = target_;
+    for (int i : interior) boundary.row(i).setZero();
+    auto solve_interior = [&](const Eigen::MatrixXd& B) {
+      Eigen::MatrixXd rhs(interior.size(), 3);
+      for (size_t k = 0; k < interior.size(); ++k) rhs.row(k) = B.row(interior[k]);
+      const Eigen::MatrixXd X = inner.solve(rhs - Kib * boundary);
+      for (size_t k = 0; k < interior.size(); ++k) target_.row(interior[k]) = X.row(k);
+    };
+    solve_interior(Eigen::MatrixXd::Zero(n, 3));
+    for (int it = 0; it < opts.interior_iterations; ++it)
+      solve_interior(gradient_rhs(rest_, grad_, vol, [&](int t) {
+        return Eigen::Matrix3d(best_rotation(deformation_gradient(target_, rest_.T, t, grad_[t]).transpose()));
+      }));
+  }
+  stats_.interior_seconds = seconds_since(t0);
+
+  // Per tet A = R S (4.1.1), R on one branch across neighbours.
+  t0 = std::chrono::steady_clock::now();
+  std::vector<Eigen::Matrix3d> R(nt);
+  stretch_.resize(nt);
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::Matrix3d F = deformation_gradient(target_, rest_.T, t, grad_[t]);
+    R[t] = best_rotation(F.transpose());
+    const Eigen::Matrix3d S = R[t].transpose() * F;
+    stretch_[t] = 0.5 * (S + S.transpose());
+  }
+  angle_ = consistent_rotation_vectors(rest_.T, R);
+  // Eq. 4.26 with the vertex nearest the centroid fixed (it moves linearly): K restricted to the rest.
+  const Eigen::RowVector3d centroid = rest_.V.colwise().mean();
+  (rest_.V.rowwise() - centroid).rowwise().squaredNorm().minCoeff(&fixed_);
+  free_index_.assign(n, -1);
+  for (int i = 0, k = 0; i < n; ++i)
+    if (i != fixed_) free_index_[i] = k++;
+  std::vector<Eigen::Triplet<double>> ff, fc;
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it) {
+      if (it.row() == fixed_) continue;
+      if (j == fixed_) fc.emplace_back(free_index_[it.row()], 0, it.value());
+      else ff.emplace_back(free_index_[it.row()], free_index_[j], it.value());
+    }
+  Eigen::SparseMatrix<double> Kff(n - 1, n - 1);
+  Kff.setFromTriplets(ff.begin(), ff.end());
+  K_fixed_col_.resize(n - 1, 1);
+  K_fixed_col_.setFromTriplets(fc.begin(), fc.end());
+  solver_.compute(Kff);
+  if (solver_.info() != Eigen::Success) throw Error("ARAP interpolation: the vertex-path system did not factor");
+  stats_.factor_seconds = seconds_since(t0);
+}
+
+Eigen::MatrixXd ArapInterpolation::at(double t) const {
+  if (t == 0.0) return keys_[0];  // the keys themselves, bit for bit
+  if (t == 1.0) return keys_[1];
+  const int n = rest_.num_vertices();
+  const Eigen::MatrixXd B = gradient_rhs(rest_, grad_, vol_, [&](int k) {
+    const Eigen::Vector3d r = t * angle_[k];
+    const double a = r.norm();
+    const Eigen::Matrix3d Rt = a > 0 ? Eigen::AngleAxisd(a, r / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
+    return Eigen::Matrix3d(Rt * ((1.0 - t) * Eigen::Matrix3d::Identity() + t * stretch_[k]));
+  });
+  const Eigen::RowVector3d p_fixed = (1.0 - t) * rest_.V.row(fixed_) + t * target_.row(fixed_);
+  Eigen::MatrixXd rhs(n - 1, 3);
+  for (int i = 0; i < n; ++i)
+    if (free_index_[i] >= 0) rhs.row(free_index_[i]) = B.row(i);
+  rhs -= K_fixed_col_ * p_fixed;
+  const Eigen::MatrixXd X = solver_.solve(rhs);
+  Eigen::MatrixXd out(surface_to_tet_.size(), 3);
+  for (int i = 0; i < surface_to_tet_.size(); ++i) {
+    const int v = surface_to_tet_(i);
+    out.row(i) = v == fixed_ ? p_fixed : Eigen::RowVector3d(X.row(free_index_[v]));
+  }
+  return out;
+}
+
+}  // namespace dfm

@@ -1,0 +1,57 @@
+#pragma once
+// As-rigid-as-possible shape interpolation (Alexa 2002, 4.4.3-4.4.5), generalized to tetrahedra:
+// the first key's interior is tetrahedralized (TetGen, as the bind does), the second key is carried
+// through the same tets (its interior vertices solved as rigid as possible to the first, 4.4.1's
+// compatible dissection), and each tet's affine map A = R S interpolates as R(t) ((1 - t) I + t S)
+// (4.1.1), R(t) turning by t times its angle, the angles chosen consistently across neighbouring tets
+// so a 270 degree twist is not taken as -90. The vertex paths minimize Eq. 4.24 (volume-weighted):
+// one factorization per key pair (Eq. 4.27), one back substitution per time. Keys are hit exactly.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+
+#include "core/mesh/mesh.h"
+
+namespace dfm {
+
+struct ArapInterpolationOptions {
+  std::string tetgen_switches = "pq1.414Y";  // Y: the surface stays the key's own
+  int interior_iterations = 30;              // local-global iterations carrying the second key's interior
+};
+
+struct ArapInterpolationStats {
+  int tets = 0, tet_vertices = 0;
+  double tetrahedralize_seconds = 0, interior_seconds = 0, factor_seconds = 0;
+};
+
+class ArapInterpolation {
+ public:
+  // k0: a closed surface; k1: the second key's vertices on k0's triangles (same count and order).
+  // Throws dfm::Error on a count mismatch or when TetGen fails on k0.
+  ArapInterpolation(const TriMesh& k0, const Eigen::MatrixXd& k1, const ArapInterpolationOptions& opts = {});
+  // The surface vertices at t (t = 0 and 1 give the keys; other t extrapolate).
+  Eigen::MatrixXd at(double t) const;
+  const ArapInterpolationStats& stats() const { return stats_; }
+
+ private:
+  Eigen::MatrixXd keys_[2];
+  TetMesh rest_;                       // the first key's tets
+  Eigen::VectorXd vol_;                // its tet volumes
+  Eigen::VectorXi surface_to_tet_;     // k0 vertex -> tet vertex
+  Eigen::MatrixXd target_;             // tet vertices carried to the second key
+  std::vector<Eigen::Vector3d> angle_;  // per tet: rotation vector of R (consistent branch)
+  std::vector<Eigen::Matrix3d> stretch_;  // per tet: S
+  std::vector<Eigen::Matrix<double, 3, 4>> grad_;  // per tet: hat-function gradients times volume
+  Eigen::SparseMatrix<double> K_fixed_col_;  // stiffness columns of the fixed vertex, free rows
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
+  std::vector<int> free_index_;  // tet vertex -> row among the free ones (-1 for the fixed vertex)
+  int fixed_ = 0;
+  ArapInterpolationStats stats_;
+};
+
+// (1 - t) a + t b, the linear in-between (`--method linear`).
+Eigen::MatrixXd linear_interpolation(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double t);
+
+}  // namespace dfm
