@@ -47,7 +47,22 @@ void validate(const Eigen::MatrixXd& V, const Eigen::VectorXi& b, const Eigen::M
       throw Error("bind: handle " + std::to_string(j) + " has no vertex in the volume (its weights would be all zero)");
 }
 
+Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
+                              const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out);
+
 }  // namespace
+
+Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
+                            const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
+  try {
+    return solve_weights(V, T, b, bc, opts, stats_out);
+  } catch (const Error& e) {
+    // The solvers speak of matrices; what it means for a bind is said here.
+    const std::string what = e.what();
+    if (what.find("not positive definite") == std::string::npos) throw;
+    throw Error(what + " (is every connected part of the volume constrained by a handle?)");
+  }
+}
 
 Eigen::SparseMatrix<double> bbw_energy_matrix(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
                                               const Eigen::VectorXd& shape_mask, int threads) {
@@ -63,8 +78,10 @@ Eigen::SparseMatrix<double> bbw_energy_matrix(const Eigen::MatrixXd& V, const Ei
   return Q;
 }
 
-Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
-                            const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
+namespace {
+
+Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
+                              const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
   validate(V, b, bc);
   single_threaded_numerics();  // we run one QP per thread; see numeric_threads.h
   install_cholmod_block_cache();
@@ -185,7 +202,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   for (int k = 0; k < b.size(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(Q, b(k)); it; ++it)
       if (fmap[it.row()] >= 0) G.row(fmap[it.row()]) += it.value() * bc.row(k);
-  Q = Eigen::SparseMatrix<double>();  // only Q_ff from here on: 47 MB less at armadillo's peak
+  Q = Eigen::SparseMatrix<double>();  // only Q_ff from here on: less at the bind's peak
   stats.assembly_seconds = seconds_since(t0);
 
   // ---- a fill-reducing ordering of Q_ff, restricted to every face of every handle; without a coarse
@@ -208,7 +225,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     progress("factorization", 0.2);
     const Eigen::VectorXi p = Eigen::Map<const Eigen::VectorXi>(perm.data(), nf);
     if (!multilevel && opts.threads > 1) {
-      // The renumbered copy is made on the idle core while this one factorizes (hand.mesh: 20 ms).
+      // The renumbered copy is made on the idle core while this one factorizes.
       std::exception_ptr failed;
       std::thread renumber([&] {
         try {
@@ -246,8 +263,8 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     }
   }
   // The ordering's workspace and the matrix before renumbering are free again, but the C library keeps
-  // them mapped: on large meshes, hand them back before the face solves reach the bind's peak
-  // (armadillo: 612 -> 590 MB). Small ones reuse them (hand.mesh: trimming cost 0.02 s in page faults).
+  // them mapped: on large meshes, hand them back before the face solves reach the bind's peak. Small
+  // meshes reuse them (trimming would cost more in page faults than it saves).
   if (multilevel) malloc_trim(0);
   stats.factorization_seconds = seconds_since(t0);
 
@@ -355,7 +372,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
     };
     // smallest_first: the coarse level's thread, when it joins, takes the remaining handles from the small
     // end, the first thread from the large end, so the largest faces of the two threads do not coincide
-    // (armadillo's peak memory is two faces at once; measured 597-609 -> 590-599 MB).
+    // (on large meshes the peak memory is two faces at once).
     fine_worker = [&](bool smallest_first) {
       try {
         single_threaded_numerics();
@@ -372,8 +389,8 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
           try {
             if (coarse_start) {
               // The coarse weights carried to this mesh. Values under 1e-4 are within the coarse solve's
-              // accuracy; starting them at the bound keeps the first faces (and the bind's peak memory:
-              // armadillo 606 -> 579 MB) smaller at no extra faces.
+              // accuracy; starting them at the bound keeps the first faces (and the bind's peak memory)
+              // smaller at no extra faces.
               w = sh.level.P * sh.Wc.col(j);
               for (int k = 0; k < nf; ++k) {
                 const double v = std::min(std::max(w(f(perm[k])), 0.0), 1.0);
@@ -384,8 +401,7 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
             }
             start.col(j) = x_start;
             // On large meshes the peak is two threads' faces at once on top of everything else: what the
-            // last handle freed goes back to the system first (armadillo: peak 594-600 -> 556-583 MB, for
-            // ~10 ms a handle and some refaults: bounded solve +5%).
+            // last handle freed goes back to the system first (a few ms a handle and some refaults).
             if (multilevel) malloc_trim(0);
             BoxQPResult r = solve_box_qp(Qff, G.col(j), lo, hi, x_start, qo);
             std::lock_guard<std::mutex> lock(sh.mu);
@@ -477,4 +493,5 @@ Eigen::MatrixXd bbw_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, 
   return W;
 }
 
+}  // namespace
 }  // namespace dfm

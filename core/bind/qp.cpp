@@ -19,6 +19,15 @@ namespace dfm {
 
 namespace {
 
+// PDAS iterations before the monotone fallback, and face solves of both together.
+constexpr int kMaxPdasIterations = 60;
+constexpr int kMaxIterations = 2000;
+// Sweeps after a face, per variable of the face, when that exceeds smoothing_sweeps: the sweeps that pay
+// for themselves grow with the face (hand.mesh's ~4K-variable faces want ~20, armadillo's ~40K ~250).
+constexpr double kSweepsPerFreeVariable = 0.006;
+
+constexpr const char* kNotPosDef = "sparse Cholesky: matrix is not positive definite";
+
 // A CHOLMOD view (no copy) of a symmetric matrix given by its lower triangle in compressed columns.
 cholmod_sparse cholmod_lower_view(int n, int* p, int* i, double* x) {
   cholmod_sparse cs{};
@@ -74,8 +83,7 @@ void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0, bool in_eliminati
     c.method[0].ordering = CHOLMOD_AMD;
   } else {
     // Large volume meshes: nested dissection (METIS) alone. CHOLMOD's default also runs AMD first and
-    // keeps the better; on armadillo's Q_ff METIS took 1.44 s, AMD 0.25 s with 34% more flops, and the
-    // default 1.79 s picking METIS.
+    // keeps the better, which costs both orderings to pick METIS on these meshes anyway.
     c.nmethods = 1;
     c.method[0].ordering = CHOLMOD_METIS;
   }
@@ -95,8 +103,7 @@ void SpdSolver::factorize(const Eigen::SparseMatrix<double>& A0) {
   cholmod_factorize(&cs, impl_->L, &c);
   impl_->numeric = true;
   if (c.status == CHOLMOD_NOT_POSDEF || impl_->L->minor < impl_->L->n)
-    throw Error("sparse Cholesky: matrix is not positive definite (is every connected part of the volume "
-                "constrained by a handle?)");
+    throw Error(kNotPosDef);
   if (c.status < 0) throw Error("sparse Cholesky: factorization failed (out of memory?)");
 }
 
@@ -241,7 +248,7 @@ class FaceSolver {
     c_.method[0].ordering = CHOLMOD_NATURAL;  // the matrix handed over is already in elimination order
     c_.supernodal = CHOLMOD_AUTO;
     // The shared ordering is already a postorder of the whole matrix's elimination tree (a face's tree
-    // is near one): skipping CHOLMOD's own postordering saves its transposes, 3% of hand's solve.
+    // is near one): skipping CHOLMOD's own postordering saves its transposes.
     c_.postorder = 0;
     loc_.assign(H.n, -1);
   }
@@ -279,8 +286,7 @@ class FaceSolver {
     if (!L_) throw Error("sparse Cholesky: analysis failed (out of memory?)");
     cholmod_factorize(&A, L_, &c_);
     if (c_.status == CHOLMOD_NOT_POSDEF || L_->minor < L_->n)
-      throw Error("sparse Cholesky: matrix is not positive definite (is every connected part of the volume "
-                  "constrained by a handle?)");
+      throw Error(kNotPosDef);
     if (c_.status < 0) throw Error("sparse Cholesky: factorization failed (out of memory?)");
     b_.resize(nf);
     for (int c = 0; c < n; ++c)
@@ -501,7 +507,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
     status_from_position();
   }
-  for (int it = 0; it < opts.max_pdas_iterations && !done; ++it) {
+  for (int it = 0; it < kMaxPdasIterations && !done; ++it) {
     check_cancel();
     solve_face(x);
     gradient(H, g, x, grad);
@@ -536,10 +542,9 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     // the cost of a fraction of one factorization; the next face is read off the swept iterate.
     if (sweeping) {
       const int sweeps =
-          std::max(opts.smoothing_sweeps, static_cast<int>(opts.smoothing_sweeps_per_free * face.last_size()));
+          std::max(opts.smoothing_sweeps, static_cast<int>(kSweepsPerFreeVariable * face.last_size()));
       // Skipping small moves speeds up sweeps that make progress; once a face fails to halve the
-      // residual, the active set is oscillating near the front: full sweeps from then on (armadillo:
-      // 41 -> 34 faces, worst handle 11 -> 8).
+      // residual, the active set is oscillating near the front: full sweeps from then on.
       if (kkt > 0.5 * previous_kkt) relative = 0;
       previous_kkt = kkt;
       const double threshold = std::max(0.1 * opts.tolerance, relative * kkt);
@@ -566,7 +571,7 @@ BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::Vect
     x = x.cwiseMax(lo).cwiseMin(hi);
     status_from_position();
     Eigen::VectorXd xt;
-    while (res.iterations < opts.max_iterations) {
+    while (res.iterations < kMaxIterations) {
       check_cancel();
       ++res.fallback_iterations;
       solve_face(xt);

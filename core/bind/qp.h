@@ -31,8 +31,6 @@ OrderedLower ordered_lower(const Eigen::SparseMatrix<double>& H, std::vector<int
 
 struct BoxQPOptions {
   double tolerance = 1e-6;     // KKT residual to stop at (see box_qp_kkt_residual)
-  int max_pdas_iterations = 60;
-  int max_iterations = 2000;   // PDAS + fallback together
   const std::atomic<bool>* cancel = nullptr;  // polled once per iteration; throws dfm::Error("cancelled")
   // H's lower triangle in a fill-reducing order (ordered_lower), shared by every face solve of every QP
   // on H (and by concurrent solver threads). Null: built once per call with an AMD ordering.
@@ -40,32 +38,22 @@ struct BoxQPOptions {
   // H's own variable order is already a fill-reducing one (H was renumbered by it, rows sorted, H
   // compressed): faces are read straight off H's lower part, no OrderedLower copy; `ordered` is ignored.
   bool in_elimination_order = false;
-  // Projected Gauss-Seidel sweeps after each PDAS face solve (0 = plain PDAS): the larger of
-  // smoothing_sweeps and smoothing_sweeps_per_free times the face's size. The sweeps carry the support
-  // front many rings per face; how many pay for themselves grows with the face (its factorization costs
-  // ~n^2 in 3-D, a sweep ~n): hand.mesh's faces (~4K variables) are best at ~20 sweeps (357 -> 96 face
-  // solves), armadillo's (~40K) at ~250 (188 -> 79). Deterministic, unlike a time budget.
+  // Projected Gauss-Seidel sweeps after each PDAS face solve (0 = plain PDAS): at least this many, more
+  // on large faces (a face's factorization costs ~n^2 in 3-D, a sweep ~n, so more sweeps pay there).
+  // The sweeps carry the support front many rings per face. Deterministic, unlike a time budget.
   int smoothing_sweeps = 20;
-  double smoothing_sweeps_per_free = 0.006;
-  // Over-relaxation factor of the sweeps, in (0, 2) (1 = plain Gauss-Seidel). Over-relaxing carries the
-  // smooth, far-reaching part of a correction further per sweep: measured, 1.6 takes hand.mesh from 96 to
-  // 74 face solves and armadillo from 82 to 66; near 1.8 PDAS starts to revisit active sets and falls
-  // back to the slow monotone method on some handles.
+  // Over-relaxation factor of the sweeps, in (0, 2) (1 = plain Gauss-Seidel): carries the smooth,
+  // far-reaching part of a correction further per sweep; near 1.8 PDAS starts to revisit active sets.
   double smoothing_relaxation = 1.6;
   // The sweeps visit only variables whose neighbours moved by more than max(tolerance / 10, this times
-  // the KKT residual of the face's solution). Corrections far below the current residual spread over the
-  // whole face and are redone exactly by the next face solve anyway; skipping them leaves the sweeps
-  // to what they are for, moving the support front. Measured in one process on hand.mesh: bounded solve
-  // 0.65 -> 0.49 s (74 -> 80 faces); much larger factors (0.03+) make PDAS revisit active sets. After a
-  // face that does not halve the residual of the one before, tolerance / 10 for the rest of the solve.
-  // 0 = always tolerance / 10.
+  // the KKT residual of the face's solution): corrections far below the current residual are redone
+  // exactly by the next face solve anyway. After a face that does not halve the residual of the one
+  // before, tolerance / 10 for the rest of the solve. 0 = always tolerance / 10.
   double smoothing_threshold_relative = 0.01;
   // Sweeps before the first face when a start x0 is given: the larger of smoothing_sweeps and this times
-  // the number of variables (0 = none), with the threshold above relative to the start's KKT residual.
-  // They fix what a start is worst at (a clipped bound-free solution, or one interpolated from a coarser
-  // mesh: off on the fine scale) before the first face is read off it. Measured in one process with the
-  // relative threshold: armadillo from its coarse level, bounded solve 9.5-10.9 -> 6.9-7.3 s; hand.mesh
-  // 80 -> 57 faces, 0.44 -> 0.40 s.
+  // the number of variables (0 = none), thresholded as above relative to the start's KKT residual. They
+  // fix what a start is worst at (clipped, or interpolated from a coarser mesh: off on the fine scale)
+  // before the first face is read off it.
   double presmoothing_sweeps_per_variable = 0;
 };
 
@@ -115,8 +103,8 @@ class SpdSolver {
 
 // AMD ordering of the symmetric matrix H (perm[k] = the variable eliminated k-th). A face of a box QP is a
 // principal submatrix; the ordering restricted to it stays a good one (the filled graph of a subgraph is a
-// subgraph of the filled graph), so one ordering serves every face: measured on hand.mesh, 18% more flops
-// than AMD on each face but no per-face AMD (which cost a third of each face factorization).
+// subgraph of the filled graph), so one ordering serves every face: a few more flops per face than its own
+// AMD, but no per-face AMD, which costs more than it saves.
 std::vector<int> fill_reducing_ordering(const Eigen::SparseMatrix<double>& H);
 
 // Rows and columns `idx` of A (in that order).
