@@ -400,7 +400,7 @@ TEST_CASE("bbw per handle is the box-QP minimizer before normalization (independ
   // One handle alone (no normalization involved): the gradient on free vertices vanishes where
   // 0 < w < 1 and points outward at the bounds.
   BbwOptions o;
-  o.tolerance = 1e-10;
+  o.qp.tolerance = 1e-10;
   o.normalize_rows = false;
   const Eigen::MatrixXd W = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o).leftCols(1);
   const Eigen::VectorXd grad = Q * W.col(0);
@@ -421,7 +421,7 @@ TEST_CASE("exact partition of unity: rows sum to 1 inside the QP, energy no high
   const Eigen::SparseMatrix<double> Q = bbw_energy_matrix(bar.m.V, bar.m.T);
   BbwOptions o;
   o.exact_partition_of_unity = true;
-  o.tolerance = 1e-9;
+  o.qp.tolerance = 1e-9;
   BbwStats st;
   const Eigen::MatrixXd We = bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o, &st);
   REQUIRE(st.converged);
@@ -504,7 +504,7 @@ TEST_CASE("bbw: progress is reported, cancel stops it, bad input is an error", "
   REQUIRE(fractions.back() == 1.0);
   for (size_t k = 1; k < fractions.size(); ++k) REQUIRE(fractions[k] >= fractions[k - 1]);
   std::atomic<bool> cancel{true};
-  o.cancel = &cancel;
+  o.qp.cancel = &cancel;
   REQUIRE_THROWS_WITH(bbw_weights(bar.m.V, bar.m.T, bar.b, bar.bc, o), "cancelled");
   Eigen::VectorXi bad = bar.b;
   bad(1) = bad(0);

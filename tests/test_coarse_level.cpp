@@ -122,7 +122,7 @@ TEST_CASE("bbw from the multilevel start reaches the same minimizer as from the 
   BbwOptions plain, multilevel;
   plain.multilevel_min_vertices = 0;
   multilevel.multilevel_min_vertices = 100;
-  plain.tolerance = multilevel.tolerance = 1e-9;
+  plain.qp.tolerance = multilevel.qp.tolerance = 1e-9;
   BbwStats sp, sm;
   const Eigen::MatrixXd Wp = bbw_weights(m.V, m.T, b, bc, plain, &sp);
   const Eigen::MatrixXd Wm = bbw_weights(m.V, m.T, b, bc, multilevel, &sm);

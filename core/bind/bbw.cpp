@@ -88,7 +88,7 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
   const CholmodBlockCacheScope release_cache;
   BbwStats stats;
   auto progress = [&](const char* stage, double f) {
-    if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
+    if (opts.qp.cancel && opts.qp.cancel->load()) throw Error("cancelled");
     if (opts.progress) opts.progress(stage, f);
   };
   const int n = static_cast<int>(V.rows()), m = static_cast<int>(bc.cols());
@@ -151,9 +151,9 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
           }
           BbwOptions co;
           co.normalize_rows = false;
-          co.tolerance = std::max(opts.tolerance, 1e-5);  // a start, not the answer
+          co.qp.tolerance = std::max(opts.qp.tolerance, 1e-5);  // a start, not the answer
           co.threads = 1;                                 // the other core assembles and orders meanwhile
-          co.cancel = &sh.coarse_stop;
+          co.qp.cancel = &sh.coarse_stop;
           co.multilevel_min_vertices = 0;
           co.handle_solved = [&](int j, const Eigen::VectorXd& w) {
             {
@@ -273,7 +273,7 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
   t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXd X(nf, m), start(nf, m);  // start: each handle's starting point (row fallback below)
   if (opts.exact_partition_of_unity) {
-    ExactPouResult r = solve_exact_pou(Qff, G, X0, opts.tolerance, opts.cancel);
+    ExactPouResult r = solve_exact_pou(Qff, G, X0, opts.qp.tolerance, opts.qp.cancel);
     X = r.X;
     start = X0;
     stats.iterations_total = stats.iterations_max = r.iterations;
@@ -308,13 +308,9 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
                                 ? opts.multilevel_patience_seconds
                                 : std::max(2.0, 2 * (stats.assembly_seconds + stats.factorization_seconds));
     const std::thread::id main_thread = std::this_thread::get_id();
-    BoxQPOptions qo;
-    qo.tolerance = opts.tolerance;
-    qo.cancel = opts.cancel;
+    BoxQPOptions qo = opts.qp;
     qo.in_elimination_order = true;  // every face is read off Q_ff's lower part, shared by both threads
-    qo.smoothing_threshold_relative = opts.smoothing_threshold_relative;
-    qo.presmoothing_sweeps_per_variable = opts.presmoothing_sweeps_per_variable;
-    auto cancelled = [&] { return opts.cancel && opts.cancel->load(); };
+    auto cancelled = [&] { return opts.qp.cancel && opts.qp.cancel->load(); };
     // The next handle to solve and its start (false: none left, or give up). Called with the lock held.
     auto next_handle = [&](std::unique_lock<std::mutex>& lock, int& j, bool& coarse_start, bool smallest_first) {
       auto first_untaken = [&](const std::vector<int>& order) {

@@ -13,15 +13,27 @@
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 
+#include "core/bind/qp.h"
+
 namespace dfm {
 
+// The box QP settings of the bounded weight solves: presmoothing on, since every start handed to them
+// (a clipped bound-free solution, a coarse level's weights) is off on the fine scale.
+inline BoxQPOptions bbw_qp_defaults() {
+  BoxQPOptions o;
+  o.presmoothing_sweeps_per_variable = 0.001;
+  return o;
+}
+
 struct BbwOptions {
+  // tolerance: KKT residual in weight units (box_qp_kkt_residual / exact_pou_kkt_residual); cancel:
+  // throws dfm::Error("cancelled") when set; the sweeps of each bounded solve.
+  BoxQPOptions qp = bbw_qp_defaults();
   bool exact_partition_of_unity = false;
   bool normalize_rows = true;  // default mode; false returns each handle's own minimizer (analysis, tests)
   // Per-tet rho >= 0, or empty. Scaled so that rho = 1 weighs like the biharmonic term (the mask term is
   // multiplied by mean diag(Q) / mean diag(K), making rho unitless); painted regions use rho >> 1.
   Eigen::VectorXd shape_mask;
-  double tolerance = 1e-6;     // KKT residual in weight units (box_qp_kkt_residual / exact_pou_kkt_residual)
   int threads = 2;
   // Volumes with at least this many vertices start their bounded solves from the weights of a coarser
   // mesh of the same domain (coarse_level.h); 0 = always from the bound-free solution.
@@ -30,13 +42,9 @@ struct BbwOptions {
   // stops it (the remaining handles then start from the bound-free solution); < 0: max(2 s, twice the
   // assembly and ordering time).
   double multilevel_patience_seconds = -1;
-  // BoxQPOptions::smoothing_threshold_relative and presmoothing_sweeps_per_variable of the bounded solves.
-  double smoothing_threshold_relative = 0.01;
-  double presmoothing_sweeps_per_variable = 0.001;
   // Called from the calling thread and the solver threads (serialized); fraction of the whole solve in
   // [0, 1]: assembly 0, factorization 0.1, solve 0.3 .. 1. May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
-  const std::atomic<bool>* cancel = nullptr;  // throws dfm::Error("cancelled") when set
   // Default mode: called (serialized) as soon as a handle's QP is solved, with its weights on every
   // vertex before rows are normalized. May be empty.
   std::function<void(int handle, const Eigen::VectorXd& weights)> handle_solved;

@@ -28,10 +28,10 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
   bo.shape_mask = opts.shape_mask;
   if (bo.shape_mask.size() == 0 && opts.vertex_mask.size() && opts.vertex_mask.maxCoeff() > 0)
     bo.shape_mask = tet_mask_from_user_vertices(volume, opts.vertex_mask);
-  bo.tolerance = opts.tolerance;
+  bo.qp.tolerance = opts.tolerance;
   bo.threads = opts.threads;
   bo.multilevel_min_vertices = opts.multilevel_min_vertices;
-  bo.cancel = opts.cancel;
+  bo.qp.cancel = opts.cancel;
   if (opts.progress)
     bo.progress = [&](const std::string& stage, double f) {
       opts.progress(stage, progress_start + (0.97 - progress_start) * f);
