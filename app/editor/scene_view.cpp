@@ -170,7 +170,6 @@ void SceneView::show_rest(const TriMesh& rest) {
 }
 
 void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
-  const auto t0 = std::chrono::steady_clock::now();
   Deformer& d = *deformer_;
   const TriMesh& rest = doc.surface();
   error_.clear();
@@ -272,7 +271,6 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     show_rest(rest);
   }
   colors_valid_ = false;
-  deform_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // The GPU skin pass of the bound weights; none without weights (the rest surface shows then).

@@ -24,7 +24,6 @@ struct ViewSettings {
   int weight_view = 0;        // 0 off, 1 selected handle, 2 all handles, 3 mask
   int sweep_axis = -1;        // -1 time slice; 0..2 sweep along x/y/z
   double sweep_value = 0.5;   // fraction of the extent along the sweep axis
-  bool posed = true;          // false: show the rest surface (rig editing)
 };
 
 // Per-handle display colour (distinct hues, golden-ratio spaced), linear RGB.
@@ -66,7 +65,6 @@ class SceneView {
   // The animation manifold is building on its worker thread (a transition), and what it is doing.
   bool manifold_building() const;
   std::string manifold_progress() const;
-  double last_deform_ms() const { return deform_ms_; }
 
  private:
   void update_surface(const Document& doc, const ViewSettings& s);
@@ -98,7 +96,6 @@ class SceneView {
   bool colors_valid_ = false;
   bool surface_requested_ = false;  // show_pose(): update the surface at the next sync
   std::string error_;
-  double deform_ms_ = 0;
 };
 
 }  // namespace dfm::editor
