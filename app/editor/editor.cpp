@@ -316,7 +316,7 @@ void Editor::render_frame() {
   vs.wireframe = wireframe_;
   vs.grid = show_grid_;
   vs.handles = show_handles_ && sweep_axis_ < 0;  // a sweep slice is not in pose space: handles would mislead
-  vs.weight_view = static_cast<int>(weight_view_);
+  vs.weight_view = weight_view_;
   vs.sweep_axis = sweep_axis_;
   vs.sweep_value = sweep_value_;
   view_->sync(doc_, vs);

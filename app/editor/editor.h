@@ -36,7 +36,6 @@ struct EditorOptions {
 };
 
 enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
-enum class WeightView { Off, Selected, AllHandles, Mask };
 enum class PaintTarget { Mask, Region };
 
 struct Rect {

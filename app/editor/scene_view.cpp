@@ -316,15 +316,15 @@ void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
   const int nv = doc.surface().num_vertices();
   const bool same_vertices = !showing_slice_;
   std::vector<Eigen::Vector4f> data;
-  if (same_vertices && s.weight_view == 1 && doc.has_weights() && !doc.selection().handles.empty()) {
+  if (same_vertices && s.weight_view == WeightView::Selected && doc.has_weights() && !doc.selection().handles.empty()) {
     const int h = doc.selection().handles.front();
     if (h >= 0 && h < doc.weights().cols()) {
       data.resize(nv);
       for (int i = 0; i < nv; ++i) data[i] = Eigen::Vector4f(float(doc.weights()(i, h)), 0, 0, 1);
     }
-  } else if (same_vertices && s.weight_view == 2 && doc.has_weights()) {
+  } else if (same_vertices && s.weight_view == WeightView::AllHandles && doc.has_weights()) {
     data = blend_handle_colors(doc.weights());
-  } else if (same_vertices && s.weight_view == 3) {
+  } else if (same_vertices && s.weight_view == WeightView::Mask) {
     data.assign(nv, Eigen::Vector4f(0, 0, 0, 1));
     const Eigen::VectorXd& mask = doc.mask();
     if (mask.size() == nv)
@@ -380,10 +380,10 @@ void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
 void SceneView::draw(const Document& doc, const gl::Camera& cam, const ViewSettings& s) {
   gl::SurfaceStyle style;
   style.wireframe = s.wireframe;
-  style.mode = s.weight_view == 2 ? gl::SurfaceColorMode::VertexColor
-               : s.weight_view == 0 ? gl::SurfaceColorMode::Shaded
+  style.mode = s.weight_view == WeightView::AllHandles ? gl::SurfaceColorMode::VertexColor
+               : s.weight_view == WeightView::Off ? gl::SurfaceColorMode::Shaded
                                     : gl::SurfaceColorMode::Scalar;
-  style.isolines = s.weight_view == 1 ? 10.0f : 0.0f;
+  style.isolines = s.weight_view == WeightView::Selected ? 10.0f : 0.0f;
   if (s.grid && !bounds_.isEmpty()) {
     const double diag = bounds_.diagonal().norm();
     const double spacing = gl::nice_spacing(2.5 * diag, 24);

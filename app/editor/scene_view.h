@@ -17,11 +17,14 @@
 
 namespace dfm::editor {
 
+// What the Weights panel colours the surface by.
+enum class WeightView { Off, Selected, AllHandles, Mask };
+
 struct ViewSettings {
   bool wireframe = false;
   bool grid = true;
   bool handles = true;
-  int weight_view = 0;        // 0 off, 1 selected handle, 2 all handles, 3 mask
+  WeightView weight_view = WeightView::Off;
   int sweep_axis = -1;        // -1 time slice; 0..2 sweep along x/y/z
   double sweep_value = 0.5;   // fraction of the extent along the sweep axis
 };
