@@ -12,21 +12,17 @@
 #include "core/anim/manifold_sequence.h"
 #include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
+#include "core/util/hash.h"
 
 namespace dfm::editor {
 
 namespace {
-std::uint64_t mix(std::uint64_t h, const void* p, size_t n) {
-  const unsigned char* b = static_cast<const unsigned char*>(p);
-  for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;  // FNV-1a
-  return h;
-}
 template <class M>
 std::uint64_t mix_matrix(std::uint64_t h, const M& m) {
   const Eigen::Index r = m.rows(), c = m.cols();
-  h = mix(h, &r, sizeof r);
-  h = mix(h, &c, sizeof c);
-  return mix(h, m.data(), sizeof(typename M::Scalar) * m.size());
+  h = fnv1a(h, &r, sizeof r);
+  h = fnv1a(h, &c, sizeof c);
+  return fnv1a(h, m.data(), sizeof(typename M::Scalar) * m.size());
 }
 }  // namespace
 
@@ -36,27 +32,27 @@ std::uint64_t manifold_signature(const Document& doc) {
   bool pose_keys = false;
   for (const SceneKey& k : keys) pose_keys |= !k.is_mesh();
   if (pose_keys && (!doc.has_weights() || doc.surface().num_vertices() == 0)) return 0;
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = kFnv1aBasis;
   const std::vector<Pose> poses = doc.key_poses();
   for (size_t i = 0; i < keys.size(); ++i) {
-    h = mix(h, &keys[i].time, sizeof(double));
+    h = fnv1a(h, &keys[i].time, sizeof(double));
     if (keys[i].is_mesh()) {
-      h = mix(h, "mesh", 4);
+      h = fnv1a(h, "mesh", 4);
       h = mix_matrix(h, keys[i].mesh.V);
       h = mix_matrix(h, keys[i].mesh.F);
     } else {
-      for (const auto& T : poses[i].transforms) h = mix(h, T.matrix().data(), sizeof(double) * 16);
+      for (const auto& T : poses[i].transforms) h = fnv1a(h, T.matrix().data(), sizeof(double) * 16);
     }
   }
   if (pose_keys) {
     const int m = static_cast<int>(doc.method()), ib = doc.inbetweens(), k = doc.bind_settings().max_influences;
     const double* w = doc.weights().data();
     const void* v = doc.surface().V.data();
-    h = mix(h, &m, sizeof m);
-    h = mix(h, &ib, sizeof ib);
-    h = mix(h, &k, sizeof k);
-    h = mix(h, &w, sizeof w);
-    h = mix(h, &v, sizeof v);
+    h = fnv1a(h, &m, sizeof m);
+    h = fnv1a(h, &ib, sizeof ib);
+    h = fnv1a(h, &k, sizeof k);
+    h = fnv1a(h, &w, sizeof w);
+    h = fnv1a(h, &v, sizeof v);
   }
   return h == 0 ? 1 : h;
 }
