@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "core/mesh/mesh_info.h"
 #include "core/scene/document.h"
 #include "core/util/error.h"
 

@@ -23,6 +23,7 @@
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
 #include "core/scene/bind_document.h"
+#include "core/mesh/mesh_info.h"
 #include "core/scene/document.h"
 #include "core/scene/scene_file.h"
 #include "tests/test_gltf_fixtures.h"

@@ -13,6 +13,7 @@
 #include "core/rig/pose_io.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
+#include "core/mesh/mesh_info.h"
 #include "core/scene/document.h"
 #include "core/skin/lbs.h"
 #include "core/util/atomic_file.h"

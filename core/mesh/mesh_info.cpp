@@ -222,6 +222,23 @@ Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T) {
   return B;
 }
 
+TriMesh tet_boundary_surface(const TetMesh& tets, Eigen::VectorXi* to_tet) {
+  Eigen::MatrixXi F = tet_boundary_faces(tets.T);
+  std::vector<int> remap(tets.num_vertices(), -1), back;
+  for (int f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int& v = F(f, k);
+      if (remap[v] < 0) remap[v] = static_cast<int>(back.size()), back.push_back(v);
+      v = remap[v];
+    }
+  TriMesh m;
+  m.V.resize(back.size(), 3);
+  for (size_t i = 0; i < back.size(); ++i) m.V.row(i) = tets.V.row(back[i]);
+  m.F = F;
+  if (to_tet) *to_tet = Eigen::Map<Eigen::VectorXi>(back.data(), back.size());
+  return m;
+}
+
 static double tet_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, int t) {
   Eigen::Vector3d a = V.row(T(t, 0)), b = V.row(T(t, 1)), c = V.row(T(t, 2)), d = V.row(T(t, 3));
   return (b - a).cross(c - a).dot(d - a) / 6.0;

@@ -3,6 +3,8 @@
 // Used by `deform info` and by the robust bind to tell clean closed manifolds from messy meshes.
 #include <Eigen/Core>
 
+#include "core/mesh/mesh.h"
+
 namespace dfm {
 
 struct BoundingBox {
@@ -39,6 +41,9 @@ double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
 // Tet meshes: triangles on exactly one tet, oriented outward for positively oriented tets.
 Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T);
+// Those faces as a surface compacted to the vertices they use (in order of first use); `to_tet` maps
+// each surface vertex back to its tet vertex.
+TriMesh tet_boundary_surface(const TetMesh& tets, Eigen::VectorXi* to_tet = nullptr);
 // Tets with signed volume <= 0.
 int non_positive_tet_count(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T);
 // Sum of tet volumes (signed).

@@ -70,4 +70,12 @@ Eigen::MatrixXd posed_joints(const Skeleton& s, const std::vector<Eigen::Affine3
   return J;
 }
 
+Eigen::Quaterniond parent_world_rotation(const Skeleton& skeleton, const std::vector<Eigen::Quaterniond>& rotation,
+                                         int bone) {
+  Eigen::Quaterniond R = Eigen::Quaterniond::Identity();
+  for (int b = skeleton.bones[bone].parent; b >= 0; b = skeleton.bones[b].parent)
+    if (b < static_cast<int>(rotation.size())) R = rotation[b].normalized() * R;
+  return R;
+}
+
 }  // namespace dfm

@@ -32,6 +32,11 @@ std::vector<Eigen::Affine3d> forward_kinematics(const Skeleton& skeleton,
 Eigen::Affine3d twist_stretch_transform(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const BoneTwistStretch& ts);
 inline bool is_rest_twist_stretch(const BoneTwistStretch& ts) { return ts.twist == 0.0 && ts.stretch == 1.0; }
 
+// World rotation of a bone's parent chain (FK composes T_parent * R_b): the product of the parents'
+// rotations, root first. A world-space offset or turn of the bone maps into its parent's frame by it.
+Eigen::Quaterniond parent_world_rotation(const Skeleton& skeleton, const std::vector<Eigen::Quaterniond>& rotation,
+                                         int bone);
+
 // Posed joint positions (#J x 3) under bone transforms from forward_kinematics: each joint moves with
 // a bone it ends (its b), or else with a bone it starts (its a); a joint on no bone stays at rest.
 Eigen::MatrixXd posed_joints(const Skeleton& skeleton, const std::vector<Eigen::Affine3d>& bone_transforms);

@@ -115,8 +115,6 @@ struct SceneData {
 
 // Pose params with every vector sized to `rig` (existing entries kept, missing ones identity).
 PoseParams fit_pose_params(const Rig& rig, PoseParams p);
-// The tet mesh's boundary triangles (outward), compacted to their vertices; `to_tet` maps back.
-TriMesh tet_boundary_surface(const TetMesh& tets, Eigen::VectorXi* to_tet);
 
 class Document {
  public:
