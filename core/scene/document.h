@@ -269,6 +269,8 @@ class Document {
   void rig_edit(const std::string& name, const std::string& merge_target,
                 const std::function<void(SceneData&)>& edit);
   void after_change();
+  // open_mesh / set_surface: the new surface (and tets) with weights, mask and regions cleared.
+  void replace_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet);
   void move_handle(int handle, const Eigen::Vector3d& delta, bool solve);  // translate_handle, drag_handle
   // Re-solves s.pose's non-pinned handles (no-op without weights); inside an edit.
   void solve_fast(SceneData& s);

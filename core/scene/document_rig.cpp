@@ -25,20 +25,7 @@ void Document::open_mesh(const std::string& path) {
     if (tm.num_tets() == 0) throw file_error(path, 0, "tet mesh has no tetrahedra");
     Eigen::VectorXi to_tet;
     TriMesh surf = tet_boundary_surface(tm, &to_tet);
-    execute("open " + std::filesystem::path(path).filename().string(),
-            kSurface | kRig | kPose | kKeys | kWeights | kMask, "", [&](SceneData& s) {
-              s.surface = std::move(surf);
-              s.surface_path = path;
-              s.tets = std::move(tm);
-              s.surface_to_tet = std::move(to_tet);
-              s.weights.resize(0, 0);
-              s.bind_stats = {};
-              s.mask.resize(0);
-              s.rig.regions.clear();
-              s.pose = fit_pose_params(s.rig, std::move(s.pose));
-              for (SceneKey& k : s.keys) k.params = fit_pose_params(s.rig, std::move(k.params));
-              weights_note_ = "not bound yet";
-            });
+    replace_surface(std::move(surf), path, std::move(tm), std::move(to_tet));
     return;
   }
   TriMesh m = read_surface(path);
@@ -50,12 +37,16 @@ void Document::set_surface(const TriMesh& surface, const std::string& source_nam
   if (surface.num_faces() > 0 && (surface.F.minCoeff() < 0 || surface.F.maxCoeff() >= surface.num_vertices()))
     throw Error(source_name + ": face index out of range");
   if (!surface.V.allFinite()) throw Error(source_name + ": vertex position is not finite");
-  execute("open " + std::filesystem::path(source_name).filename().string(),
+  replace_surface(surface, source_name, TetMesh{}, Eigen::VectorXi());
+}
+
+void Document::replace_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet) {
+  execute("open " + std::filesystem::path(path).filename().string(),
           kSurface | kRig | kPose | kKeys | kWeights | kMask, "", [&](SceneData& s) {
-            s.surface = surface;
-            s.surface_path = source_name;
-            s.tets = TetMesh{};
-            s.surface_to_tet.resize(0);
+            s.surface = std::move(surface);
+            s.surface_path = path;
+            s.tets = std::move(tets);
+            s.surface_to_tet = std::move(surface_to_tet);
             s.weights.resize(0, 0);
             s.bind_stats = {};
             s.mask.resize(0);
