@@ -112,7 +112,7 @@ class Editor {
   void draw_bind_section();
   void draw_weights_section();
   void draw_transform_section();
-  void draw_posing_section();  // posing_panel.cpp
+  void draw_posing_section();  // pose_panels.cpp
   void draw_viewport_hud();
   void draw_quit_prompt();
   void draw_error_popup();

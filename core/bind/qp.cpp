@@ -1,5 +1,7 @@
 #include "core/bind/qp.h"
 
+#include "core/bind/cholmod_view.h"
+
 #include "core/util/hash.h"
 
 #include <cholmod.h>
@@ -26,115 +28,9 @@ constexpr int kMaxIterations = 2000;
 // for themselves grow with the face (hand.mesh's ~4K-variable faces want ~20, armadillo's ~40K ~250).
 constexpr double kSweepsPerFreeVariable = 0.006;
 
-constexpr const char* kNotPosDef = "sparse Cholesky: matrix is not positive definite";
 
-// A CHOLMOD view (no copy) of a symmetric matrix given by its lower triangle in compressed columns.
-cholmod_sparse cholmod_lower_view(int n, int* p, int* i, double* x) {
-  cholmod_sparse cs{};
-  cs.nrow = cs.ncol = static_cast<size_t>(n);
-  cs.nzmax = static_cast<size_t>(p[n]);
-  cs.p = p;
-  cs.i = i;
-  cs.x = x;
-  cs.stype = -1;  // symmetric, lower triangle used
-  cs.itype = CHOLMOD_INT;
-  cs.xtype = CHOLMOD_REAL;
-  cs.dtype = CHOLMOD_DOUBLE;
-  cs.sorted = 1;
-  cs.packed = 1;
-  return cs;
-}
 
 }  // namespace
-
-// ---------------------------------------------------------------------------------------------- SpdSolver
-
-struct SpdSolver::Impl {
-  mutable cholmod_common c;
-  cholmod_factor* L = nullptr;
-  bool numeric = false;  // L holds a numeric factorization (not only the symbolic analysis)
-  Impl() {
-    cholmod_start(&c);
-    c.print = 0;
-    c.error_handler = nullptr;
-  }
-  ~Impl() {
-    if (L) cholmod_free_factor(&L, &c);
-    cholmod_finish(&c);
-  }
-};
-
-SpdSolver::SpdSolver() : impl_(new Impl) {}
-SpdSolver::~SpdSolver() { delete impl_; }
-
-void SpdSolver::analyze(const Eigen::SparseMatrix<double>& A0, bool in_elimination_order) {
-  Eigen::SparseMatrix<double> A = A0;  // compressed copy CHOLMOD can view
-  A.makeCompressed();
-  cholmod_sparse cs =
-      cholmod_lower_view(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr());
-  cholmod_common& c = impl_->c;
-  if (impl_->L) cholmod_free_factor(&impl_->L, &c);
-  impl_->numeric = false;
-  if (in_elimination_order) {
-    c.nmethods = 1;
-    c.method[0].ordering = CHOLMOD_NATURAL;
-  } else if (A.rows() < 20000) {  // small systems: AMD alone (METIS costs more than it saves)
-    c.nmethods = 1;
-    c.method[0].ordering = CHOLMOD_AMD;
-  } else {
-    // Large volume meshes: nested dissection (METIS) alone. CHOLMOD's default also runs AMD first and
-    // keeps the better, which costs both orderings to pick METIS on these meshes anyway.
-    c.nmethods = 1;
-    c.method[0].ordering = CHOLMOD_METIS;
-  }
-  c.supernodal = CHOLMOD_AUTO;
-  impl_->L = cholmod_analyze(&cs, &c);
-  if (!impl_->L) throw Error("sparse Cholesky: analysis failed (out of memory?)");
-}
-
-void SpdSolver::factorize(const Eigen::SparseMatrix<double>& A0) {
-  // Reuses a symbolic analysis of a matrix of the same size and pattern (analyze), else makes one.
-  if (!impl_->L || impl_->numeric || static_cast<long>(impl_->L->n) != A0.rows()) analyze(A0);
-  Eigen::SparseMatrix<double> A = A0;
-  A.makeCompressed();
-  cholmod_sparse cs =
-      cholmod_lower_view(static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr());
-  cholmod_common& c = impl_->c;
-  cholmod_factorize(&cs, impl_->L, &c);
-  impl_->numeric = true;
-  if (c.status == CHOLMOD_NOT_POSDEF || impl_->L->minor < impl_->L->n)
-    throw Error(kNotPosDef);
-  if (c.status < 0) throw Error("sparse Cholesky: factorization failed (out of memory?)");
-}
-
-Eigen::MatrixXd SpdSolver::solve(const Eigen::MatrixXd& B0) const {
-  if (!impl_->L || !impl_->numeric) throw Error("SpdSolver::solve before factorize");
-  Eigen::MatrixXd B = B0;
-  cholmod_dense bd{};
-  bd.nrow = static_cast<size_t>(B.rows());
-  bd.ncol = static_cast<size_t>(B.cols());
-  bd.nzmax = bd.nrow * bd.ncol;
-  bd.d = bd.nrow;
-  bd.x = B.data();
-  bd.xtype = CHOLMOD_REAL;
-  bd.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* X = cholmod_solve(CHOLMOD_A, impl_->L, &bd, &impl_->c);
-  if (!X) throw Error("sparse Cholesky: solve failed (out of memory?)");
-  Eigen::MatrixXd out = Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(X->x), B.rows(), B.cols());
-  cholmod_free_dense(&X, &impl_->c);
-  return out;
-}
-
-std::vector<int> SpdSolver::permutation() const {
-  if (!impl_->L) throw Error("SpdSolver::permutation before analyze or factorize");
-  const int* p = static_cast<const int*>(impl_->L->Perm);
-  return std::vector<int>(p, p + impl_->L->n);
-}
-
-long SpdSolver::factor_nonzeros() const {
-  if (!impl_->L) return 0;
-  return static_cast<long>(impl_->c.lnz);
-}
 
 // ---------------------------------------------------------------------------------------------- helpers
 
@@ -168,29 +64,6 @@ Eigen::SparseMatrix<double> principal_submatrix(const Eigen::SparseMatrix<double
     outer[k + 1] = static_cast<int>(pos);
   }
   return S;
-}
-
-std::vector<int> fill_reducing_ordering(const Eigen::SparseMatrix<double>& H0) {
-  Eigen::SparseMatrix<double> H = H0;
-  H.makeCompressed();
-  cholmod_common c;
-  cholmod_start(&c);
-  c.print = 0;
-  c.error_handler = nullptr;
-  c.nmethods = 1;
-  c.method[0].ordering = CHOLMOD_AMD;
-  cholmod_sparse cs =
-      cholmod_lower_view(static_cast<int>(H.rows()), H.outerIndexPtr(), H.innerIndexPtr(), H.valuePtr());
-  cholmod_factor* L = cholmod_analyze(&cs, &c);
-  if (!L) {
-    cholmod_finish(&c);
-    throw Error("sparse Cholesky: ordering failed (out of memory?)");
-  }
-  const int* p = static_cast<const int*>(L->Perm);
-  std::vector<int> perm(p, p + L->n);
-  cholmod_free_factor(&L, &c);
-  cholmod_finish(&c);
-  return perm;
 }
 
 OrderedLower ordered_lower(const Eigen::SparseMatrix<double>& H, std::vector<int> perm) {
@@ -286,7 +159,7 @@ class FaceSolver {
     if (!L_) throw Error("sparse Cholesky: analysis failed (out of memory?)");
     cholmod_factorize(&A, L_, &c_);
     if (c_.status == CHOLMOD_NOT_POSDEF || L_->minor < L_->n)
-      throw Error(kNotPosDef);
+      throw Error(kCholeskyNotPositiveDefinite);
     if (c_.status < 0) throw Error("sparse Cholesky: factorization failed (out of memory?)");
     b_.resize(nf);
     for (int c = 0; c < n; ++c)

@@ -1,4 +1,4 @@
-// The Posing section: FAST on or off, iterations per frame, the selected handle's state (pinned,
+// The Transform section (typed moves and rotations of the selected handle) and the Posing section: FAST on or off, iterations per frame, the selected handle's state (pinned,
 // position, free), an IK chain shortcut for bones, and the last solve's timings. Every change is a
 // document command (undoable); the solve itself runs inside the document's pose edits.
 #include <cstdio>
@@ -10,6 +10,48 @@
 #include "core/rig/rig.h"
 
 namespace dfm::editor {
+
+void Editor::draw_transform_section() {
+  const auto& sel = doc_.selection().handles;
+  if (sel.empty()) {
+    ImGui::TextDisabled("no handle selected");
+    return;
+  }
+  const int h = sel.front();
+  const Rig& rig = doc_.rig();
+  const HandleRef r = handle_ref(rig, h);
+  ImGui::Text("%s  (%s)", handle_name(rig, h).c_str(), handle_kind_name(r.kind));
+  Pose pose = doc_.pose();
+  if (h < pose.size()) {
+    const Eigen::Affine3d& T = pose.transforms[h];
+    const Eigen::Vector3d pivot = doc_.handle_pivot(h);
+    // Typed values: world offset of the pivot and rotation (axis-angle) of this handle's transform.
+    const Eigen::Vector3d offset = T * pivot - pivot;
+    float t[3] = {float(offset.x()), float(offset.y()), float(offset.z())};
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::DragFloat3("##move", t, 0.002f * float(cam_.scene_radius), 0, 0, "%.3f")) {
+      if (ImGui::IsItemActivated()) doc_.begin_gesture();
+      doc_.translate_handle(h, Eigen::Vector3d(t[0], t[1], t[2]) - offset);
+    }
+    if (ImGui::IsItemDeactivated()) doc_.end_gesture();
+    ImGui::TextDisabled("translation (world)");
+    if (r.kind != HandleKind::CageVertex) {
+      Eigen::AngleAxisd aa(T.linear());
+      static float deg[3] = {0, 0, 0};
+      ImGui::SetNextItemWidth(-1);
+      ImGui::InputFloat3("##rot", deg, "%.1f");
+      ImGui::TextDisabled("rotation now: %.1f deg about (%.2f %.2f %.2f)", aa.angle() * 180 / M_PI, aa.axis().x(),
+                          aa.axis().y(), aa.axis().z());
+      if (ImGui::Button("Apply rotation (XYZ degrees)", ImVec2(-1, 0))) {
+        const Eigen::Quaterniond q = Eigen::AngleAxisd(deg[2] * M_PI / 180, Eigen::Vector3d::UnitZ()) *
+                                     Eigen::AngleAxisd(deg[1] * M_PI / 180, Eigen::Vector3d::UnitY()) *
+                                     Eigen::AngleAxisd(deg[0] * M_PI / 180, Eigen::Vector3d::UnitX());
+        doc_.rotate_handle(h, q);
+      }
+    }
+  }
+  if (ImGui::Button("Reset pose", ImVec2(-1, 0))) doc_.reset_pose();
+}
 
 void Editor::draw_posing_section() {
   PosingSettings p = doc_.posing();

@@ -1,0 +1,150 @@
+// Batch and test entry points of the editor: --play-frames (playback against posing, by stage) and
+// --ui (initial tool and view state).
+#include "app/editor/editor.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+#include "core/util/error.h"
+
+namespace dfm::editor {
+
+void Editor::play_benchmark(int frames) {
+  playing_ = true;
+  loop_ = true;
+  profile_stages_ = true;
+  std::vector<double> ms;
+  FrameStages sum_st;
+  int empty = 0, cached = 0;
+  double first_empty_t = 0;
+  const int built0 = view_->intervals_built();
+  const double build_ms0 = view_->interval_build_ms();
+  for (int i = 0; i < frames + 3; ++i) {
+    const double t0 = glfwGetTime();
+    tick(1.0 / 30.0);
+    render_frame();
+    glFinish();
+    present_frame();
+    glfwPollEvents();
+    const double now = glfwGetTime();
+    if (i >= 3) {  // the first frames compile shaders and upload
+      ms.push_back(1000.0 * (now - t0));
+      cached += view_->slice_from_cache();
+      sum_st.ui += stages_.ui, sum_st.sync += stages_.sync, sum_st.scene += stages_.scene, sum_st.imgui += stages_.imgui;
+    }
+    if (view_->display_vertex_count() == 0 && doc_.surface().num_vertices() > 0 && empty++ == 0) first_empty_t = doc_.time();
+  }
+  playing_ = false;
+  profile_stages_ = false;
+  std::sort(ms.begin(), ms.end());
+  double sum = 0;
+  for (double m : ms) sum += m;
+  const double n = double(ms.size());
+  std::printf("play-frames: %d frames, %d vertices shown (%s), mean %.2f ms, median %.2f ms, p95 %.2f ms, max %.2f ms\n",
+              int(ms.size()), view_->display_vertex_count(), view_->showing_slice() ? "manifold slice" : "skinned",
+              sum / n, ms[ms.size() / 2], ms[std::min(ms.size() - 1, size_t(0.95 * ms.size()))], ms.back());
+  std::printf("play-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
+              sum_st.ui / n, sum_st.sync / n, sum_st.scene / n, sum_st.imgui / n);
+  std::printf("play-frames: %d of %d frames drawn from the interval cache, %d interval topologies built in %.1f ms "
+              "(%d distinct vertex times)\n",
+              cached, int(ms.size()), view_->intervals_built() - built0, view_->interval_build_ms() - build_ms0,
+              view_->vertex_time_count());
+  if (empty) std::printf("play-frames: %d frames showed no vertices (first at t=%.6g)\n", empty, first_empty_t);
+  // The baseline in the same process: as many frames of the current pose, skinned, not playing.
+  view_->show_pose();
+  std::vector<double> posed;
+  FrameStages posed_st;
+  profile_stages_ = true;
+  for (int i = 0; i < frames + 3; ++i) {
+    const double t0 = glfwGetTime();
+    render_frame();
+    glFinish();
+    present_frame();
+    glfwPollEvents();
+    if (i >= 3) {
+      posed.push_back(1000.0 * (glfwGetTime() - t0));
+      posed_st.ui += stages_.ui, posed_st.sync += stages_.sync, posed_st.scene += stages_.scene,
+          posed_st.imgui += stages_.imgui;
+    }
+  }
+  profile_stages_ = false;
+  if (!view_->showing_slice() && !posed.empty()) {
+    double psum = 0;
+    for (double m : posed) psum += m;
+    const double pn = double(posed.size()), pmean = psum / pn;
+    std::printf("play-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
+                posed_st.ui / pn, posed_st.sync / pn, posed_st.scene / pn, posed_st.imgui / pn);
+    std::printf("play-frames: playback mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, sum / n / pmean);
+  } else {
+    std::printf("play-frames: no posed baseline (the scene has no skinned pose to show)\n");
+  }
+  std::fflush(stdout);
+}
+
+// "tool=rotate,weights=selected,wireframe=1,ortho=0,preset=iso,sweep=x,grid=0": the state a user
+// would click to, so a screenshot can show any tool. Unknown keys or values are errors.
+void Editor::apply_ui_options(const std::string& spec) {
+  size_t pos = 0;
+  while (pos < spec.size()) {
+    size_t end = spec.find(',', pos);
+    if (end == std::string::npos) end = spec.size();
+    const std::string item = spec.substr(pos, end - pos);
+    pos = end + 1;
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) throw Error("--ui: expected key=value, got '" + item + "'");
+    const std::string k = item.substr(0, eq), v = item.substr(eq + 1);
+    auto bad = [&]() { return Error("--ui: bad value '" + v + "' for " + k); };
+    if (k == "tool") {
+      if (v == "select") tool_ = Tool::Select;
+      else if (v == "point") tool_ = Tool::PlacePoint;
+      else if (v == "bone") tool_ = Tool::DrawBone;
+      else if (v == "paint") tool_ = Tool::Paint;
+      else if (v == "move") tool_ = Tool::Pose, gizmo_rotate_ = false;
+      else if (v == "rotate") tool_ = Tool::Pose, gizmo_rotate_ = true;
+      else throw bad();
+    } else if (k == "weights") {
+      if (v == "off") weight_view_ = WeightView::Off;
+      else if (v == "selected") weight_view_ = WeightView::Selected;
+      else if (v == "all") weight_view_ = WeightView::AllHandles;
+      else if (v == "mask") weight_view_ = WeightView::Mask;
+      else throw bad();
+    } else if (k == "wireframe" || k == "ortho" || k == "grid" || k == "handles") {
+      if (v != "0" && v != "1") throw bad();
+      bool& b = k == "wireframe" ? wireframe_ : k == "ortho" ? cam_.orthographic : k == "grid" ? show_grid_ : show_handles_;
+      b = v == "1";
+    } else if (k == "preset") {
+      bool found = false;
+      for (auto p : {gl::ViewPreset::Front, gl::ViewPreset::Back, gl::ViewPreset::Left, gl::ViewPreset::Right,
+                     gl::ViewPreset::Top, gl::ViewPreset::Bottom, gl::ViewPreset::Iso}) {
+        std::string n = gl::view_preset_name(p);
+        std::transform(n.begin(), n.end(), n.begin(), ::tolower);
+        if (n == v) gl::set_view_preset(cam_, p), found = true;
+      }
+      if (!found) throw bad();
+      frame_all();
+    } else if (k == "sweep") {
+      if (v == "t") sweep_axis_ = -1;
+      else if (v == "x" || v == "y" || v == "z") sweep_axis_ = v[0] - 'x';
+      else throw bad();
+    } else if (k == "frame") {
+      if (v == "all") frame_all();
+      else if (v == "selection") frame_selection_after_script_ = true;  // the script may select
+      else throw bad();
+    } else if (k == "cursor") {
+      double x = 0, y = 0;
+      if (std::sscanf(v.c_str(), "%lfx%lf", &x, &y) != 2) throw bad();
+      forced_cursor_ = Eigen::Vector2d(x, y);
+    } else if (k == "vertex") {
+      picked_vertex_ = std::atoi(v.c_str());
+    } else {
+      throw Error("--ui: unknown key '" + k + "' (tool, weights, wireframe, ortho, grid, handles, preset, sweep, vertex, cursor, frame)");
+    }
+  }
+}
+
+}  // namespace dfm::editor
