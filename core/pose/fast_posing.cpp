@@ -37,22 +37,6 @@ std::vector<HandleConstraint> default_constraint_states(const Rig& rig) {
   return s;
 }
 
-const char* constraint_state_name(HandleConstraint s) {
-  switch (s) {
-    case HandleConstraint::Fixed: return "pinned";
-    case HandleConstraint::Position: return "position";
-    case HandleConstraint::Free: return "free";
-  }
-  return "pinned";
-}
-
-HandleConstraint parse_constraint_state(const std::string& name) {
-  if (name == "pinned") return HandleConstraint::Fixed;
-  if (name == "position") return HandleConstraint::Position;
-  if (name == "free") return HandleConstraint::Free;
-  throw Error("unknown handle state '" + name + "' (expected pinned, position or free)");
-}
-
 bool FastPosing::Signature::operator==(const Signature& o) const {
   for (int i = 0; i < 3; ++i)
     if (data[i] != o.data[i] || size[i] != o.size[i] || fingerprint[i] != o.fingerprint[i]) return false;

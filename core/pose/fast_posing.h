@@ -17,8 +17,6 @@ namespace dfm {
 
 // Per handle (rig.h order): points and cage vertices position-constrained, bones and regions fixed.
 std::vector<HandleConstraint> default_constraint_states(const Rig& rig);
-const char* constraint_state_name(HandleConstraint s);  // "pinned", "position", "free"
-HandleConstraint parse_constraint_state(const std::string& name);  // throws dfm::Error naming the word
 
 struct FastSolveReport {
   bool precomputed = false, switched = false;  // whether this call rebuilt them

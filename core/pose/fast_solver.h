@@ -10,11 +10,10 @@
 #include <Eigen/Core>
 
 #include "core/pose/fast_model.h"
+#include "core/rig/handle_constraint.h"
 #include "core/rig/pose.h"
 
 namespace dfm {
-
-enum class HandleConstraint { Fixed, Position, Free };
 
 struct FastConstraint {
   HandleConstraint state = HandleConstraint::Fixed;

@@ -1,7 +1,5 @@
 #include "core/scene/scene_file.h"
 
-#include "core/util/hash.h"
-
 #include <cmath>
 #include <climits>
 #include <cstdint>
@@ -13,8 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/rig/handle_constraint.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
+#include "core/util/hash.h"
 
 namespace dfm {
 
