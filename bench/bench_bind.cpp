@@ -19,6 +19,7 @@
 #include "core/bind/bind.h"
 #include "core/mesh/io.h"
 #include "core/rig/rig_io.h"
+#include "core/bind/numeric_setup.h"
 
 namespace {
 
@@ -82,7 +83,7 @@ void hand(bool reference) {
   print("hand", r, cpu_seconds() - c0);
   if (reference) {
     dfm::BindOptions o;
-    o.tolerance = 1e-10;
+    o.bbw.qp.tolerance = 1e-10;
     const double c1 = cpu_seconds();
     const dfm::BindResult ref = dfm::bind_tet_mesh(tets, rig, o);
     print("hand (reference, tolerance 1e-10)", ref, cpu_seconds() - c1);
@@ -104,7 +105,7 @@ void armadillo(bool baseline) {
   if (baseline) {
     // The same bind started from the bound-free solution (no coarse level), in this process.
     dfm::BindOptions o = with_progress();
-    o.multilevel_min_vertices = 0;
+    o.bbw.multilevel_min_vertices = 0;
     const double c1 = cpu_seconds();
     const dfm::BindResult b = dfm::bind_surface(surf, rig, o);
     print("armadillo + 10 points, bound-free start (no coarse level)", b, cpu_seconds() - c1);
@@ -117,6 +118,7 @@ void armadillo(bool baseline) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  dfm::setup_numerics();
   const std::string which = argc > 1 ? argv[1] : "hand";
   const bool reference = argc > 2 && std::strcmp(argv[2], "--reference") == 0;
   const bool baseline = argc > 2 && std::strcmp(argv[2], "--baseline") == 0;

@@ -17,6 +17,7 @@
 #include "core/pose/fast_solver.h"
 #include "core/rig/rig_io.h"
 #include "core/skin/skin.h"
+#include "core/bind/numeric_setup.h"
 
 using Clock = std::chrono::steady_clock;
 
@@ -84,6 +85,7 @@ static void run_case(const Case& c) {
 }
 
 int main(int argc, char** argv) {
+  dfm::setup_numerics();
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   const std::string data = argc > 1 ? argv[1] : std::string(DFM_DATA_DIR);
   {

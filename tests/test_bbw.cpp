@@ -16,7 +16,7 @@
 #include "core/bind/bbw.h"
 #include "core/bind/bbw_exact.h"
 #include "core/bind/cholmod_memory.h"
-#include "core/bind/numeric_threads.h"
+#include "core/bind/numeric_setup.h"
 #include "core/bind/fem.h"
 #include "core/bind/qp.h"
 #include "core/bind/sparse_kdk.h"
@@ -330,13 +330,14 @@ TEST_CASE("CHOLMOD block cache: a freed large block serves the next request it f
   release_cholmod_block_cache();
 }
 
-TEST_CASE("numeric threads: one BLAS thread after single_threaded_numerics", "[qp]") {
-  single_threaded_numerics();
+TEST_CASE("numeric setup: one BLAS thread, CHOLMOD through the block cache after setup_numerics", "[qp]") {
+  setup_numerics();
+  REQUIRE(SuiteSparse_config.malloc_func != &std::malloc);
   // Only checkable where the linked BLAS reports its thread count (OpenBLAS does).
   using GetInt = int (*)();
   if (void* f = dlsym(RTLD_DEFAULT, "openblas_get_num_threads")) REQUIRE(reinterpret_cast<GetInt>(f)() == 1);
   if (void* f = dlsym(RTLD_DEFAULT, "omp_get_max_active_levels")) REQUIRE(reinterpret_cast<GetInt>(f)() == 0);
-  // The program's GOMP_parallel (numeric_threads.cpp) is the one every library binds to, not libgomp's;
+  // The program's GOMP_parallel (numeric_setup.cpp) is the one every library binds to, not libgomp's;
   // and a factorization through it still solves.
   REQUIRE(dlsym(RTLD_DEFAULT, "GOMP_parallel") == reinterpret_cast<void*>(&GOMP_parallel));
   const TetMesh m = test::cube_grid(6, 6, 6, 1.0 / 6);

@@ -136,7 +136,7 @@ TEST_CASE("exact partition of unity through the whole bind", "[bind]") {
   rig.points.push_back({Eigen::Vector3d(1.7, 0.5, 0.5), "c"});
   BindOptions o;
   o.volume.tetgen_switches = "pq1.414a0.01";
-  o.exact_partition_of_unity = true;
+  o.bbw.exact_partition_of_unity = true;
   const BindResult r = bind_surface(box, rig, o);
   check_bind(r, 8, 3);
 }

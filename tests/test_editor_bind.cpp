@@ -114,11 +114,11 @@ TEST_CASE("bind_options carries the painted mask of a surface document", "[edito
   make_bindable(d);
   BindOptions o = bind_options(d);
   CHECK(o.vertex_mask.size() == 0);
-  CHECK(o.shape_mask.size() == 0);
+  CHECK(o.bbw.shape_mask.size() == 0);
   paint_middle(d);
   o = bind_options(d);
   REQUIRE(o.vertex_mask.size() == d.surface().num_vertices());
-  CHECK(o.shape_mask.size() == 0);  // the TetGen volume does not exist yet
+  CHECK(o.bbw.shape_mask.size() == 0);  // the TetGen volume does not exist yet
   CHECK((o.vertex_mask - kPaintedMaskRho * d.mask()).cwiseAbs().maxCoeff() == 0.0);
 }
 

@@ -64,8 +64,8 @@ int run(const dfm::cli::Args& args) {
   if (dfm::num_handles(rig) == 0) throw UsageError("no handles: give --skeleton, --points or --cage");
 
   dfm::BindOptions opts;
-  opts.exact_partition_of_unity = exact;
-  opts.threads = threads;
+  opts.bbw.exact_partition_of_unity = exact;
+  opts.bbw.threads = threads;
   if (!tetgen.empty()) opts.volume.tetgen_switches = tetgen;
   const bool tet_input = dfm::is_tet_mesh_path(input);
   dfm::TriMesh surface;

@@ -8,6 +8,7 @@
 
 #include "app/cli/command.h"
 #include "core/util/error.h"
+#include "core/bind/numeric_setup.h"
 
 namespace dfm::cli {
 
@@ -70,6 +71,7 @@ void print_help() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  dfm::setup_numerics();  // before any bind (numeric_setup.h)
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     print_help();

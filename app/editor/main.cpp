@@ -8,6 +8,7 @@
 #include "app/editor/editor.h"
 #include "core/util/error.h"
 #include "render/gl_context.h"
+#include "core/bind/numeric_setup.h"
 
 namespace {
 
@@ -34,6 +35,7 @@ void usage(std::FILE* out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  dfm::setup_numerics();  // before any bind (numeric_setup.h)
   dfm::editor::EditorOptions opts;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

@@ -23,21 +23,17 @@ constexpr double kMeshingShare = 0.3;
 BindResult solve_weights(BindVolume volume, const BindOptions& opts, double progress_start, Clock::time_point t_all) {
   check_cancel(opts);
   BindResult res;
-  BbwOptions bo;
-  bo.exact_partition_of_unity = opts.exact_partition_of_unity;
-  bo.shape_mask = opts.shape_mask;
+  BbwOptions bo = opts.bbw;
   if (bo.shape_mask.size() == 0 && opts.vertex_mask.size() && opts.vertex_mask.maxCoeff() > 0)
     bo.shape_mask = tet_mask_from_user_vertices(volume, opts.vertex_mask);
-  bo.qp.tolerance = opts.tolerance;
-  bo.threads = opts.threads;
-  bo.multilevel_min_vertices = opts.multilevel_min_vertices;
   bo.qp.cancel = opts.cancel;
+  bo.progress = nullptr;
   if (opts.progress)
     bo.progress = [&](const std::string& stage, double f) {
       opts.progress(stage, progress_start + (0.97 - progress_start) * f);
     };
-  if (opts.shape_mask.size() && opts.shape_mask.size() != volume.tets.num_tets())
-    throw Error("shape mask has " + std::to_string(opts.shape_mask.size()) + " values for " +
+  if (opts.bbw.shape_mask.size() && opts.bbw.shape_mask.size() != volume.tets.num_tets())
+    throw Error("shape mask has " + std::to_string(opts.bbw.shape_mask.size()) + " values for " +
                 std::to_string(volume.tets.num_tets()) + " tets of the bind volume");
   res.tet_weights = bbw_weights(volume.tets.V, volume.tets.T, volume.b, volume.bc, bo, &res.report.bbw);
   if (opts.progress) opts.progress("mapping", 0.97);

@@ -17,15 +17,12 @@ namespace dfm {
 
 struct BindOptions {
   VolumeOptions volume;
-  bool exact_partition_of_unity = false;
-  Eigen::VectorXd shape_mask;  // per-tet rho of the bind volume (only with a tet-mesh input), or empty
-  // Per user-vertex rho (e.g. the editor's painted mask, scaled), or empty; used when shape_mask is
+  // The weight solve. bbw.shape_mask: per-tet rho of the bind volume (only with a tet-mesh input), or
+  // empty. bbw.progress and bbw.qp.cancel are the bind's own (set from progress and cancel below).
+  BbwOptions bbw;
+  // Per user-vertex rho (e.g. the editor's painted mask, scaled), or empty; used when bbw.shape_mask is
   // empty: mapped onto the volume once it is built (tet_mask_from_user_vertices).
   Eigen::VectorXd vertex_mask;
-  double tolerance = 1e-6;     // KKT residual, weight units
-  int threads = 2;
-  // Volumes with at least this many vertices start the weight solves from a coarse level (bbw.h).
-  int multilevel_min_vertices = 20000;
   // (stage, fraction of the whole bind in [0, 1]); stages: "meshing", "assembly", "factorization",
   // "solve", "mapping", "done". May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;

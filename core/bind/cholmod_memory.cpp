@@ -131,4 +131,6 @@ void install_cholmod_block_cache() {
 
 void release_cholmod_block_cache() { cache.clear(); }
 
+void trim_heap() { malloc_trim(0); }
+
 }  // namespace dfm

@@ -15,6 +15,10 @@ void install_cholmod_block_cache();
 // Frees the calling thread's cached blocks (a thread's cache is also freed when the thread ends).
 void release_cholmod_block_cache();
 
+// Hands the C library's free heap memory back to the system (malloc_trim): on large binds, what one
+// stage freed, before the next one peaks. Small meshes would pay more in page faults than they save.
+void trim_heap();
+
 // Releases the calling thread's cached blocks when it goes out of scope, however the scope is left.
 struct CholmodBlockCacheScope {
   CholmodBlockCacheScope() = default;

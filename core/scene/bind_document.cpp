@@ -47,7 +47,7 @@ void run_bind_blocking(Document& doc, const BindOptions& extra) {
   BindOptions o = extra;
   const BindOptions from_doc = bind_options(doc);
   o.volume = from_doc.volume;
-  if (o.shape_mask.size() == 0 && o.vertex_mask.size() == 0) o.vertex_mask = from_doc.vertex_mask;
+  if (o.bbw.shape_mask.size() == 0 && o.vertex_mask.size() == 0) o.vertex_mask = from_doc.vertex_mask;
   const BindResult r = doc.has_tets() ? bind_tet_mesh(doc.tets(), doc.rig(), o) : bind_surface(doc.surface(), doc.rig(), o);
   apply_bind_result(doc, r);
 }

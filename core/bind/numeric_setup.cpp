@@ -1,8 +1,10 @@
-#include "core/bind/numeric_threads.h"
+#include "core/bind/numeric_setup.h"
 
 #include <dlfcn.h>
 
 #include <mutex>
+
+#include "core/bind/cholmod_memory.h"
 
 namespace dfm {
 
@@ -10,15 +12,15 @@ namespace {
 using SetInt = void (*)(int);
 }  // namespace
 
-void single_threaded_numerics() {
+void setup_numerics() {
   static std::once_flag once;
-  static SetInt omp_set_max_active_levels = nullptr;
   std::call_once(once, [] {
     for (const char* name : {"openblas_set_num_threads", "goto_set_num_threads", "bli_thread_set_num_threads"})
       if (void* f = dlsym(RTLD_DEFAULT, name)) reinterpret_cast<SetInt>(f)(1);
-    omp_set_max_active_levels = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+    // libgomp keeps max-active-levels process-wide.
+    if (void* f = dlsym(RTLD_DEFAULT, "omp_set_max_active_levels")) reinterpret_cast<SetInt>(f)(0);
+    install_cholmod_block_cache();
   });
-  if (omp_set_max_active_levels) omp_set_max_active_levels(0);
 }
 
 }  // namespace dfm
@@ -30,7 +32,7 @@ void single_threaded_numerics() {
 // precedence over libgomp's for every library in the process: it runs the region's body once on the
 // calling thread, which is what a one-thread team does. Work-sharing loops, barriers and critical sections
 // inside the body are orphaned constructs that libgomp runs correctly outside any team. Nothing in this
-// program wants OpenMP threads (numeric_threads.h).
+// program wants OpenMP threads (numeric_setup.h).
 extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned /*num_threads*/, unsigned /*flags*/) {
   fn(data);
 }
