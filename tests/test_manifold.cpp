@@ -7,10 +7,13 @@
 #include <random>
 #include <set>
 
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "core/anim/frame_sequence.h"
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_io.h"
 #include "core/anim/slice.h"
@@ -395,5 +398,39 @@ TEST_CASE("tet4 files round-trip exactly and reject malformed input with a line 
   // A vertex moved outside its slab's time span.
   REQUIRE_THROWS_WITH(read_manifold(write_with(8, "v 0 0 0 5")), Catch::Contains("slab"));
   REQUIRE_THROWS_AS(read_manifold((dir / "missing.tet4").string()), Error);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("frame sequences: one naming rule, frames evenly over the animation, both ends included", "[manifold]") {
+  CHECK(frame_naming("out/walk").stem == "out/walk");
+  CHECK(frame_naming("out/walk").ext == ".obj");
+  CHECK(frame_naming("out/walk.ply").stem == "out/walk");
+  CHECK(frame_naming("out/walk.ply").ext == ".ply");
+  CHECK(frame_naming("walk.stl").ext == ".stl");
+  CHECK(frame_naming(".obj").stem == ".obj");  // nothing before the extension: a stem, not a format
+  CHECK(frame_path(frame_naming("a/f.off"), 7) == "a/f0007.off");
+  CHECK(frame_time(1.0, 3.0, 0, 5) == 1.0);
+  CHECK(frame_time(1.0, 3.0, 4, 5) == 3.0);
+  CHECK(frame_time(1.0, 3.0, 1, 5) == 1.5);
+  CHECK(frame_time(1.0, 3.0, 0, 1) == 1.0);
+
+  // The cube slides +1 in x over [0, 2]: frame i of 5 is the cube moved by t / 2.
+  const TriMesh cube = unit_cube();
+  Eigen::MatrixXd V1 = cube.V;
+  V1.col(0).array() += 1.0;
+  const AnimationManifold M = build_manifold(std::vector<Eigen::MatrixXd>{cube.V, V1}, cube.F, {0, 2});
+  const fs::path dir = fs::temp_directory_path() / ("dfm_frames_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::vector<std::string> paths = write_frame_sequence(M, (dir / "f.off").string(), 5);
+  REQUIRE(paths.size() == 5);
+  for (int i = 0; i < 5; ++i) {
+    REQUIRE(paths[i] == (dir / ("f000" + std::to_string(i) + ".off")).string());
+    const TriMesh m = read_surface(paths[i]);
+    CHECK(m.V.col(0).minCoeff() == Approx(0.25 * i).margin(1e-12));
+    CHECK(m.V.col(0).maxCoeff() == Approx(1 + 0.25 * i).margin(1e-12));
+    CHECK(enclosed_volume(m.V, m.F) == Approx(1.0).epsilon(1e-12));
+  }
+  CHECK_THROWS_WITH(write_frame_sequence(M, (dir / "g").string(), 0), Catch::Contains("at least one frame"));
+  CHECK_THROWS_WITH(write_frame_sequence(M, (dir / "missing" / "g").string(), 2), Catch::Contains("missing"));
   fs::remove_all(dir);
 }

@@ -3,6 +3,7 @@
 // checked against linear blend skinning computed here by hand.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <unistd.h>
 #include <fstream>
@@ -216,4 +217,45 @@ TEST_CASE("paint-mask sets the mask within the radius, as one brush stroke") {
   CHECK_THROWS_WITH(run_script(d, parse_script("paint-mask 0 0 0 0.1 2\n", "s.txt"), "s.txt"),
                     Catch::Contains("in [0, 1]"));
   expect_parse_error("paint-mask 0 0 0 0.1\n", 1, "takes 5");
+}
+
+// The brush profile written out here: 1 inside (1 - falloff) r, then 1 - smoothstep to 0 at the rim.
+double expected_brush(double d, double r, double falloff) {
+  if (d > r) return 0;
+  const double inner = (1 - falloff) * r;
+  if (d <= inner) return 1;
+  const double u = (d - inner) / (r - inner);
+  return 1 - (3 * u * u - 2 * u * u * u);
+}
+
+TEST_CASE("paint-dab is one dab of the Paint tool: smoothstep falloff, adds or erases a quarter of the strength") {
+  // Vertices on a line at distances 0, 0.25, 0.5, 0.75, 1.0, 1.25 from the dab's centre.
+  TriMesh line;
+  line.V.resize(6, 3);
+  for (int i = 0; i < 6; ++i) line.V.row(i) << 0.25 * i, 0, 0;
+  line.F.resize(4, 3);
+  line.F << 0, 1, 2, 1, 2, 3, 2, 3, 4, 3, 4, 5;
+  Document d;
+  d.set_surface(line, "line");
+  run_script(d, parse_script("paint-dab 0 0 0 1 0.8 0.6\npaint-dab 0 0 0 1 0.8 0.6\npaint-dab 0 0 0 1 0.4 0.6 erase\n",
+                             "s.txt"), "s.txt");
+  REQUIRE(d.mask().size() == 6);
+  for (int i = 0; i < 6; ++i) {
+    const double f = expected_brush(0.25 * i, 1.0, 0.6);
+    const double expect = std::clamp(2 * 0.25 * 0.8 * f - 0.25 * 0.4 * f, 0.0, 1.0);
+    CHECK(d.mask()[i] == Approx(expect).margin(1e-15));
+  }
+  CHECK(d.mask()[5] == 0.0);                   // outside the radius: untouched
+  CHECK(d.mask()[0] == Approx(0.3));           // full strength at the centre: 0.2 + 0.2 - 0.1
+  CHECK(d.undo_depth() == 4);                  // the surface, then one undo step per dab
+  // paint-mask with a falloff blends toward VALUE by the same profile.
+  run_script(d, parse_script("paint-mask 0 0 0 1 1 0.6\n", "s.txt"), "s.txt");
+  const double f3 = expected_brush(0.75, 1.0, 0.6), before3 = std::clamp(0.3 * expected_brush(0.75, 1.0, 0.6), 0.0, 1.0);
+  CHECK(d.mask()[3] == Approx(before3 + f3 * (1 - before3)).margin(1e-15));
+  CHECK(d.mask()[0] == 1.0);
+  expect_parse_error("paint-dab 0 0 0 1 0.5\n", 1, "takes 6");
+  CHECK_THROWS_WITH(run_script(d, parse_script("paint-dab 0 0 0 1 0.5 0.5 wipe\n", "s.txt"), "s.txt"),
+                    Catch::Contains("'erase'"));
+  CHECK_THROWS_WITH(run_script(d, parse_script("paint-dab 0 0 0 1 1.5 0.5\n", "s.txt"), "s.txt"),
+                    Catch::Contains("strength must be in [0, 1]"));
 }

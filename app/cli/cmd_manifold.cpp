@@ -8,6 +8,7 @@
 #include "app/cli/command.h"
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_io.h"
+#include "core/anim/frame_sequence.h"
 #include "core/anim/manifold_sequence.h"
 #include "core/anim/slice.h"
 #include "core/anim/surface_checks.h"
@@ -30,6 +31,7 @@ const char* kUsage =
     "  (those keys must be closed, oriented and not self-intersecting). --at slices at that value of --axis (default t; x, y, z give the sweep\n"
     "  through time drawn in the other three coordinates) and writes the welded slice with normals.\n"
     "  --sequence writes N slices on t evenly spaced over the animation as PREFIX0000.obj, ...\n"
+    "  (PREFIX ending in .ply, .off or .stl picks that format)\n"
     "  --strip renders those N frames side by side on the GPU slicer (needs a display: xvfb-run).\n"
     "  --stats prints the build (prism / transition slabs, Steiner points, seconds per stage: conform,\n"
     "  field, delaunay, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
@@ -84,7 +86,7 @@ void render_strip(const dfm::AnimationManifold& M, int frames, const std::string
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const double t0 = M.times.front(), t1 = M.times.back();
   for (int i = 0; i < frames; ++i) {
-    const double t = frames == 1 ? t0 : t0 + (t1 - t0) * i / (frames - 1);
+    const double t = dfm::frame_time(t0, t1, i, frames);
     const int n = slicer.slice(dfm::SliceAxis::T, t);
     glViewport(i * w, 0, w, h);
     surface.set_geometry(slicer.output().id(), 3 * n, 0, 0);
@@ -175,14 +177,8 @@ int run(const dfm::cli::Args& args) {
     if (stats) print_stats(M, s, axis, *at);
   }
   if (!sequence.empty()) {
-    const double t0 = M.times.front(), t1 = M.times.back();
-    for (int i = 0; i < frames; ++i) {
-      const double t = frames == 1 ? t0 : t0 + (t1 - t0) * i / (frames - 1);
-      char num[16];
-      std::snprintf(num, sizeof num, "%04d", i);
-      dfm::write_surface(sequence + num + ".obj", dfm::slice_manifold(M, dfm::SliceAxis::T, t).mesh);
-    }
-    std::printf("wrote %d frames: %s0000.obj .. %s%04d.obj\n", frames, sequence.c_str(), sequence.c_str(), frames - 1);
+    const std::vector<std::string> paths = dfm::write_frame_sequence(M, sequence, frames);
+    std::printf("wrote %d frames: %s .. %s\n", frames, paths.front().c_str(), paths.back().c_str());
   }
   if (!strip.empty()) render_strip(M, frames, strip);
   return 0;

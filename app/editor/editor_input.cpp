@@ -10,6 +10,7 @@
 
 #include "app/editor/camera_sync.h"
 #include "app/editor/editor.h"
+#include "core/scene/brush.h"
 #include "render/picking.h"
 
 namespace dfm::editor {
@@ -318,25 +319,12 @@ void Editor::tool_paint(bool down, bool clicked, bool released) {
       paint_region_ = doc_.add_region();
   }
   if (drag_ == Drag::Paint && down && hit.hit()) {
-    std::vector<int> verts;
-    std::vector<double> vals;
+    const Brush brush{radius, brush_strength_, brush_falloff_, erase ? BrushMode::Erase : BrushMode::Add};
     const Eigen::VectorXd& mask = doc_.mask();
-    for (const auto& [v, d] : gl::vertices_within(V, brush_center_, radius)) {
-      // Falloff: full strength inside (1 - falloff) * radius, smoothstep to zero at the rim.
-      const double inner = (1.0 - brush_falloff_) * radius;
-      double f = 1.0;
-      if (d > inner) {
-        const double u = (d - inner) / std::max(1e-12, radius - inner);
-        f = 1.0 - u * u * (3 - 2 * u);
-      }
-      if (f <= 0) continue;
-      verts.push_back(v);
-      const double cur = mask.size() == V.rows() ? mask[v] : 0.0;
-      vals.push_back(std::clamp(cur + (erase ? -1 : 1) * brush_strength_ * f * 0.25, 0.0, 1.0));
-    }
-    if (!verts.empty()) {
-      if (paint_target_ == PaintTarget::Mask) doc_.paint_mask(verts, vals);
-      else doc_.paint_region(paint_region_, verts, erase);
+    const BrushDab dab = brush_dab(V, mask.size() == V.rows() ? mask : Eigen::VectorXd(), brush_center_, brush);
+    if (!dab.vertices.empty()) {
+      if (paint_target_ == PaintTarget::Mask) doc_.paint_mask(dab.vertices, dab.values);
+      else doc_.paint_region(paint_region_, dab.vertices, erase);
     }
   }
   if (drag_ == Drag::Paint && released) {

@@ -11,6 +11,7 @@
 
 #include "app/editor/editor.h"
 
+#include "core/anim/frame_sequence.h"
 #include "core/anim/slice.h"
 #include "core/export/export_document.h"
 #include "core/mesh/io.h"
@@ -78,7 +79,7 @@ void Editor::draw_ui() {
       if (what == "open") open_any(p);
       else if (what == "save-scene") save_scene_as(p);
       else if (what == "save-posed") save_posed(p);
-      else if (what == "save-frames") save_frames(p, 24);
+      else if (what == "save-frames") save_frames(p, kDefaultFrameCount);
       else if (what == "screenshot") save_screenshot(p);
       else if (what == "export-gltf") export_gltf(p, export_influences_);
       else if (what == "load-skeleton") doc_.load_skeleton(p), files_.add_recent(p);
@@ -113,7 +114,7 @@ void Editor::draw_menu_bar() {
     if (ImGui::MenuItem("Save posed mesh...", nullptr, false, doc_.has_weights() || doc_.has_mesh_keys()))
       files_.show(FilePanel::Mode::Save, "Save posed mesh", "save-posed", "posed.obj");
     if (ImGui::MenuItem("Save all frames...", nullptr, false, (doc_.has_weights() || doc_.has_mesh_keys()) && doc_.keys().size() >= 2))
-      files_.show(FilePanel::Mode::Save, "Save frames (name_####.obj)", "save-frames", "frame.obj");
+      files_.show(FilePanel::Mode::Save, "Save frames (name####.obj)", "save-frames", "frame.obj");
     if (ImGui::MenuItem("Save screenshot...")) files_.show(FilePanel::Mode::Save, "Save screenshot", "screenshot", "screenshot.png");
     if (ImGui::BeginMenu("Export glTF", doc_.has_weights())) {
       // glTF stores 4 joints per set: 8 keeps more of the bind's weights at twice the attribute size.
@@ -197,8 +198,8 @@ void Editor::draw_tools_panel() {
       paint_target_ = static_cast<PaintTarget>(target);
       float r = float(brush_radius_), s = float(brush_strength_), f = float(brush_falloff_);
       ImGui::SliderFloat("Radius", &r, 0.005f, 0.4f, "%.3f");
-      ImGui::SliderFloat("Strength", &s, 0.0f, 1.0f);
-      ImGui::SliderFloat("Falloff", &f, 0.0f, 1.0f);
+      ImGui::SliderFloat("Strength", &s, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+      ImGui::SliderFloat("Falloff", &f, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
       brush_radius_ = r, brush_strength_ = s, brush_falloff_ = f;
       if (paint_target_ == PaintTarget::Region) {
         if (ImGui::Button("New region")) paint_region_ = doc_.add_region();
@@ -532,21 +533,10 @@ void Editor::save_posed(const std::string& path) {
   status("saved posed mesh " + path);
 }
 
-void Editor::save_frames(const std::string& pattern, int count) {
-  // name.obj -> name_0000.obj ... over the keyed time range: slices of one manifold build.
-  const auto& keys = doc_.keys();
-  if (keys.size() < 2) throw Error("saving frames needs at least two keys");
-  const size_t dot = pattern.find_last_of('.');
-  const std::string ext_dot = dot == std::string::npos ? ".obj" : pattern.substr(dot);
-  const std::string stem = pattern.substr(0, pattern.size() - (dot == std::string::npos ? 0 : ext_dot.size()));
-  const double t0 = keys.front().time, t1 = keys.back().time;
-  const AnimationManifold m = document_manifold(doc_);
-  for (int i = 0; i < count; ++i) {
-    char num[16];
-    std::snprintf(num, sizeof num, "_%04d", i);
-    write_surface(stem + num + ext_dot, slice_manifold(m, SliceAxis::T, t0 + (t1 - t0) * i / std::max(1, count - 1)).mesh);
-  }
-  status("saved " + std::to_string(count) + " frames as " + stem + "_####" + ext_dot);
+void Editor::save_frames(const std::string& prefix, int count) {
+  if (doc_.keys().size() < 2) throw Error("saving frames needs at least two keys");
+  const std::vector<std::string> paths = write_frame_sequence(document_manifold(doc_), prefix, count);
+  status("saved " + std::to_string(count) + " frames: " + paths.front() + " .. " + paths.back());
 }
 
 void Editor::key_mesh_file(const std::string& path, double t) {

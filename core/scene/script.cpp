@@ -7,10 +7,12 @@
 #include <map>
 #include <sstream>
 
+#include "core/anim/frame_sequence.h"
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
 #include "core/pose/fast_rig.h"
 #include "core/scene/bind_document.h"
+#include "core/scene/brush.h"
 #include "core/scene/key_surfaces.h"
 #include "core/mesh/io.h"
 #include "core/skin/skin.h"
@@ -57,7 +59,8 @@ const std::map<std::string, Spec>& specs() {
       {"save-frames", {1, 2, 0, "save-frames PREFIX [COUNT]"}},
       {"save-scene", {1, 1, 0, "save-scene FILE.scene.json"}},
       {"screenshot", {1, 1, 0, "screenshot OUT.png"}},
-      {"paint-mask", {5, 5, -1, "paint-mask X Y Z RADIUS VALUE"}},
+      {"paint-mask", {5, 6, -1, "paint-mask X Y Z RADIUS VALUE [FALLOFF]"}},
+      {"paint-dab", {6, 7, 6, "paint-dab X Y Z RADIUS STRENGTH FALLOFF [erase]"}},
       {"export-gltf", {1, 2, 0, "export-gltf OUT.glb|OUT.gltf [4|8]"}},
       {"quit", {0, 0, 0, "quit"}},
   };
@@ -266,38 +269,29 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
       } else if (cmd == "save-posed") {
         write_surface(l.words[1], posed_surface(doc));
       } else if (cmd == "save-frames") {
-        const int count = l.words.size() > 2 ? integer_arg(l, 2) : 30;
+        const int count = l.words.size() > 2 ? integer_arg(l, 2) : kDefaultFrameCount;
         if (doc.keys().size() < 2) throw Error("save-frames needs at least two keys");
-        const AnimationManifold m = document_manifold(doc);
-        const double t0 = doc.keys().front().time, t1 = doc.keys().back().time;
-        std::string prefix = l.words[1], ext = ".obj";
-        for (const char* e : {".obj", ".ply", ".off", ".stl"})
-          if (ends_with(prefix, e)) {
-            ext = e;
-            prefix.erase(prefix.size() - 4);
-          }
-        for (int i = 0; i < count; ++i) {
-          char num_buf[16];
-          std::snprintf(num_buf, sizeof num_buf, "%04d", i);
-          const double t = t0 + (t1 - t0) * i / (count - 1);
-          write_surface(prefix + num_buf + ext, slice_manifold(m, SliceAxis::T, t).mesh);
-        }
+        write_frame_sequence(document_manifold(doc), l.words[1], count);
       } else if (cmd == "save-scene") {
         doc.save_scene(l.words[1]);
       } else if (cmd == "screenshot") {
         if (!host.screenshot) throw Error("screenshots need the editor (no renderer here)");
         host.screenshot(l.words[1]);
-      } else if (cmd == "paint-mask") {
-        // The brush's document operation: every surface vertex within RADIUS of the point gets VALUE.
-        const Eigen::Vector3d c(num(l, 1), num(l, 2), num(l, 3));
-        const double r = num(l, 4), value = num(l, 5);
-        if (r <= 0) throw Error("radius must be > 0");
-        if (value < 0 || value > 1) throw Error("mask values are in [0, 1], got " + l.words[5]);
-        std::vector<int> verts;
-        for (int i = 0; i < doc.surface().num_vertices(); ++i)
-          if ((doc.surface().V.row(i).transpose() - c).norm() <= r) verts.push_back(i);
-        if (verts.empty()) throw Error("no surface vertex within " + l.words[4] + " of the point");
-        doc.paint_mask(verts, std::vector<double>(verts.size(), value));
+      } else if (cmd == "paint-mask" || cmd == "paint-dab") {
+        // One dab of the Paint tool's brush (brush.h): paint-mask sets VALUE, paint-dab adds or erases.
+        Brush brush{num(l, 4), num(l, 5), 0.0, BrushMode::Set};
+        if (cmd == "paint-mask") {
+          if (brush.strength < 0 || brush.strength > 1) throw Error("mask values are in [0, 1], got " + l.words[5]);
+          if (l.words.size() > 6) brush.falloff = num(l, 6);
+        } else {
+          brush.falloff = num(l, 6);
+          if (l.words.size() > 7 && l.words[7] != "erase") throw Error("the last word is 'erase' or nothing, got " + l.words[7]);
+          brush.mode = l.words.size() > 7 ? BrushMode::Erase : BrushMode::Add;
+        }
+        if (brush.radius <= 0) throw Error("radius must be > 0");
+        const BrushDab dab = brush_dab(doc.surface().V, doc.mask(), Eigen::Vector3d(num(l, 1), num(l, 2), num(l, 3)), brush);
+        if (dab.vertices.empty()) throw Error("no surface vertex within " + l.words[4] + " of the point");
+        doc.paint_mask(dab.vertices, dab.values);
       } else if (cmd == "export-gltf") {
         if (!host.export_gltf) throw Error("glTF export needs the editor (or `deform export`)");
         host.export_gltf(l.words[1], l.words.size() > 2 ? std::stoi(l.words[2]) : 4);
