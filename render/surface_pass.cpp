@@ -83,15 +83,15 @@ void SurfacePass::upload_mesh(const TriMesh& mesh) {
   set_geometry(own_vertices_.id(), static_cast<int>(v.size()), own_indices_.id(), static_cast<int>(idx.size()));
 }
 
-void SurfacePass::draw(const Camera& cam, const SurfaceStyle& style) {
+void SurfacePass::draw(const view::Camera& cam, const SurfaceStyle& style) {
   const int count = indexed_ ? index_count_ : vertex_count_;
   if (count <= 0) return;
   const Program& prog = style.wireframe ? wireframe_ : shaded_;
   prog.use();
   float m[16];
-  to_gl(view_matrix(cam), m);
+  to_gl(view::view_matrix(cam), m);
   glUniformMatrix4fv(prog.uniform("u_view"), 1, GL_FALSE, m);
-  to_gl(projection_matrix(cam), m);
+  to_gl(view::projection_matrix(cam), m);
   glUniformMatrix4fv(prog.uniform("u_proj"), 1, GL_FALSE, m);
   glUniform2f(prog.uniform("u_viewport"), static_cast<float>(cam.width), static_cast<float>(cam.height));
   glUniform3fv(prog.uniform("u_base_color"), 1, style.base_color.data());

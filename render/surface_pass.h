@@ -8,24 +8,13 @@
 #include <Eigen/Core>
 
 #include "core/mesh/mesh.h"
-#include "render/camera.h"
+#include "core/view/camera.h"
 #include "render/gl_buffer.h"
 #include "render/gl_program.h"
+#include "render/surface_style.h"
 #include "render/vertex_format.h"
 
 namespace dfm::gl {
-
-enum class SurfaceColorMode { Shaded = 0, Scalar = 1, VertexColor = 2 };
-
-struct SurfaceStyle {
-  Eigen::Vector3f base_color{0.50f, 0.40f, 0.31f};  // linear RGB: warm clay
-  Eigen::Vector3f back_color{0.55f, 0.12f, 0.10f};
-  Eigen::Vector3f wire_color{0.08f, 0.08f, 0.09f};
-  bool wireframe = false;
-  bool flat = false;
-  SurfaceColorMode mode = SurfaceColorMode::Shaded;
-  float isolines = 10.0f;  // intervals over [0,1] for the scalar map; 0 = none
-};
 
 // Area-weighted vertex normals for display (zero-area faces ignored; isolated vertices get +z).
 Eigen::MatrixXd vertex_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
@@ -44,7 +33,7 @@ class SurfacePass {
   void set_vertex_data(const std::vector<Eigen::Vector4f>& data);
   // Convenience: uploads a static mesh into the pass's own buffers and uses them.
   void upload_mesh(const TriMesh& mesh);
-  void draw(const Camera& cam, const SurfaceStyle& style);
+  void draw(const view::Camera& cam, const SurfaceStyle& style);
 
   int vertex_count() const { return vertex_count_; }
   int index_count() const { return index_count_; }

@@ -4,9 +4,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "render/camera.h"
+#include "core/view/camera.h"
 
-using namespace dfm::gl;
+using namespace dfm::view;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 

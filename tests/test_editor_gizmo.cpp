@@ -12,8 +12,8 @@ using namespace dfm::editor;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-static gl::Camera cam(bool ortho) {
-  gl::Camera c;
+static view::Camera cam(bool ortho) {
+  view::Camera c;
   c.width = 900;
   c.height = 700;
   c.distance = 6;
@@ -23,11 +23,11 @@ static gl::Camera cam(bool ortho) {
   return c;
 }
 
-static Vector2d px(const gl::Camera& c, const Vector3d& p) { return gl::project_to_pixel(c, p).head<2>(); }
+static Vector2d px(const view::Camera& c, const Vector3d& p) { return view::project_to_pixel(c, p).head<2>(); }
 
 TEST_CASE("axis drag moves exactly the distance between the projected axis points", "[gizmo]") {
   for (bool ortho : {false, true}) {
-    const gl::Camera c = cam(ortho);
+    const view::Camera c = cam(ortho);
     const Vector3d o(0.1, 0.2, 0.0);
     for (int k = 0; k < 3; ++k) {
       const Vector3d a = Vector3d::Unit(k);
@@ -39,7 +39,7 @@ TEST_CASE("axis drag moves exactly the distance between the projected axis point
 }
 
 TEST_CASE("a drag off the axis only moves along the axis", "[gizmo]") {
-  const gl::Camera c = cam(false);
+  const view::Camera c = cam(false);
   const Vector3d o(0, 0, 0);
   const Vector3d d = gizmo_translation(c, o, GizmoPart::AxisY, px(c, o), px(c, o) + Vector2d(40, -30));
   REQUIRE(std::abs(d.x()) < 1e-12);
@@ -47,7 +47,7 @@ TEST_CASE("a drag off the axis only moves along the axis", "[gizmo]") {
 }
 
 TEST_CASE("plane drag follows the cursor within the plane", "[gizmo]") {
-  const gl::Camera c = cam(false);
+  const view::Camera c = cam(false);
   const Vector3d o(0.3, -0.2, 0.1);
   const Vector3d from = o + Vector3d(0.1, 0.05, 0), to = o + Vector3d(-0.2, 0.3, 0);
   const Vector3d d = gizmo_translation(c, o, GizmoPart::PlaneXY, px(c, from), px(c, to));
@@ -55,21 +55,21 @@ TEST_CASE("plane drag follows the cursor within the plane", "[gizmo]") {
 }
 
 TEST_CASE("ring rotation: the swept screen angle, about the view axis, in the drag's sense", "[gizmo]") {
-  const gl::Camera c = cam(false);
+  const view::Camera c = cam(false);
   const Vector3d o(0, 0, 0);
   const Vector2d s = px(c, o);
   // A quarter turn counter-clockwise on screen (screen y points down): right -> up.
   const Eigen::Quaterniond q = gizmo_rotation(c, o, GizmoPart::Ring, s + Vector2d(100, 0), s + Vector2d(0, -100));
   REQUIRE(q.angularDistance(Eigen::Quaterniond::Identity()) == Approx(M_PI / 2));
   // A point right of the origin on screen moves up on screen.
-  const Vector3d p = o + 0.2 * gl::camera_right(c);
+  const Vector3d p = o + 0.2 * view::camera_right(c);
   const Vector2d moved = px(c, q * p);
   REQUIRE(moved.y() < s.y() - 5);
   REQUIRE(std::abs(moved.x() - s.x()) < 2);
 }
 
 TEST_CASE("trackball rotation is identity for no motion and undone by the reverse drag", "[gizmo]") {
-  const gl::Camera c = cam(false);
+  const view::Camera c = cam(false);
   const Vector3d o(0, 0, 0);
   const Vector2d s = px(c, o);
   REQUIRE(gizmo_rotation(c, o, GizmoPart::Trackball, s, s).angularDistance(Eigen::Quaterniond::Identity()) < 1e-12);
@@ -80,7 +80,7 @@ TEST_CASE("trackball rotation is identity for no motion and undone by the revers
 }
 
 TEST_CASE("gizmo_hit finds axis tips, plane squares, ring and nothing far away", "[gizmo]") {
-  const gl::Camera c = cam(false);
+  const view::Camera c = cam(false);
   const Vector3d o(0, 0, 0);
   const GizmoLayout L;
   const double len = world_per_pixels(c, o, L.axis_px);
@@ -95,18 +95,18 @@ TEST_CASE("gizmo_hit finds axis tips, plane squares, ring and nothing far away",
 
 TEST_CASE("world_per_pixels: that many pixels on screen", "[gizmo]") {
   for (bool ortho : {false, true}) {
-    const gl::Camera c = cam(ortho);
+    const view::Camera c = cam(ortho);
     const Vector3d p(0.5, 0.2, 0.4);
     const double w = world_per_pixels(c, p, 50);
-    const double shown = (px(c, p + w * gl::camera_right(c)) - px(c, p)).norm();
+    const double shown = (px(c, p + w * view::camera_right(c)) - px(c, p)).norm();
     REQUIRE(shown == Approx(50).epsilon(1e-6));
   }
 }
 
 TEST_CASE("document camera round trip keeps the view", "[editor]") {
   for (bool ortho : {false, true}) {
-    const gl::Camera c = cam(ortho);
-    gl::Camera back;
+    const view::Camera c = cam(ortho);
+    view::Camera back;
     back.width = c.width;
     back.height = c.height;
     from_document_camera(to_document_camera(c), back);
@@ -120,7 +120,7 @@ TEST_CASE("document camera round trip keeps the view", "[editor]") {
   // A degenerate camera (eye on target) leaves the view unchanged instead of producing NaN.
   dfm::Camera d;
   d.position = d.target;
-  gl::Camera c = cam(false);
+  view::Camera c = cam(false);
   from_document_camera(d, c);
   REQUIRE(c.orientation.coeffs().allFinite());
   REQUIRE(c.distance == 6);

@@ -1,10 +1,10 @@
 // CPU picking: rays against triangles, inside points, and screen-space handle picking.
 #include <catch2/catch.hpp>
 
-#include "render/camera.h"
-#include "render/picking.h"
+#include "core/view/camera.h"
+#include "core/view/picking.h"
 
-using namespace dfm::gl;
+using namespace dfm::view;
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 

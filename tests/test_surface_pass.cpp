@@ -4,7 +4,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "render/camera.h"
+#include "core/view/camera.h"
 #include "render/gl_buffer.h"
 #include "render/gl_context.h"
 #include "render/screenshot.h"
@@ -50,7 +50,7 @@ bool current_program_has_geometry_shader() {
   return has && out == 3;
 }
 
-gl::Image draw(gl::SurfacePass& pass, const gl::Camera& cam, bool wireframe, bool* used_geometry) {
+gl::Image draw(gl::SurfacePass& pass, const view::Camera& cam, bool wireframe, bool* used_geometry) {
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl::SurfaceStyle style;
@@ -76,7 +76,7 @@ TEST_CASE("the surface pass skips the wireframe geometry shader when the wirefra
   m.F << 0, 1, 2, 0, 2, 3;
   gl::SurfacePass pass;
   pass.upload_mesh(m);
-  gl::Camera cam;
+  view::Camera cam;
   cam.width = cam.height = n;
   bool off_gs = true, on_gs = false;
   const gl::Image off = draw(pass, cam, false, &off_gs);

@@ -14,7 +14,7 @@
 #include "core/anim/surface_checks.h"
 #include "core/mesh/io.h"
 #include "core/util/error.h"
-#include "render/camera.h"
+#include "core/view/camera.h"
 #include "render/gl_context.h"
 #include "render/screenshot.h"
 #include "render/slice_pass.h"
@@ -66,6 +66,7 @@ void print_sequence_stats(const dfm::SequenceStats& s) {
 // N frames of the GPU slice (slice shader -> transform feedback -> surface pass) side by side.
 void render_strip(const dfm::AnimationManifold& M, int frames, const std::string& png) {
   namespace gl = dfm::gl;
+  namespace view = dfm::view;
   const int w = std::max(64, std::min(320, 1260 / frames)), h = 400;
   gl::ContextOptions opts;
   opts.width = w * frames;
@@ -74,13 +75,13 @@ void render_strip(const dfm::AnimationManifold& M, int frames, const std::string
   gl::SlicePass slicer;
   slicer.upload(M);
   gl::SurfacePass surface;
-  gl::Camera cam;
+  view::Camera cam;
   cam.width = w;
   cam.height = h;
   const Eigen::Vector3d lo = M.V.leftCols<3>().colwise().minCoeff().transpose();
   const Eigen::Vector3d hi = M.V.leftCols<3>().colwise().maxCoeff().transpose();
-  gl::set_view_preset(cam, gl::ViewPreset::Front);
-  gl::frame_box(cam, lo, hi);
+  view::set_view_preset(cam, view::ViewPreset::Front);
+  view::frame_box(cam, lo, hi);
   glViewport(0, 0, w * frames, h);
   glClearColor(0.145f, 0.15f, 0.165f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

@@ -4,17 +4,17 @@
 
 namespace dfm::editor {
 
-dfm::Camera to_document_camera(const gl::Camera& c) {
+dfm::Camera to_document_camera(const view::Camera& c) {
   dfm::Camera d;
-  d.position = gl::camera_eye(c);
+  d.position = view::camera_eye(c);
   d.target = c.target;
-  d.up = gl::camera_up(c);
+  d.up = view::camera_up(c);
   d.fov_deg = c.fov_y_deg;
   d.ortho = c.orthographic;
   return d;
 }
 
-void from_document_camera(const dfm::Camera& d, gl::Camera& c) {
+void from_document_camera(const dfm::Camera& d, view::Camera& c) {
   Eigen::Vector3d back = d.position - d.target;
   const double dist = back.norm();
   if (!(dist > 0) || !std::isfinite(dist)) return;  // degenerate: keep the current view

@@ -139,7 +139,7 @@ void Editor::open_any(const std::string& path) {
     const std::string ext = file_extension(path);
     if (ends_with(path, ".json")) {
       doc_.load_scene(path);
-      gl::Camera c = cam_;
+      view::Camera c = cam_;
       from_document_camera(doc_.camera(), c);
       cam_ = c;
       view_->sync(doc_, {});
@@ -204,7 +204,7 @@ void Editor::frame_all() {
   const Eigen::AlignedBox3d b = view_->surface_bounds();
   if (b.isEmpty()) return;
   fit_scene_radius();
-  gl::frame_box(cam_, b.min(), b.max());
+  view::frame_box(cam_, b.min(), b.max());
   sync_camera_to_doc();
 }
 
@@ -217,7 +217,7 @@ void Editor::frame_selection() {
     if (h >= 0 && h < P.rows()) b.extend(Eigen::Vector3d(P.row(h)));
   if (b.isEmpty()) return frame_all();
   const double r = std::max(0.5 * b.diagonal().norm(), 0.12 * cam_.scene_radius);
-  gl::frame_sphere(cam_, b.center(), r);
+  view::frame_sphere(cam_, b.center(), r);
   sync_camera_to_doc();
 }
 

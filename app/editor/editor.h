@@ -16,7 +16,7 @@
 #include "app/editor/gizmo.h"
 #include "app/editor/scene_view.h"
 #include "core/scene/document.h"
-#include "render/camera.h"
+#include "core/view/camera.h"
 #include "render/gl_context.h"
 
 struct GLFWwindow;
@@ -137,7 +137,7 @@ class Editor {
   GLFWwindow* window_ = nullptr;
   Document doc_;
   std::unique_ptr<SceneView> view_;
-  gl::Camera cam_;
+  view::Camera cam_;
   BindWorker bind_;
   FilePanel files_;
 

@@ -119,11 +119,11 @@ void Editor::apply_ui_options(const std::string& spec) {
       b = v == "1";
     } else if (k == "preset") {
       bool found = false;
-      for (auto p : {gl::ViewPreset::Front, gl::ViewPreset::Back, gl::ViewPreset::Left, gl::ViewPreset::Right,
-                     gl::ViewPreset::Top, gl::ViewPreset::Bottom, gl::ViewPreset::Iso}) {
-        std::string n = gl::view_preset_name(p);
+      for (auto p : {view::ViewPreset::Front, view::ViewPreset::Back, view::ViewPreset::Left, view::ViewPreset::Right,
+                     view::ViewPreset::Top, view::ViewPreset::Bottom, view::ViewPreset::Iso}) {
+        std::string n = view::view_preset_name(p);
         std::transform(n.begin(), n.end(), n.begin(), ::tolower);
-        if (n == v) gl::set_view_preset(cam_, p), found = true;
+        if (n == v) view::set_view_preset(cam_, p), found = true;
       }
       if (!found) throw bad();
       frame_all();

@@ -11,7 +11,7 @@
 #include "app/editor/camera_sync.h"
 #include "app/editor/editor.h"
 #include "core/scene/brush.h"
-#include "render/picking.h"
+#include "core/view/picking.h"
 
 namespace dfm::editor {
 namespace {
@@ -52,9 +52,9 @@ void Editor::handle_shortcuts() {
     if (io.WantCaptureKeyboard) return;
     if (pressed(GLFW_KEY_F)) frame_selection();
     if (pressed(GLFW_KEY_HOME)) frame_all();
-    if (pressed(GLFW_KEY_1) || pressed(GLFW_KEY_KP_1)) gl::set_view_preset(cam_, gl::ViewPreset::Front);
-    if (pressed(GLFW_KEY_3) || pressed(GLFW_KEY_KP_3)) gl::set_view_preset(cam_, gl::ViewPreset::Right);
-    if (pressed(GLFW_KEY_7) || pressed(GLFW_KEY_KP_7)) gl::set_view_preset(cam_, gl::ViewPreset::Top);
+    if (pressed(GLFW_KEY_1) || pressed(GLFW_KEY_KP_1)) view::set_view_preset(cam_, view::ViewPreset::Front);
+    if (pressed(GLFW_KEY_3) || pressed(GLFW_KEY_KP_3)) view::set_view_preset(cam_, view::ViewPreset::Right);
+    if (pressed(GLFW_KEY_7) || pressed(GLFW_KEY_KP_7)) view::set_view_preset(cam_, view::ViewPreset::Top);
     if (pressed(GLFW_KEY_5) || pressed(GLFW_KEY_KP_5)) cam_.orthographic = !cam_.orthographic;
     if (pressed(GLFW_KEY_Z) && !shift) wireframe_ = !wireframe_;
     if (pressed(GLFW_KEY_Q)) tool_ = Tool::Select;
@@ -84,7 +84,7 @@ void Editor::handle_camera_input() {
   const Eigen::Vector2d m = mouse_in_viewport();
   const bool over = viewport_hovered_;
   if (over && io.MouseWheel != 0.0f) {
-    gl::zoom_to_cursor(cam_, std::pow(0.85, io.MouseWheel), m);
+    view::zoom_to_cursor(cam_, std::pow(0.85, io.MouseWheel), m);
     sync_camera_to_doc();
   }
   if (drag_ == Drag::None && over) {
@@ -94,10 +94,10 @@ void Editor::handle_camera_input() {
       drag_ = Drag::Pan, drag_last_ = m;
   }
   if (drag_ == Drag::Orbit) {
-    if (m != drag_last_) gl::arcball_orbit(cam_, drag_last_, m);
+    if (m != drag_last_) view::arcball_orbit(cam_, drag_last_, m);
     drag_last_ = m;
   } else if (drag_ == Drag::Pan) {
-    gl::pan(cam_, m - drag_last_);
+    view::pan(cam_, m - drag_last_);
     drag_last_ = m;
   }
   if ((drag_ == Drag::Orbit || drag_ == Drag::Pan) && !ImGui::IsMouseDown(ImGuiMouseButton_Left) &&
@@ -139,17 +139,17 @@ void Editor::tool_select(bool clicked, bool released) {
     const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
     Grab g;
     // Points, cage vertices and regions by their glyph; joints; then bones by their segment.
-    int best = gl::pick_projected_point(cam_, P, m, 9);
+    int best = view::pick_projected_point(cam_, P, m, 9);
     if (best >= np && best < np + nb) best = -1;  // a bone's row is its first joint: pick bones by segment
     if (best >= 0) g = {Grab::Handle, best};
     if (g.kind == Grab::None) {
-      const int j = gl::pick_projected_point(cam_, view_->joint_positions(), m, 7);
+      const int j = view::pick_projected_point(cam_, view_->joint_positions(), m, 7);
       if (j >= 0) g = {Grab::Joint, j};
     }
     if (g.kind == Grab::None && nb > 0) {
       std::vector<std::pair<int, int>> segs;
       for (const Bone& b : rig.skeleton.bones) segs.emplace_back(b.a, b.b);
-      const int b = gl::pick_projected_segment(cam_, view_->joint_positions(), segs, m, 6);
+      const int b = view::pick_projected_segment(cam_, view_->joint_positions(), segs, m, 6);
       if (b >= 0) g = {Grab::Handle, np + b};
     }
     const bool additive = ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl;
@@ -177,8 +177,8 @@ void Editor::tool_select(bool clicked, bool released) {
       }
     } else {
       // Nothing grabbed: a click on the surface lists that vertex's weights; empty space orbits.
-      const gl::Ray ray = gl::pixel_ray(cam_, m.x(), m.y());
-      const gl::SurfaceHit hit = gl::pick_surface(ray, view_->display_vertices(), view_->display_faces());
+      const view::Ray ray = view::pixel_ray(cam_, m.x(), m.y());
+      const view::SurfaceHit hit = view::pick_surface(ray, view_->display_vertices(), view_->display_faces());
       if (!additive) doc_.set_selection(Selection{});
       if (hit.hit()) {
         picked_vertex_ = hit.nearest_vertex;
@@ -192,14 +192,14 @@ void Editor::tool_select(bool clicked, bool released) {
   }
   if (drag_ == Drag::Handle) {
     // Move in the plane through the handle that faces the camera.
-    gl::Camera c = cam_;
+    view::Camera c = cam_;
     c.target = drag_point_;
-    c.distance = (drag_point_ - gl::camera_eye(cam_)).dot(gl::camera_forward(cam_));
+    c.distance = (drag_point_ - view::camera_eye(cam_)).dot(view::camera_forward(cam_));
     if (c.distance > 1e-9 || cam_.orthographic) {
       if (cam_.orthographic) c.distance = cam_.distance;
-      const Eigen::Vector3d p = gl::pixel_on_target_plane(cam_.orthographic ? cam_ : c, m.x(), m.y());
+      const Eigen::Vector3d p = view::pixel_on_target_plane(cam_.orthographic ? cam_ : c, m.x(), m.y());
       Eigen::Vector3d q = p;
-      if (cam_.orthographic) q = p + (drag_point_ - p).dot(gl::camera_forward(cam_)) * gl::camera_forward(cam_);
+      if (cam_.orthographic) q = p + (drag_point_ - p).dot(view::camera_forward(cam_)) * view::camera_forward(cam_);
       if ((q - drag_point_).norm() > 0) {
         if (drag_joint_ >= 0) {
           doc_.move_joint(drag_joint_, q);
@@ -222,13 +222,13 @@ void Editor::tool_select(bool clicked, bool released) {
 void Editor::tool_place_point(bool clicked) {
   if (!clicked) return;
   const Eigen::Vector2d m = mouse_in_viewport();
-  const gl::Ray ray = gl::pixel_ray(cam_, m.x(), m.y());
+  const view::Ray ray = view::pixel_ray(cam_, m.x(), m.y());
   Eigen::Vector3d p;
   bool ok = false;
   if (place_inside_) {
-    ok = gl::pick_inside_point(ray, view_->display_vertices(), view_->display_faces(), p);
+    ok = view::pick_inside_point(ray, view_->display_vertices(), view_->display_faces(), p);
   } else {
-    const gl::SurfaceHit h = gl::pick_surface(ray, view_->display_vertices(), view_->display_faces());
+    const view::SurfaceHit h = view::pick_surface(ray, view_->display_vertices(), view_->display_faces());
     ok = h.hit();
     p = h.point;
   }
@@ -248,10 +248,10 @@ void Editor::tool_draw_bone(bool clicked) {
       l.push_back(gl::overlay_vertex(bone_chain_[i], rgba(1, 0.75f, 0.3f)));
     }
     if (viewport_hovered_) {
-      gl::Camera c = cam_;
+      view::Camera c = cam_;
       c.target = bone_chain_.back();
       l.push_back(gl::overlay_vertex(bone_chain_.back(), rgba(1, 1, 1, 0.6f)));
-      l.push_back(gl::overlay_vertex(gl::pixel_on_target_plane(c, m.x(), m.y()), rgba(1, 1, 1, 0.6f)));
+      l.push_back(gl::overlay_vertex(view::pixel_on_target_plane(c, m.x(), m.y()), rgba(1, 1, 1, 0.6f)));
     }
     view_->add_overlay_lines(l, 3.0f);
     std::vector<gl::OverlayVertex> pts;
@@ -271,7 +271,7 @@ void Editor::tool_draw_bone(bool clicked) {
   }
   if (!clicked) return;
   if (bone_chain_.empty()) {
-    const int j = gl::pick_projected_point(cam_, view_->joint_positions(), m, 8);
+    const int j = view::pick_projected_point(cam_, view_->joint_positions(), m, 8);
     if (j >= 0) {
       bone_chain_parent_ = j;
       bone_chain_.push_back(view_->joint_positions().row(j));
@@ -279,13 +279,13 @@ void Editor::tool_draw_bone(bool clicked) {
     }
     bone_chain_parent_ = -1;
   }
-  const gl::Ray ray = gl::pixel_ray(cam_, m.x(), m.y());
+  const view::Ray ray = view::pixel_ray(cam_, m.x(), m.y());
   Eigen::Vector3d p;
-  if (!gl::pick_inside_point(ray, view_->display_vertices(), view_->display_faces(), p)) {
+  if (!view::pick_inside_point(ray, view_->display_vertices(), view_->display_faces(), p)) {
     if (bone_chain_.empty()) return status("click inside the surface to start a bone chain");
-    gl::Camera c = cam_;  // off the surface: continue at the last joint's depth
+    view::Camera c = cam_;  // off the surface: continue at the last joint's depth
     c.target = bone_chain_.back();
-    p = gl::pixel_on_target_plane(c, m.x(), m.y());
+    p = view::pixel_on_target_plane(c, m.x(), m.y());
   }
   bone_chain_.push_back(p);
 }
@@ -293,9 +293,9 @@ void Editor::tool_draw_bone(bool clicked) {
 void Editor::tool_paint(bool down, bool clicked, bool released) {
   const Eigen::Vector2d m = mouse_in_viewport();
   const Eigen::MatrixXd& V = view_->display_vertices();
-  const gl::SurfaceHit hit = viewport_hovered_ || drag_ == Drag::Paint
-                                 ? gl::pick_surface(gl::pixel_ray(cam_, m.x(), m.y()), V, view_->display_faces())
-                                 : gl::SurfaceHit{};
+  const view::SurfaceHit hit = viewport_hovered_ || drag_ == Drag::Paint
+                                 ? view::pick_surface(view::pixel_ray(cam_, m.x(), m.y()), V, view_->display_faces())
+                                 : view::SurfaceHit{};
   const double radius = brush_radius_ * std::max(1e-9, view_->surface_bounds().diagonal().norm());
   const bool erase = ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift;
   if (hit.hit()) {
@@ -373,9 +373,9 @@ void Editor::tool_pose(bool clicked, bool released) {
     }
   } else {
     const double r = world_per_pixels(cam_, origin, GizmoLayout{}.ring_px);
-    for (auto& v : gl::circle_lines(origin, -gl::camera_forward(cam_), r, hl(GizmoPart::Ring, rgba(0.95f, 0.95f, 1.0f)), 72))
+    for (auto& v : gl::circle_lines(origin, -view::camera_forward(cam_), r, hl(GizmoPart::Ring, rgba(0.95f, 0.95f, 1.0f)), 72))
       l.push_back(v);
-    for (auto& v : gl::circle_lines(origin, -gl::camera_forward(cam_), 0.98 * r,
+    for (auto& v : gl::circle_lines(origin, -view::camera_forward(cam_), 0.98 * r,
                                     hover == GizmoPart::Trackball ? rgba(1, 0.9f, 0.3f, 0.35f) : rgba(1, 1, 1, 0.12f), 72))
       l.push_back(v);
   }

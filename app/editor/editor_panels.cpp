@@ -149,9 +149,9 @@ void Editor::draw_menu_bar() {
     ImGui::MenuItem("Grid", nullptr, &show_grid_);
     ImGui::MenuItem("Handles", nullptr, &show_handles_);
     ImGui::Separator();
-    for (auto p : {gl::ViewPreset::Front, gl::ViewPreset::Back, gl::ViewPreset::Left, gl::ViewPreset::Right,
-                   gl::ViewPreset::Top, gl::ViewPreset::Bottom, gl::ViewPreset::Iso})
-      if (ImGui::MenuItem(gl::view_preset_name(p))) gl::set_view_preset(cam_, p), sync_camera_to_doc();
+    for (auto p : {view::ViewPreset::Front, view::ViewPreset::Back, view::ViewPreset::Left, view::ViewPreset::Right,
+                   view::ViewPreset::Top, view::ViewPreset::Bottom, view::ViewPreset::Iso})
+      if (ImGui::MenuItem(view::view_preset_name(p))) view::set_view_preset(cam_, p), sync_camera_to_doc();
     ImGui::EndMenu();
   }
   // Document name and dirty flag on the right of the bar.
@@ -319,9 +319,9 @@ void Editor::draw_view_section() {
   ImGui::Checkbox("Handles", &show_handles_);
   const float bw = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4;
   int i = 0;
-  for (auto p : {gl::ViewPreset::Front, gl::ViewPreset::Right, gl::ViewPreset::Top, gl::ViewPreset::Iso}) {
+  for (auto p : {view::ViewPreset::Front, view::ViewPreset::Right, view::ViewPreset::Top, view::ViewPreset::Iso}) {
     if (i++) ImGui::SameLine();
-    if (ImGui::Button(gl::view_preset_name(p), ImVec2(bw, 0))) gl::set_view_preset(cam_, p), sync_camera_to_doc();
+    if (ImGui::Button(view::view_preset_name(p), ImVec2(bw, 0))) view::set_view_preset(cam_, p), sync_camera_to_doc();
   }
   if (ImGui::Button("Frame all", ImVec2(2 * bw + ImGui::GetStyle().ItemSpacing.x, 0))) frame_all();
   ImGui::SameLine();

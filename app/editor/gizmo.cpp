@@ -6,8 +6,8 @@
 namespace dfm::editor {
 namespace {
 
-Eigen::Vector2d image(const gl::Camera& cam, const Eigen::Vector3d& p) {
-  return gl::project_to_pixel(cam, p).head<2>();
+Eigen::Vector2d image(const view::Camera& cam, const Eigen::Vector3d& p) {
+  return view::project_to_pixel(cam, p).head<2>();
 }
 
 double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
@@ -18,7 +18,7 @@ double segment_distance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, cons
 }
 
 // Closest point on the line origin + s*axis to the ray: the parameter s.
-double axis_parameter(const gl::Ray& r, const Eigen::Vector3d& origin, const Eigen::Vector3d& axis) {
+double axis_parameter(const view::Ray& r, const Eigen::Vector3d& origin, const Eigen::Vector3d& axis) {
   const Eigen::Vector3d w = origin - r.origin;
   const double b = axis.dot(r.direction), d = axis.dot(w), e = r.direction.dot(w);
   const double denom = 1.0 - b * b;  // both unit
@@ -26,7 +26,7 @@ double axis_parameter(const gl::Ray& r, const Eigen::Vector3d& origin, const Eig
   return (b * e - d) / denom;
 }
 
-bool plane_point(const gl::Ray& r, const Eigen::Vector3d& origin, const Eigen::Vector3d& n,
+bool plane_point(const view::Ray& r, const Eigen::Vector3d& origin, const Eigen::Vector3d& n,
                  Eigen::Vector3d& out) {
   const double dn = r.direction.dot(n);
   if (std::abs(dn) < 1e-9) return false;
@@ -36,14 +36,14 @@ bool plane_point(const gl::Ray& r, const Eigen::Vector3d& origin, const Eigen::V
 
 }  // namespace
 
-double world_per_pixels(const gl::Camera& cam, const Eigen::Vector3d& p, double px) {
+double world_per_pixels(const view::Camera& cam, const Eigen::Vector3d& p, double px) {
   double depth = cam.distance;
-  if (!cam.orthographic) depth = std::max(1e-9, (p - gl::camera_eye(cam)).dot(gl::camera_forward(cam)));
+  if (!cam.orthographic) depth = std::max(1e-9, (p - view::camera_eye(cam)).dot(view::camera_forward(cam)));
   const double half_h = depth * std::tan(0.5 * cam.fov_y_deg * M_PI / 180.0);
   return px * 2.0 * half_h / std::max(1.0, cam.height);
 }
 
-GizmoPart gizmo_hit(const gl::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
+GizmoPart gizmo_hit(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
                     const Eigen::Vector2d& px, const GizmoLayout& L) {
   const Eigen::Vector2d o = image(cam, origin);
   if (rotate_mode) {
@@ -60,7 +60,7 @@ GizmoPart gizmo_hit(const gl::Camera& cam, const Eigen::Vector3d& origin, bool r
     const Eigen::Vector3d u = axes[(k + 1) % 3], v = axes[(k + 2) % 3];
     // Point in the plane under the cursor, in (u, v) coordinates.
     Eigen::Vector3d hit;
-    if (!plane_point(gl::pixel_ray(cam, px.x(), px.y()), origin, axes[k], hit)) continue;
+    if (!plane_point(view::pixel_ray(cam, px.x(), px.y()), origin, axes[k], hit)) continue;
     const double a = (hit - origin).dot(u), b = (hit - origin).dot(v);
     if (a >= p0 && a <= p1 && b >= p0 && b <= p1) return static_cast<GizmoPart>(int(GizmoPart::PlaneYZ) + k);
   }
@@ -76,10 +76,10 @@ GizmoPart gizmo_hit(const gl::Camera& cam, const Eigen::Vector3d& origin, bool r
   return best;
 }
 
-Eigen::Vector3d gizmo_translation(const gl::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
+Eigen::Vector3d gizmo_translation(const view::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
                                   const Eigen::Vector2d& from_px, const Eigen::Vector2d& to_px) {
-  const gl::Ray r0 = gl::pixel_ray(cam, from_px.x(), from_px.y());
-  const gl::Ray r1 = gl::pixel_ray(cam, to_px.x(), to_px.y());
+  const view::Ray r0 = view::pixel_ray(cam, from_px.x(), from_px.y());
+  const view::Ray r1 = view::pixel_ray(cam, to_px.x(), to_px.y());
   if (part >= GizmoPart::AxisX && part <= GizmoPart::AxisZ) {
     const Eigen::Vector3d axis = Eigen::Vector3d::Unit(int(part) - int(GizmoPart::AxisX));
     return (axis_parameter(r1, origin, axis) - axis_parameter(r0, origin, axis)) * axis;
@@ -92,7 +92,7 @@ Eigen::Vector3d gizmo_translation(const gl::Camera& cam, const Eigen::Vector3d& 
   return Eigen::Vector3d::Zero();
 }
 
-Eigen::Quaterniond gizmo_rotation(const gl::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
+Eigen::Quaterniond gizmo_rotation(const view::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
                                   const Eigen::Vector2d& from_px, const Eigen::Vector2d& to_px,
                                   const GizmoLayout& L) {
   const Eigen::Vector2d o = image(cam, origin);
@@ -102,7 +102,7 @@ Eigen::Quaterniond gizmo_rotation(const gl::Camera& cam, const Eigen::Vector3d& 
     // Screen y points down: a counter-clockwise turn on screen is a negative cross product here.
     const double angle = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
     // Counter-clockwise on screen = positive about the axis pointing at the viewer.
-    return Eigen::Quaterniond(Eigen::AngleAxisd(-angle, -gl::camera_forward(cam)));
+    return Eigen::Quaterniond(Eigen::AngleAxisd(-angle, -view::camera_forward(cam)));
   }
   if (part == GizmoPart::Trackball) {
     auto sphere = [&](const Eigen::Vector2d& s) {

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "render/camera.h"
+#include "core/view/camera.h"
 
 namespace dfm::editor {
 
@@ -19,18 +19,18 @@ struct GizmoLayout {
 };
 
 // World length that appears `px` pixels long at `p`.
-double world_per_pixels(const gl::Camera& cam, const Eigen::Vector3d& p, double px);
+double world_per_pixels(const view::Camera& cam, const Eigen::Vector3d& p, double px);
 // The part under the cursor. Translate mode offers axes and planes; rotate mode the view ring
 // (turn about the view axis) and the disc inside it (trackball).
-GizmoPart gizmo_hit(const gl::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
+GizmoPart gizmo_hit(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
                     const Eigen::Vector2d& px, const GizmoLayout& layout = {});
 // World translation for a drag from one pixel to another on the given part (axis: along it only;
 // plane: within it). Zero for parts that do not translate.
-Eigen::Vector3d gizmo_translation(const gl::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
+Eigen::Vector3d gizmo_translation(const view::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
                                   const Eigen::Vector2d& from_px, const Eigen::Vector2d& to_px);
 // Rotation for a drag on the ring (about the view axis, by the angle swept around the origin's image)
 // or on the trackball disc (arcball centred on the origin's image).
-Eigen::Quaterniond gizmo_rotation(const gl::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
+Eigen::Quaterniond gizmo_rotation(const view::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,
                                   const Eigen::Vector2d& from_px, const Eigen::Vector2d& to_px,
                                   const GizmoLayout& layout = {});
 

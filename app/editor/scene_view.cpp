@@ -377,7 +377,7 @@ void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
   }
 }
 
-void SceneView::draw(const Document& doc, const gl::Camera& cam, const ViewSettings& s) {
+void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSettings& s) {
   gl::SurfaceStyle style;
   style.wireframe = s.wireframe;
   style.mode = s.weight_view == WeightView::AllHandles ? gl::SurfaceColorMode::VertexColor
@@ -406,7 +406,7 @@ void SceneView::draw(const Document& doc, const gl::Camera& cam, const ViewSetti
   extra_points_.clear();
 }
 
-void SceneView::draw_overlays(const Document& doc, const gl::Camera& cam, const ViewSettings& s) {
+void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s) {
   const Rig& rig = doc.rig();
   const auto& sel = doc.selection().handles;
   auto selected = [&](int h) { return std::find(sel.begin(), sel.end(), h) != sel.end(); };

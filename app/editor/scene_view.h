@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "core/scene/document.h"
-#include "render/camera.h"
+#include "core/view/camera.h"
 #include "render/overlay_pass.h"
 #include "render/surface_pass.h"
 
@@ -39,7 +39,7 @@ class SceneView {
   SceneView();
   ~SceneView();
   void sync(const Document& doc, const ViewSettings& s);
-  void draw(const Document& doc, const gl::Camera& cam, const ViewSettings& s);
+  void draw(const Document& doc, const view::Camera& cam, const ViewSettings& s);
   // Extra overlay lines for this frame only (brush circle, gizmo, bone being drawn).
   void add_overlay_lines(const std::vector<gl::OverlayVertex>& pairs, float width);
   void add_overlay_points(const std::vector<gl::OverlayVertex>& points, float size);
@@ -75,7 +75,7 @@ class SceneView {
   void show_rest(const TriMesh& rest);
   void update_colors(const Document& doc, const ViewSettings& s);
   void update_handles(const Document& doc, const ViewSettings& s);
-  void draw_overlays(const Document& doc, const gl::Camera& cam, const ViewSettings& s);
+  void draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s);
 
   gl::SurfacePass surface_;
   gl::OverlayPass overlay_;

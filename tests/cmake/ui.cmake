@@ -1,11 +1,10 @@
-# The editor's CPU logic (camera, picking, gizmo) is tested from its sources so a half-written GL pass
-# elsewhere in render/ never blocks these tests.
-dfm_test(test_camera SOURCES test_camera.cpp ${PROJECT_SOURCE_DIR}/render/camera.cpp LIBS Eigen3::Eigen)
-dfm_test(test_editor_picking SOURCES test_editor_picking.cpp ${PROJECT_SOURCE_DIR}/render/camera.cpp
-         ${PROJECT_SOURCE_DIR}/render/picking.cpp LIBS Eigen3::Eigen)
-dfm_test(test_editor_gizmo SOURCES test_editor_gizmo.cpp ${PROJECT_SOURCE_DIR}/render/camera.cpp
+# The editor's CPU logic: camera and picking (core/view), and the gizmo, built from its sources so a
+# half-written GL pass in render/ never blocks these tests.
+dfm_test(test_camera SOURCES test_camera.cpp LIBS dfm_view)
+dfm_test(test_editor_picking SOURCES test_editor_picking.cpp LIBS dfm_view)
+dfm_test(test_editor_gizmo SOURCES test_editor_gizmo.cpp
          ${PROJECT_SOURCE_DIR}/app/editor/gizmo.cpp ${PROJECT_SOURCE_DIR}/app/editor/camera_sync.cpp
-         ${PROJECT_SOURCE_DIR}/app/editor/file_panel.cpp LIBS Eigen3::Eigen imgui)
+         ${PROJECT_SOURCE_DIR}/app/editor/file_panel.cpp LIBS dfm_view imgui)
 
 # The real editor binary under the suite's X server.
 if(DFM_BUILD_EDITOR)

@@ -1,9 +1,9 @@
-#include "render/camera.h"
+#include "core/view/camera.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace dfm::gl {
+namespace dfm::view {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
@@ -171,4 +171,4 @@ const char* view_preset_name(ViewPreset preset) {
   return "?";
 }
 
-}  // namespace dfm::gl
+}  // namespace dfm::view

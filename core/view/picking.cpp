@@ -1,10 +1,10 @@
-#include "render/picking.h"
+#include "core/view/picking.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace dfm::gl {
+namespace dfm::view {
 
 bool ray_triangle(const Ray& ray, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                   const Eigen::Vector3d& c, double& t, double& u, double& v) {
@@ -126,4 +126,4 @@ std::vector<std::pair<int, double>> vertices_within(const Eigen::MatrixXd& V,
   return out;
 }
 
-}  // namespace dfm::gl
+}  // namespace dfm::view

@@ -4,9 +4,9 @@
 
 #include <Eigen/Core>
 
-#include "render/camera.h"
+#include "core/view/camera.h"
 
-namespace dfm::gl {
+namespace dfm::view {
 
 struct SurfaceHit {
   int face = -1;  // -1: missed
@@ -44,4 +44,4 @@ int pick_projected_segment(const Camera& cam, const Eigen::MatrixXd& P,
 std::vector<std::pair<int, double>> vertices_within(const Eigen::MatrixXd& V,
                                                     const Eigen::Vector3d& center, double radius);
 
-}  // namespace dfm::gl
+}  // namespace dfm::view

@@ -1,11 +1,12 @@
 #pragma once
-// The editor's orbit camera, all on the CPU so every gesture is unit-tested without a GPU.
-// The camera looks at `target` from `distance` away; `orientation` rotates camera space (x right,
-// y up, looking down -z) into world space. Pixel coordinates are GLFW's: origin top-left, y down.
+// The viewport's orbit camera (the editor's, and `deform manifold --strip`'s renders), all on the CPU so
+// every gesture is unit-tested without a GPU. The camera looks at `target` from `distance` away;
+// `orientation` rotates camera space (x right, y up, looking down -z) into world space. Pixel
+// coordinates are GLFW's: origin top-left, y down.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace dfm::gl {
+namespace dfm::view {
 
 struct Camera {
   Eigen::Vector3d target = Eigen::Vector3d::Zero();
@@ -60,4 +61,4 @@ void frame_sphere(Camera& c, const Eigen::Vector3d& center, double radius);
 void set_view_preset(Camera& c, ViewPreset preset);
 const char* view_preset_name(ViewPreset preset);
 
-}  // namespace dfm::gl
+}  // namespace dfm::view
