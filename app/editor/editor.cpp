@@ -105,12 +105,14 @@ Editor::Editor(const EditorOptions& opts)
   install_event_callbacks(window_);
   glfwSwapInterval(opts.quit ? 0 : 1);
   init_imgui();
-  view_ = std::make_unique<SceneView>();
+  gpu_ = std::make_unique<gl::GlBackend>();
+  view_ = std::make_unique<SceneView>(*gpu_);
   last_autosave_ = std::chrono::steady_clock::now();
 }
 
 Editor::~Editor() {
   view_.reset();
+  gpu_.reset();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();

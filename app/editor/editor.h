@@ -17,6 +17,7 @@
 #include "app/editor/scene_view.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
+#include "render/gl_backend.h"
 #include "render/gl_context.h"
 
 struct GLFWwindow;
@@ -136,6 +137,7 @@ class Editor {
   gl::Context ctx_;
   GLFWwindow* window_ = nullptr;
   Document doc_;
+  std::unique_ptr<gl::GlBackend> gpu_;  // the viewport's passes; outlives view_
   std::unique_ptr<SceneView> view_;
   view::Camera cam_;
   BindWorker bind_;

@@ -16,9 +16,6 @@
 #include "core/anim/slice.h"
 #include "core/skin/skin.h"
 #include "core/skin/stbs.h"
-#include "render/interval_slice_pass.h"
-#include "render/skin_pass.h"
-#include "render/slice_pass.h"
 
 namespace dfm::editor {
 
@@ -60,7 +57,7 @@ std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W) {
   return out;
 }
 
-// Posing and slicing on the GPU: the skin pass writes the posed surface (LBS/DQS/STBS in the vertex
+// Posing and slicing on the GPU (through the backend): the skin pass writes the posed surface (LBS/DQS/STBS in the vertex
 // shader) and, with two or more keys, the slice pass cuts the animation manifold at the current time.
 // The manifold is built on the CPU exactly as the saved frames are (key_surfaces: same track,
 // inbetweens, method, mesh keys), and rebuilt only when the keys, weights or method change.
@@ -73,14 +70,13 @@ struct SceneView::Deformer {
   Eigen::Index weights_rows = -1, weights_cols = -1;
   const double* surface_data = nullptr;
   int k = 0;
-  SkinBinding binding;
-  std::unique_ptr<gl::SkinPass> skin;
+  std::unique_ptr<gl::SkinDeformer> skin;
   // The animation manifold (its signature covers key times, poses and meshes, weights, method).
   ManifoldBuilder builder;
-  std::unique_ptr<gl::SlicePass> slice;
+  std::unique_ptr<gl::ManifoldSlicer> slice;
   Eigen::MatrixXd normals4;  // the manifold's unit 4D vertex normals
   IntervalCachePolicy interval_policy{4};
-  std::vector<std::unique_ptr<gl::IntervalSlicePass>> interval_slots;  // one per policy slot
+  std::vector<std::unique_ptr<gl::IntervalSlicer>> interval_slots;  // one per policy slot
   int shown_slot = -1;  // the interval slot on display, -1 for the general pass
   bool have_slice_time = false;  // the last frame was a time slice at slice_time
   double slice_time = 0;
@@ -88,8 +84,6 @@ struct SceneView::Deformer {
   bool has_manifold = false;
   std::uint64_t pose_sig = 0;
   bool prefer_pose = false;  // the pose was edited after the last time change: show it, not the slice
-  gl::Buffer indices;
-  int index_count = 0;
   bool gpu_output_stale = true;  // display_V_ must be read back before CPU use
 };
 
@@ -100,7 +94,7 @@ std::uint64_t pose_hash(std::uint64_t h, const Pose& p) {
 }
 }  // namespace
 
-SceneView::SceneView() : deformer_(std::make_unique<Deformer>()) {}
+SceneView::SceneView(gl::RenderBackend& gpu) : gpu_(gpu), deformer_(std::make_unique<Deformer>()) {}
 SceneView::~SceneView() = default;
 
 void SceneView::add_overlay_lines(const std::vector<gl::OverlayVertex>& pairs, float width) {
@@ -166,27 +160,24 @@ void SceneView::show_rest(const TriMesh& rest) {
   showing_slice_ = false;
   display_count_ = rest.num_vertices();
   display_faces_ = rest.num_faces();
-  surface_.upload_mesh(rest);
+  gpu_.show_mesh(rest);
 }
 
 void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
   Deformer& d = *deformer_;
   const TriMesh& rest = doc.surface();
   error_.clear();
-  if (rest.V.data() != d.surface_data || rest.V.rows() != bounds_rows_) {
-    bounds_.setEmpty();
-    for (int i = 0; i < rest.V.rows(); ++i) bounds_.extend(Eigen::Vector3d(rest.V.row(i)));
-    bounds_rows_ = rest.V.rows();
-  }
+  bounds_.setEmpty();
+  for (int i = 0; i < rest.V.rows(); ++i) bounds_.extend(Eigen::Vector3d(rest.V.row(i)));
   try {
     update_skin(doc);
     // Animation manifold (>= 2 keys, pose keys baked, mesh keys as they are), rebuilt when what it is
     // made of changes; one with a transition builds on a worker (the pose or rest shows meanwhile).
     if (d.builder.update(doc)) {
-      if (!d.slice) d.slice = std::make_unique<gl::SlicePass>();
+      if (!d.slice) d.slice = gpu_.make_slicer();
       const AnimationManifold& m = d.builder.manifold();
       d.normals4 = manifold_vertex_normals(m);
-      d.slice->upload(m, &d.normals4);
+      d.slice->upload(m, d.normals4);
       d.interval_policy.reset(manifold_vertex_times(m));
       d.interval_slots.clear();
       d.interval_slots.resize(d.interval_policy.capacity());
@@ -203,58 +194,15 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       if (d.pose_sig != 0) d.prefer_pose = true;
       d.pose_sig = psig;
     }
-    const bool slice = d.has_manifold && (s.sweep_axis >= 0 || !d.prefer_pose || !d.skin);
-    if (slice) {
-      SliceAxis axis = SliceAxis::T;
-      double value = doc.time();
-      if (s.sweep_axis >= 0) {
-        const AnimationManifold& m = d.builder.manifold();
-        axis = static_cast<SliceAxis>(s.sweep_axis);
-        const double lo = m.V.col(s.sweep_axis).minCoeff(), hi = m.V.col(s.sweep_axis).maxCoeff();
-        value = lo + s.sweep_value * (hi - lo);
-      }
-      const bool time_axis = axis == SliceAxis::T;
-      const double step = time_axis && d.have_slice_time ? value - d.slice_time : 0.0;
-      SliceDecision route = d.interval_policy.choose(time_axis, value, step);
-      if (route.route == SliceRoute::Build) {
-        const auto b0 = std::chrono::steady_clock::now();
-        try {
-          const AnimationManifold& m = d.builder.manifold();
-          const auto& times = d.interval_policy.times();
-          const IntervalSlice topology =
-              build_interval_slice(m, d.normals4, times[route.interval], times[route.interval + 1]);
-          auto& pass = d.interval_slots[route.slot];
-          if (!pass) pass = std::make_unique<gl::IntervalSlicePass>();
-          pass->upload(topology, m, d.normals4);
-        } catch (const std::exception&) {  // not a clean interval: the general pass draws it
-          d.interval_policy.forget(route.slot);
-          route = SliceDecision{};
-        }
-        d.interval_build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b0).count();
-      }
-      if (route.route != SliceRoute::General) {
-        gl::IntervalSlicePass& pass = *d.interval_slots[route.slot];
-        pass.evaluate(value);
-        surface_.set_geometry(pass.output_buffer(), pass.num_vertices(), pass.index_buffer(), pass.index_count());
-        display_count_ = pass.num_vertices();
-        display_faces_ = pass.num_triangles();
-        d.shown_slot = route.slot;
-      } else {
-        const int tris = d.slice->slice(axis, value);
-        surface_.set_geometry(d.slice->output().id(), 3 * tris, 0, 0);
-        display_count_ = 3 * tris;
-        display_faces_ = tris;
-        d.shown_slot = -1;
-      }
-      d.have_slice_time = time_axis;
-      d.slice_time = value;
-      showing_slice_ = true;
+    if (d.has_manifold && (s.sweep_axis >= 0 || !d.prefer_pose || !d.skin)) {
+      show_slice(doc, s);
     } else if (d.skin) {
       d.skin->set_pose(pose, stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
       d.skin->run(doc.method());
-      surface_.set_geometry(d.skin->output_buffer(), d.skin->num_vertices(), d.indices.id(), d.index_count);
-      display_count_ = d.skin->num_vertices();
-      display_faces_ = d.index_count / 3;
+      const gl::GeometryRef g = d.skin->output();
+      gpu_.show_geometry(g);
+      display_count_ = g.vertex_count;
+      display_faces_ = g.index_count / 3;
       showing_slice_ = false;
       d.shown_slot = -1;
       d.have_slice_time = false;
@@ -273,6 +221,56 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
   colors_valid_ = false;
 }
 
+// The manifold's slice on display: a time inside a cached (or worth caching) interval by
+// interpolation, anything else by the general pass (IntervalCachePolicy, slice_cache.h).
+void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
+  Deformer& d = *deformer_;
+  const AnimationManifold& m = d.builder.manifold();
+  SliceAxis axis = SliceAxis::T;
+  double value = doc.time();
+  if (s.sweep_axis >= 0) {
+    axis = static_cast<SliceAxis>(s.sweep_axis);
+    const double lo = m.V.col(s.sweep_axis).minCoeff(), hi = m.V.col(s.sweep_axis).maxCoeff();
+    value = lo + s.sweep_value * (hi - lo);
+  }
+  const bool time_axis = axis == SliceAxis::T;
+  const double step = time_axis && d.have_slice_time ? value - d.slice_time : 0.0;
+  SliceDecision route = d.interval_policy.choose(time_axis, value, step);
+  if (route.route == SliceRoute::Build) {
+    const auto b0 = std::chrono::steady_clock::now();
+    try {
+      const auto& times = d.interval_policy.times();
+      const IntervalSlice topology =
+          build_interval_slice(m, d.normals4, times[route.interval], times[route.interval + 1]);
+      auto& slot = d.interval_slots[route.slot];
+      if (!slot) slot = gpu_.make_interval_slicer();
+      slot->upload(topology, m, d.normals4);
+    } catch (const std::exception&) {  // not a clean interval: the general pass draws it
+      d.interval_policy.forget(route.slot);
+      route = SliceDecision{};
+    }
+    d.interval_build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b0).count();
+  }
+  if (route.route != SliceRoute::General) {
+    gl::IntervalSlicer& slot = *d.interval_slots[route.slot];
+    slot.evaluate(value);
+    const gl::GeometryRef g = slot.output();
+    gpu_.show_geometry(g);
+    display_count_ = g.vertex_count;
+    display_faces_ = static_cast<int>(slot.faces().rows());
+    d.shown_slot = route.slot;
+  } else {
+    const int tris = d.slice->slice(axis, value);
+    gpu_.show_geometry(d.slice->output());
+    display_count_ = 3 * tris;
+    display_faces_ = tris;
+    d.shown_slot = -1;
+  }
+  d.have_slice_time = time_axis;
+  d.slice_time = value;
+  showing_slice_ = true;
+}
+
 // The GPU skin pass of the bound weights; none without weights (the rest surface shows then).
 void SceneView::update_skin(const Document& doc) {
   Deformer& d = *deformer_;
@@ -289,18 +287,12 @@ void SceneView::update_skin(const Document& doc) {
   if (d.skin && W.data() == d.weights_data && W.rows() == d.weights_rows && W.cols() == d.weights_cols &&
       rest.V.data() == d.surface_data && k == d.k)
     return;
-  d.binding = make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k);
-  d.skin = std::make_unique<gl::SkinPass>(d.binding);
+  d.skin = gpu_.make_skin(make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k), rest.F);
   d.weights_data = W.data();
   d.weights_rows = W.rows();
   d.weights_cols = W.cols();
   d.surface_data = rest.V.data();
   d.k = k;
-  std::vector<std::uint32_t> idx(rest.F.size());
-  for (int f = 0; f < rest.F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) idx[3 * f + c] = static_cast<std::uint32_t>(rest.F(f, c));
-  d.indices.upload(GL_ARRAY_BUFFER, idx);
-  d.index_count = static_cast<int>(idx.size());
 }
 
 bool SceneView::slice_from_cache() const { return showing_slice_ && deformer_->shown_slot >= 0; }
@@ -334,7 +326,7 @@ void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
       for (int v : doc.rig().regions[r].vertices)
         if (v >= 0 && v < nv) data[v].x() = std::max(data[v].x(), 0.75f);
   }
-  surface_.set_vertex_data(data);
+  gpu_.set_surface_data(data);
 }
 
 void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
@@ -388,19 +380,19 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
     const double diag = bounds_.diagonal().norm();
     const double spacing = gl::nice_spacing(2.5 * diag, 24);
     const Eigen::Vector3d c = bounds_.center();
-    overlay_.draw_lines(cam, gl::grid_lines(c.x(), c.z(), bounds_.min().y(), 1.6 * diag, spacing), 1.0f, true);
+    gpu_.draw_lines(cam, gl::grid_lines(c.x(), c.z(), bounds_.min().y(), 1.6 * diag, spacing), 1.0f, true);
   }
-  surface_.draw(cam, style);
+  gpu_.draw_surface(cam, style);
   if (s.handles) draw_overlays(doc, cam, s);
   // Per-frame extras, grouped by width.
   for (size_t i = 0; i < extra_line_widths_.size();) {
     size_t j = i;
     while (j < extra_line_widths_.size() && extra_line_widths_[j] == extra_line_widths_[i]) ++j;
     std::vector<gl::OverlayVertex> seg(extra_lines_.begin() + 2 * i, extra_lines_.begin() + 2 * j);
-    overlay_.draw_lines(cam, seg, extra_line_widths_[i], false);
+    gpu_.draw_lines(cam, seg, extra_line_widths_[i], false);
     i = j;
   }
-  overlay_.draw_points(cam, extra_points_, extra_point_size_, false);
+  gpu_.draw_points(cam, extra_points_, extra_point_size_, false);
   extra_lines_.clear();
   extra_line_widths_.clear();
   extra_points_.clear();
@@ -457,10 +449,10 @@ void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, cons
   for (int i = 0; i < np; ++i) pts.push_back(gl::overlay_vertex(handle_pos_.row(i), color_of(i, 1.0f)));
   for (size_t r = 0; r < rig.regions.size(); ++r, ++h0)
     if (!rig.regions[r].vertices.empty()) pts.push_back(gl::overlay_vertex(handle_pos_.row(h0), color_of(h0, 1.0f)));
-  overlay_.draw_lines(cam, thin, 1.5f, false);
-  overlay_.draw_lines(cam, lines, 5.0f, false);
-  overlay_.draw_points(cam, small_pts, 8.0f, false);
-  overlay_.draw_points(cam, pts, 14.0f, false);
+  gpu_.draw_lines(cam, thin, 1.5f, false);
+  gpu_.draw_lines(cam, lines, 5.0f, false);
+  gpu_.draw_points(cam, small_pts, 8.0f, false);
+  gpu_.draw_points(cam, pts, 14.0f, false);
   // FAST states on the handles (bones: at the tip IK drags): a dark centre is pinned, a white one free.
   if (doc.posing().fast) {
     std::vector<gl::OverlayVertex> marks;
@@ -473,7 +465,7 @@ void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, cons
       marks.push_back(gl::overlay_vertex(at, states[k] == HandleConstraint::Fixed ? Eigen::Vector4f(0.08f, 0.08f, 0.1f, 1.0f)
                                                                                  : Eigen::Vector4f(1.0f, 1.0f, 1.0f, 1.0f)));
     }
-    overlay_.draw_points(cam, marks, 6.0f, false);
+    gpu_.draw_points(cam, marks, 6.0f, false);
   }
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // The GPU mirror of the document: the displayed surface (rest, posed, or the animation manifold's
 // slice at the current time), weight colours, and the overlays (grid, handles, bones, cages, brush).
-// sync() is cheap when nothing changed, so the editor calls it every frame.
+// sync() is cheap when nothing changed, so the editor calls it every frame. Everything it asks of the
+// GPU goes through a gl::RenderBackend (render/backend.h): the OpenGL one in the editor, a recording
+// mock in tests/test_scene_view.cpp, where this logic runs without a GL context.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -12,8 +14,7 @@
 
 #include "core/scene/document.h"
 #include "core/view/camera.h"
-#include "render/overlay_pass.h"
-#include "render/surface_pass.h"
+#include "render/backend.h"
 
 namespace dfm::editor {
 
@@ -36,7 +37,8 @@ std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W);
 
 class SceneView {
  public:
-  SceneView();
+  // Draws through `gpu`, which must outlive the view.
+  explicit SceneView(gl::RenderBackend& gpu);
   ~SceneView();
   void sync(const Document& doc, const ViewSettings& s);
   void draw(const Document& doc, const view::Camera& cam, const ViewSettings& s);
@@ -71,14 +73,14 @@ class SceneView {
 
  private:
   void update_surface(const Document& doc, const ViewSettings& s);
+  void show_slice(const Document& doc, const ViewSettings& s);
   void update_skin(const Document& doc);
   void show_rest(const TriMesh& rest);
   void update_colors(const Document& doc, const ViewSettings& s);
   void update_handles(const Document& doc, const ViewSettings& s);
   void draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s);
 
-  gl::SurfacePass surface_;
-  gl::OverlayPass overlay_;
+  gl::RenderBackend& gpu_;
   struct Deformer;  // posing and slicing state (skin binding, manifold cache)
   std::unique_ptr<Deformer> deformer_;
   Eigen::MatrixXd display_V_;
@@ -86,7 +88,6 @@ class SceneView {
   bool display_is_rest_ = true;
   bool showing_slice_ = false;
   int display_count_ = 0, display_faces_ = 0;
-  Eigen::Index bounds_rows_ = -1;
   Eigen::AlignedBox3d bounds_;
   Eigen::MatrixXd handle_pos_, joint_pos_;
   std::vector<gl::OverlayVertex> extra_lines_, extra_points_;

@@ -1,0 +1,454 @@
+// app/editor/scene_view: what the viewport asks of the GPU, checked against a recording mock backend
+// (tests/mock_render_backend.h) with no GL context: when it uploads and re-skins (caching on the
+// document's revision), the posed surface or the animation manifold's slice (Southern 2008, 2.3) by
+// keys and time, weight colours for the Weights panel, and the handle overlays. Expected positions
+// are closed forms of translation-only poses (LBS of a translation: V + sum_j w_j d_j).
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "app/editor/scene_view.h"
+#include "core/scene/document.h"
+#include "tests/mock_render_backend.h"
+
+using namespace dfm;
+using dfm::editor::SceneView;
+using dfm::editor::ViewSettings;
+using dfm::editor::WeightView;
+using dfm::test::MockRenderBackend;
+using Eigen::Vector3d;
+using Eigen::Vector4f;
+
+namespace {
+
+// Vertices 0..5: +x -x +y -y +z -z; faces outward.
+TriMesh octahedron() {
+  TriMesh m;
+  m.V.resize(6, 3);
+  m.V << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  m.F.resize(8, 3);
+  m.F << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  return m;
+}
+
+// Three point handles; rows sum to 1, no ties (k = 1 keeps each row's largest).
+Eigen::MatrixXd weights() {
+  Eigen::MatrixXd W(6, 3);
+  W << 1, 0, 0,  //
+      0, 1, 0,   //
+      0, 0, 1,   //
+      0.45, 0.55, 0, 0.2, 0.3, 0.5, 0.6, 0.1, 0.3;
+  return W;
+}
+
+void make_bound(Document& doc) {
+  doc.set_surface(octahedron(), "octahedron");
+  doc.add_point(Vector3d(0.5, 0, 0));
+  doc.add_point(Vector3d(-0.5, 0, 0));
+  doc.add_point(Vector3d(0, 0.5, 0));
+  doc.set_weights(weights(), BindStats{});
+}
+
+// V + W d, d one translation per handle.
+Eigen::MatrixXd translated(const Eigen::MatrixXd& W, const std::vector<Vector3d>& d) {
+  Eigen::MatrixXd V = octahedron().V;
+  for (int i = 0; i < V.rows(); ++i)
+    for (int j = 0; j < W.cols(); ++j) V.row(i) += W(i, j) * d[j].transpose();
+  return V;
+}
+
+// Every displayed vertex is one of the expected ones and every expected one is displayed (a slice's
+// vertices come in the slice's own order, or as a triangle soup).
+void require_same_points(const Eigen::MatrixXd& shown, const Eigen::MatrixXd& expected) {
+  REQUIRE(shown.rows() > 0);
+  auto nearest = [](const Eigen::MatrixXd& P, const Eigen::RowVector3d& q) {
+    return (P.rowwise() - q).rowwise().norm().minCoeff();
+  };
+  for (int i = 0; i < shown.rows(); ++i) REQUIRE(nearest(expected, shown.row(i)) < 1e-5);
+  for (int i = 0; i < expected.rows(); ++i) REQUIRE(nearest(shown, expected.row(i)) < 1e-5);
+}
+
+// A time slice half way through a slab of the manifold: every vertex halves an edge of the slab's
+// tetrahedra, from a vertex of the lower layer (lo) to one of the upper (hi); the vertical edges
+// (i to i) give every vertex of the interpolated surface.
+void require_slab_midpoints(const Eigen::MatrixXd& shown, const Eigen::MatrixXd& lo, const Eigen::MatrixXd& hi) {
+  REQUIRE(shown.rows() > 0);
+  for (int k = 0; k < shown.rows(); ++k) {
+    double best = 1e300;
+    for (int i = 0; i < lo.rows(); ++i)
+      for (int j = 0; j < hi.rows(); ++j) best = std::min(best, (shown.row(k) - 0.5 * (lo.row(i) + hi.row(j))).norm());
+    REQUIRE(best < 1e-5);
+  }
+  for (int i = 0; i < lo.rows(); ++i)
+    REQUIRE((shown.rowwise() - 0.5 * (lo.row(i) + hi.row(i))).rowwise().norm().minCoeff() < 1e-5);
+}
+
+bool same(const gl::GeometryRef& a, const gl::GeometryRef& b) {
+  return a.vertex_buffer == b.vertex_buffer && a.vertex_count == b.vertex_count &&
+         a.index_buffer == b.index_buffer && a.index_count == b.index_count;
+}
+
+void require_color(const float* c, const Vector4f& expected, float tol = 1e-4f) {
+  for (int k = 0; k < 4; ++k) REQUIRE(std::abs(c[k] - expected[k]) < tol);
+}
+
+// The batches drawn with this width or size.
+std::vector<MockRenderBackend::OverlayBatch> batches(const std::vector<MockRenderBackend::OverlayBatch>& all,
+                                                     float size) {
+  std::vector<MockRenderBackend::OverlayBatch> out;
+  for (const auto& b : all)
+    if (b.size == size) out.push_back(b);
+  return out;
+}
+
+// Handle 0's colour as the overlays show it (HSV hue 0.08, s 0.62, v 0.92, sector 0: (v, t, p)).
+const Vector4f kHandle0(0.92f, 0.92f * (1 - 0.62f * 0.52f), 0.92f * 0.38f, 1.0f);
+// Handle 3's: hue fract(0.08 + 3 * 0.618034) = 0.934102, sector 5, f = 0.604612: (v, p, q).
+const Vector4f kHandle3(0.92f, 0.92f * 0.38f, 0.92f * (1 - 0.62f * 0.604612f), 1.0f);
+const Vector4f kActive(1.0f, 0.85f, 0.30f, 1.0f), kSelected(1.0f, 0.62f, 0.12f, 1.0f);
+
+}  // namespace
+
+TEST_CASE("scene view: the rest surface uploads once per content revision", "[editor][scene_view]") {
+  Document doc;
+  doc.set_surface(octahedron(), "octahedron");
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const ViewSettings s;
+  scene.sync(doc, s);
+  REQUIRE(gpu.mesh_uploads == 1);
+  REQUIRE(gpu.mesh.V == octahedron().V);
+  REQUIRE(gpu.mesh.F == octahedron().F);
+  REQUIRE(gpu.geometry.vertex_buffer == gpu.mesh_vertex_buffer);
+  REQUIRE(gpu.geometry.index_count == 24);
+  REQUIRE(scene.display_is_rest());
+  REQUIRE_FALSE(scene.showing_slice());
+  REQUIRE(gpu.skins.empty());
+  REQUIRE(gpu.slicers.empty());
+  REQUIRE(scene.surface_bounds().min().isApprox(Vector3d(-1, -1, -1)));
+  REQUIRE(scene.surface_bounds().max().isApprox(Vector3d(1, 1, 1)));
+  // Nothing changed: nothing uploads again.
+  const int sets = gpu.geometry_sets, data = gpu.data_uploads;
+  for (int i = 0; i < 3; ++i) scene.sync(doc, s);
+  REQUIRE(gpu.mesh_uploads == 1);
+  REQUIRE(gpu.geometry_sets == sets);
+  REQUIRE(gpu.data_uploads == data);
+  // A selection is view state (no new revision): colours may change, the surface does not.
+  doc.add_point(Vector3d(0, 0, 0));
+  scene.sync(doc, s);
+  REQUIRE(gpu.mesh_uploads == 2);  // a content edit
+  doc.set_selection(Selection{{0}, -1});
+  scene.sync(doc, s);
+  REQUIRE(gpu.mesh_uploads == 2);
+}
+
+TEST_CASE("scene view: one skin per binding, re-run per pose, drawn and read back", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const ViewSettings s;
+  scene.sync(doc, s);
+  REQUIRE(gpu.skins.size() == 1);
+  const auto& skin = *gpu.skins[0];
+  REQUIRE(skin.runs == 1);
+  REQUIRE(skin.F == octahedron().F);
+  REQUIRE(skin.binding.num_handles == 3);
+  REQUIRE(same(gpu.geometry, skin.output));
+  REQUIRE_FALSE(scene.display_is_rest());
+  REQUIRE_FALSE(scene.showing_slice());
+  REQUIRE(scene.display_face_count() == 8);
+
+  const Vector3d d0(0.2, 0.3, 0), d1(0, 0, -0.2), d2(0, 0, 0);
+  doc.translate_handle(0, d0);
+  doc.translate_handle(1, d1);
+  scene.sync(doc, s);
+  REQUIRE(gpu.skins.size() == 1);  // same binding: only the pose uploads
+  REQUIRE(skin.runs == 2);
+  REQUIRE(skin.method == SkinMethod::LBS);
+  REQUIRE((scene.display_vertices() - translated(weights(), {d0, d1, d2})).cwiseAbs().maxCoeff() < 1e-6);
+  REQUIRE(scene.display_faces() == octahedron().F);
+  // The handles are drawn where the pose puts them.
+  REQUIRE(scene.handle_positions().row(0).transpose().isApprox(Vector3d(0.7, 0.3, 0)));
+  REQUIRE(scene.handle_positions().row(1).transpose().isApprox(Vector3d(-0.5, 0, -0.2)));
+  scene.sync(doc, s);
+  scene.sync(doc, s);
+  REQUIRE(skin.runs == 2);
+
+  doc.set_method(SkinMethod::DQS);
+  scene.sync(doc, s);
+  REQUIRE(gpu.skins.size() == 1);
+  REQUIRE(skin.runs == 3);
+  REQUIRE(skin.method == SkinMethod::DQS);
+  doc.set_method(SkinMethod::LBS);
+
+  // One influence per vertex: a new binding; each vertex follows its largest weight's handle.
+  BindSettings b = doc.bind_settings();
+  b.max_influences = 1;
+  doc.set_bind_settings(b);
+  scene.sync(doc, s);
+  REQUIRE(gpu.skins.size() == 2);
+  REQUIRE_FALSE(gpu.skins[0]->alive);
+  REQUIRE(same(gpu.geometry, gpu.skins[1]->output));
+  Eigen::MatrixXd W1 = Eigen::MatrixXd::Zero(6, 3);
+  for (int i = 0; i < 6; ++i) {
+    Eigen::Index j;
+    weights().row(i).maxCoeff(&j);
+    W1(i, j) = 1;
+  }
+  REQUIRE((scene.display_vertices() - translated(W1, {d0, d1, d2})).cwiseAbs().maxCoeff() < 1e-6);
+}
+
+TEST_CASE("scene view: the manifold's slice with two keys, the pose after a pose edit", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  const Vector3d d0(0.2, 0.3, 0), d1(0, 0, -0.2), zero(0, 0, 0);
+  doc.set_key(0.0);
+  doc.translate_handle(0, d0);
+  doc.set_key(1.0);
+  doc.set_time(0.5);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  ViewSettings s;
+  scene.sync(doc, s);
+  REQUIRE(scene.showing_slice());
+  REQUIRE(gpu.slicers.size() == 1);
+  REQUIRE(gpu.slicers[0]->uploads == 1);
+  // Inside an interval between vertex times: its topology is built once and interpolated.
+  REQUIRE(scene.slice_from_cache());
+  REQUIRE(gpu.intervals.size() == 1);
+  REQUIRE(gpu.intervals[0]->evaluations == std::vector<double>{0.5});
+  REQUIRE(same(gpu.geometry, gpu.intervals[0]->output));
+  // Four in-betweens: layers every 0.2; translations blend linearly, so layer t is V + t W d.
+  REQUIRE(doc.inbetweens() == 4);
+  require_slab_midpoints(scene.display_vertices(), translated(weights(), {0.4 * d0, zero, zero}),
+                         translated(weights(), {0.6 * d0, zero, zero}));
+  REQUIRE(scene.display_faces() == gpu.intervals[0]->topology.F);
+  REQUIRE(scene.display_face_count() == gpu.intervals[0]->topology.num_faces());
+  // The handles follow the animation, not the current pose.
+  REQUIRE(scene.handle_positions().row(0).transpose().isApprox(Vector3d(0.6, 0.15, 0)));
+
+  // On a key's time (a vertex time): the general pass, exactly the key's surface, as a soup.
+  doc.set_time(1.0);
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.slice_from_cache());
+  REQUIRE(gpu.slicers[0]->slices.back() == std::make_pair(SliceAxis::T, 1.0));
+  REQUIRE(gpu.geometry.vertex_buffer == gpu.slicers[0]->buffer);
+  REQUIRE(scene.display_face_count() == 8);
+  REQUIRE(scene.display_vertices().rows() == 24);
+  require_same_points(scene.display_vertices(), translated(weights(), {d0, zero, zero}));
+
+  // A pose edit after the scrub shows the pose being edited (the keys, and so the manifold, stay).
+  doc.translate_handle(1, d1);
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.showing_slice());
+  REQUIRE(same(gpu.geometry, gpu.skins.back()->output));
+  REQUIRE(gpu.slicers[0]->uploads == 1);
+  REQUIRE((scene.display_vertices() - translated(weights(), {d0, d1, zero})).cwiseAbs().maxCoeff() < 1e-6);
+  // ...until the time moves.
+  doc.set_time(0.25);
+  scene.sync(doc, s);
+  REQUIRE(scene.showing_slice());
+
+  // The sweep along x slices at that fraction of the manifold's x extent: the rest's -1 to the
+  // keyed +x vertex's 1 + 0.2.
+  s.sweep_axis = 0;
+  s.sweep_value = 0.25;
+  scene.sync(doc, s);
+  REQUIRE(gpu.slicers[0]->slices.back().first == SliceAxis::X);
+  REQUIRE(gpu.slicers[0]->slices.back().second == Approx(-1 + 0.25 * 2.2));
+
+  // One key left: no manifold, the pose.
+  s.sweep_axis = -1;
+  doc.delete_key(1);
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.showing_slice());
+  REQUIRE(same(gpu.geometry, gpu.skins.back()->output));
+}
+
+TEST_CASE("scene view: weight colours follow the Weights panel and the selection", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const view::Camera cam;
+  ViewSettings s;
+  s.weight_view = WeightView::Selected;
+  doc.set_selection(Selection{{2}, -1});
+  scene.sync(doc, s);
+  scene.draw(doc, cam, s);
+  REQUIRE(gpu.surface_draws.back().style.mode == gl::SurfaceColorMode::Scalar);
+  REQUIRE(gpu.surface_draws.back().style.isolines == 10.0f);
+  REQUIRE(gpu.data.size() == 6);
+  for (int i = 0; i < 6; ++i) REQUIRE(gpu.data[i] == Vector4f(float(weights()(i, 2)), 0, 0, 1));
+  // Another active handle: its weights, without touching the surface.
+  const int runs = gpu.skins[0]->runs;
+  doc.set_selection(Selection{{1, 2}, -1});
+  scene.sync(doc, s);
+  for (int i = 0; i < 6; ++i) REQUIRE(gpu.data[i].x() == float(weights()(i, 1)));
+  REQUIRE(gpu.skins[0]->runs == runs);
+
+  // All handles: each vertex blends the handle colours by weight.
+  s.weight_view = WeightView::AllHandles;
+  scene.sync(doc, s);
+  gpu.clear_draws();
+  scene.draw(doc, cam, s);
+  REQUIRE(gpu.surface_draws.back().style.mode == gl::SurfaceColorMode::VertexColor);
+  REQUIRE(gpu.surface_draws.back().style.isolines == 0.0f);
+  for (int k = 0; k < 3; ++k) REQUIRE(std::pow(gpu.data[0][k], 1 / 2.2f) == Approx(kHandle0[k]).epsilon(1e-4));
+  const Vector4f mix = 0.45f * gpu.data[0] + 0.55f * gpu.data[1];  // vertex 3: 0.45 handle 0, 0.55 handle 1
+  REQUIRE((gpu.data[3] - mix).cwiseAbs().maxCoeff() < 1e-5f);
+  REQUIRE((gpu.data[0] - gpu.data[1]).norm() > 0.1f);
+
+  // The mask.
+  doc.paint_mask({0, 4}, {1.0, 0.25});
+  s.weight_view = WeightView::Mask;
+  scene.sync(doc, s);
+  REQUIRE(gpu.data.size() == 6);
+  const float mask[6] = {1, 0, 0, 0, 0.25f, 0};
+  for (int i = 0; i < 6; ++i) REQUIRE(gpu.data[i] == Vector4f(mask[i], 0, 0, 1));
+
+  // Off: shaded, no per-vertex data.
+  s.weight_view = WeightView::Off;
+  scene.sync(doc, s);
+  gpu.clear_draws();
+  scene.draw(doc, cam, s);
+  REQUIRE(gpu.data.empty());
+  REQUIRE(gpu.surface_draws.back().style.mode == gl::SurfaceColorMode::Shaded);
+
+  // A slice has other vertices than the weights: no weight colours on it.
+  doc.set_key(0.0);
+  doc.translate_handle(0, Vector3d(0, 0.3, 0));
+  doc.set_key(1.0);
+  scene.sync(doc, s);  // a frame per edit, as in the editor: the scrub below comes after the pose edit
+  doc.set_time(0.5);
+  s.weight_view = WeightView::Selected;
+  scene.sync(doc, s);
+  REQUIRE(scene.showing_slice());
+  REQUIRE(gpu.data.empty());
+}
+
+TEST_CASE("scene view: region handles band the mask view", "[editor][scene_view]") {
+  Document doc;
+  doc.set_surface(octahedron(), "octahedron");
+  doc.paint_mask({0, 1}, {0.5, 0.9});
+  const int r = doc.add_region("band");
+  doc.paint_region(r, {1, 2}, false);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  ViewSettings s;
+  s.weight_view = WeightView::Mask;
+  scene.sync(doc, s);
+  const float expected[6] = {0.5f, 0.9f, 0.75f, 0, 0, 0};  // a region shows at least 0.75
+  for (int i = 0; i < 6; ++i) REQUIRE(gpu.data[i].x() == expected[i]);
+}
+
+TEST_CASE("scene view: handle overlays by selection and FAST state", "[editor][scene_view]") {
+  Document doc;
+  doc.set_surface(octahedron(), "octahedron");
+  doc.add_point(Vector3d(0.5, 0, 0));
+  doc.add_point(Vector3d(-0.5, 0, 0));
+  doc.add_point(Vector3d(0, 0.5, 0));
+  doc.add_bone_chain({Vector3d(0, -0.5, 0), Vector3d(0, -0.5, 0.8)});  // handle 3
+  doc.set_selection(Selection{{1, 2}, -1});                               // 1 active, 2 selected
+  PosingSettings posing;
+  posing.fast = true;
+  posing.states = {HandleConstraint::Fixed, HandleConstraint::Free, HandleConstraint::Position,
+                   HandleConstraint::Fixed};
+  doc.set_posing(posing);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const view::Camera cam;
+  ViewSettings s;
+  scene.sync(doc, s);
+  scene.draw(doc, cam, s);
+
+  // The grid first, depth-tested, one pixel wide, on the surface's floor.
+  REQUIRE(gpu.lines.front().depth_test);
+  REQUIRE(gpu.lines.front().size == 1.0f);
+  REQUIRE_FALSE(gpu.lines.front().vertices.empty());
+  for (const auto& v : gpu.lines.front().vertices) REQUIRE(v.position[1] == -1.0f);
+
+  // Point handles (14 px): free colour by index, active and selected in their own.
+  const auto pts = batches(gpu.points, 14.0f);
+  REQUIRE(pts.size() == 1);
+  REQUIRE(pts[0].vertices.size() == 3);
+  const float* p0 = pts[0].vertices[0].position;
+  REQUIRE((p0[0] == 0.5f && p0[1] == 0 && p0[2] == 0));
+  require_color(pts[0].vertices[0].color, kHandle0);
+  require_color(pts[0].vertices[1].color, kActive);
+  require_color(pts[0].vertices[2].color, kSelected);
+  // The bone (5 px): from its first joint in its colour to its tip in half of it; joints as dots.
+  const auto bones = batches(gpu.lines, 5.0f);
+  REQUIRE(bones.size() == 1);
+  REQUIRE(bones[0].vertices.size() == 2);
+  require_color(bones[0].vertices[0].color, kHandle3);
+  require_color(bones[0].vertices[1].color, Vector4f(0.5f * kHandle3[0], 0.5f * kHandle3[1], 0.5f * kHandle3[2], 1));
+  REQUIRE(bones[0].vertices[1].position[2] == 0.8f);
+  const auto joints = batches(gpu.points, 8.0f);
+  REQUIRE(joints.size() == 1);
+  REQUIRE(joints[0].vertices.size() == 2);
+  for (const auto& v : joints[0].vertices) require_color(v.color, Vector4f(0.92f, 0.92f, 0.95f, 1));
+  // FAST marks (6 px): pinned dark, free white, position-constrained none; a bone's at its tip.
+  const auto marks = batches(gpu.points, 6.0f);
+  REQUIRE(marks.size() == 1);
+  REQUIRE(marks[0].vertices.size() == 3);
+  const Vector4f dark(0.08f, 0.08f, 0.1f, 1), white(1, 1, 1, 1);
+  require_color(marks[0].vertices[0].color, dark);
+  REQUIRE(marks[0].vertices[0].position[0] == 0.5f);
+  require_color(marks[0].vertices[1].color, white);
+  REQUIRE(marks[0].vertices[1].position[0] == -0.5f);
+  require_color(marks[0].vertices[2].color, dark);
+  REQUIRE(marks[0].vertices[2].position[2] == 0.8f);
+
+  // Without FAST no marks; without handles no handle overlays; without the grid no depth-tested lines.
+  posing.fast = false;
+  doc.set_posing(posing);
+  s.grid = false;
+  scene.sync(doc, s);
+  gpu.clear_draws();
+  scene.draw(doc, cam, s);
+  REQUIRE(batches(gpu.points, 6.0f).empty());
+  REQUIRE(std::none_of(gpu.lines.begin(), gpu.lines.end(), [](const auto& b) { return b.depth_test; }));
+  s.handles = false;
+  gpu.clear_draws();
+  scene.draw(doc, cam, s);
+  REQUIRE(gpu.lines.empty());
+  REQUIRE(batches(gpu.points, 14.0f).empty());
+}
+
+TEST_CASE("scene view: per-frame extras draw once, grouped by width", "[editor][scene_view]") {
+  Document doc;
+  doc.set_surface(octahedron(), "octahedron");
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const view::Camera cam;
+  ViewSettings s;
+  s.grid = false;
+  s.handles = false;
+  const Vector4f c(1, 1, 1, 1);
+  auto seg = [&](double x) {
+    return std::vector<gl::OverlayVertex>{gl::overlay_vertex(Vector3d(x, 0, 0), c),
+                                          gl::overlay_vertex(Vector3d(x, 1, 0), c)};
+  };
+  scene.sync(doc, s);
+  scene.add_overlay_lines(seg(1), 2.0f);
+  scene.add_overlay_lines(seg(2), 2.0f);
+  scene.add_overlay_lines(seg(3), 3.0f);
+  scene.add_overlay_points({gl::overlay_vertex(Vector3d(4, 0, 0), c)}, 9.0f);
+  scene.draw(doc, cam, s);
+  REQUIRE(gpu.lines.size() == 2);
+  REQUIRE(gpu.lines[0].size == 2.0f);
+  REQUIRE(gpu.lines[0].vertices.size() == 4);
+  REQUIRE(gpu.lines[0].vertices[2].position[0] == 2.0f);
+  REQUIRE(gpu.lines[1].size == 3.0f);
+  REQUIRE(gpu.lines[1].vertices.size() == 2);
+  REQUIRE(batches(gpu.points, 9.0f).at(0).vertices.size() == 1);
+  // The next frame has none of them.
+  gpu.clear_draws();
+  scene.draw(doc, cam, s);
+  REQUIRE(gpu.lines.empty());
+  for (const auto& b : gpu.points) REQUIRE(b.vertices.empty());
+}
