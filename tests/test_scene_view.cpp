@@ -199,6 +199,18 @@ TEST_CASE("scene view: one skin per binding, re-run per pose, drawn and read bac
     W1(i, j) = 1;
   }
   REQUIRE((scene.display_vertices() - translated(W1, {d0, d1, d2})).cwiseAbs().maxCoeff() < 1e-6);
+
+  // A re-bind with other weights of the same size: the viewport skins with the new ones.
+  b.max_influences = 0;
+  doc.set_bind_settings(b);
+  scene.sync(doc, s);
+  Eigen::MatrixXd W2 = weights();
+  W2.row(0) << 0.5, 0.5, 0;
+  W2.row(2) << 0, 0.25, 0.75;
+  doc.set_weights(W2, BindStats{});
+  scene.sync(doc, s);
+  REQUIRE((scene.display_vertices() - translated(W2, {d0, d1, d2})).cwiseAbs().maxCoeff() < 1e-6);
+  REQUIRE(gpu.skins.size() == 4);
 }
 
 TEST_CASE("scene view: the manifold's slice with two keys, the pose after a pose edit", "[editor][scene_view]") {

@@ -65,11 +65,12 @@ std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W) {
 // interval's cached topology (an interpolation in the vertex shader, welded, costing what posing
 // costs); IntervalCachePolicy (slice_cache.h) says when the general per-tetrahedron pass runs instead.
 struct SceneView::Deformer {
-  // Skin binding identity: rebuilt when the weights, surface, rig size or influence count change.
-  const double* weights_data = nullptr;
-  Eigen::Index weights_rows = -1, weights_cols = -1;
-  const double* surface_data = nullptr;
+  // What the skin was bound from, compared by value when the revision changes: a re-bind writes
+  // weights of the same size into the same storage, so their address says nothing.
+  Eigen::MatrixXd skin_W, skin_V;
+  Eigen::MatrixXi skin_F;
   int k = 0;
+  std::uint64_t skin_revision = ~0ull;
   std::unique_ptr<gl::SkinDeformer> skin;
   // The animation manifold (its signature covers key times, poses and meshes, weights, method).
   ManifoldBuilder builder;
@@ -277,22 +278,22 @@ void SceneView::update_skin(const Document& doc) {
   const TriMesh& rest = doc.surface();
   if (!doc.has_weights() || rest.num_vertices() == 0) {
     d.skin.reset();
-    d.surface_data = rest.V.data();
-    d.weights_data = nullptr;
     return;
   }
+  if (d.skin && doc.revision() == d.skin_revision) return;
   const Eigen::MatrixXd& W = doc.weights();
   // Every weight the bind computed (sparse rows on the GPU), unless the scene prunes to k.
   const int k = doc.bind_settings().max_influences;
-  if (d.skin && W.data() == d.weights_data && W.rows() == d.weights_rows && W.cols() == d.weights_cols &&
-      rest.V.data() == d.surface_data && k == d.k)
-    return;
-  d.skin = gpu_.make_skin(make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k), rest.F);
-  d.weights_data = W.data();
-  d.weights_rows = W.rows();
-  d.weights_cols = W.cols();
-  d.surface_data = rest.V.data();
-  d.k = k;
+  auto same = [](const auto& a, const auto& b) { return a.rows() == b.rows() && a.cols() == b.cols() && a == b; };
+  if (!d.skin || k != d.k || !same(W, d.skin_W) || !same(rest.V, d.skin_V) || !same(rest.F, d.skin_F)) {
+    d.skin.reset();  // if the binding below throws, none: the rest shows with the error, and it is retried
+    d.skin = gpu_.make_skin(make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k), rest.F);
+    d.skin_W = W;
+    d.skin_V = rest.V;
+    d.skin_F = rest.F;
+    d.k = k;
+  }
+  d.skin_revision = doc.revision();
 }
 
 bool SceneView::slice_from_cache() const { return showing_slice_ && deformer_->shown_slot >= 0; }
