@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <Eigen/Geometry>
+
 #include "core/anim/bake.h"
 #include "core/anim/manifold.h"
 #include "core/anim/surface_checks.h"
@@ -267,4 +269,54 @@ TEST_CASE("a transition: sphere key at 0, torus key-mesh at 1, the slice at 0.5 
   document_manifold(d, &st);
   CHECK(st.transition_slabs == 1);
   CHECK(st.prism_slabs == 0);
+}
+
+TEST_CASE("in-betweens per key interval: ARAP turns a body rigidly, linear shrinks it, handles add none "
+          "between mesh keys; undo, scene files and the script") {
+  // An elongated closed body and the same body turned by 120 degrees about z and moved.
+  TriMesh k0 = test::icosphere({0, 0, 0}, 1.0, 2);
+  k0.V.col(0) *= 3.0;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(2 * M_PI / 3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  TriMesh k1 = k0;
+  k1.V = (k0.V * R.transpose()).rowwise() + Eigen::RowVector3d(0.5, -0.2, 0.1);
+  Document d;
+  d.set_surface(k0, "body");
+  d.key_mesh(k0, "k0.obj", 0.0);
+  d.key_mesh(k1, "k1.obj", 1.0);
+  d.set_inbetweens(1);
+  CHECK(key_surfaces(d).size() == 2);  // handles between mesh keys: the prism's own blend, no layer
+
+  d.set_key_inbetween(0, InbetweenMethod::Arap);
+  std::vector<KeySurface> s = key_surfaces(d);
+  REQUIRE(s.size() == 3);
+  CHECK(s[1].time == 0.5);
+  CHECK(s[0].V == k0.V);
+  CHECK(s[2].V == k1.V);
+  // Halfway: the body turned by 60 degrees, up to a translation (Alexa 2002, 4.4).
+  const Eigen::Matrix3d R60 = Eigen::AngleAxisd(M_PI / 3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::MatrixXd expect = k0.V * R60.transpose();
+  const Eigen::RowVector3d shift = (s[1].V - expect).colwise().mean();
+  const double diag = (k0.V.colwise().maxCoeff() - k0.V.colwise().minCoeff()).norm();
+  CHECK(((s[1].V - expect).rowwise() - shift).cwiseAbs().maxCoeff() < 1e-6 * diag);
+
+  d.set_key_inbetween(0, InbetweenMethod::Linear);
+  s = key_surfaces(d);
+  REQUIRE(s.size() == 3);
+  CHECK(s[1].V == 0.5 * k0.V + 0.5 * k1.V);
+  CHECK(enclosed_volume(s[1].V, s[1].F) < 0.5 * enclosed_volume(k0.V, k0.F));  // the linear blend shrinks it
+
+  d.undo();
+  CHECK(d.keys()[0].inbetween == InbetweenMethod::Arap);
+  TempDir tmp;
+  d.save_scene(tmp / "ib.scene.json");
+  Document e;
+  e.load_scene(tmp / "ib.scene.json");
+  CHECK(e.keys()[0].inbetween == InbetweenMethod::Arap);
+  CHECK(e.keys()[1].inbetween == InbetweenMethod::Handles);
+
+  // The script's set-inbetween is the same command.
+  run_script(e, parse_script("set-inbetween 0 linear\n", "s.txt"), "s.txt");
+  CHECK(e.keys()[0].inbetween == InbetweenMethod::Linear);
+  CHECK_THROWS_WITH(parse_script("set-inbetween 0 spline\n", "s.txt"), Catch::Contains("s.txt:1:") && Catch::Contains("spline"));
+  CHECK_THROWS_WITH(run_script(e, parse_script("set-inbetween 0.3 arap\n", "s.txt"), "s.txt"), Catch::Contains("no key at time 0.3"));
 }

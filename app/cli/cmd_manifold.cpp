@@ -9,6 +9,7 @@
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_io.h"
 #include "core/anim/frame_sequence.h"
+#include "core/anim/inbetween.h"
 #include "core/anim/manifold_sequence.h"
 #include "core/anim/slice.h"
 #include "core/anim/surface_checks.h"
@@ -25,11 +26,14 @@ namespace {
 const char* kUsage =
     "usage: deform manifold (--keyframes K0.obj K1.obj ... [--times t0 t1 ...] | --manifold M.tet4)\n"
     "                       [--axis t|x|y|z] [--at VALUE -o SLICE.obj] [--save-manifold M.tet4] [--stats]\n"
-    "                       [--frames N [--sequence PREFIX] [--strip STRIP.png]]\n"
+    "                       [--frames N [--sequence PREFIX] [--strip STRIP.png]] [--inbetween arap|linear [--inbetweens N]]\n"
     "  Keyframes are meshes of any connectivity (default times 0, 1, 2, ...), joined into 4D tetrahedra\n"
     "  (x, y, z, t): neighbours sharing one triangle list by the exact prism build, others by a transition\n"
     "  (those keys must be closed, oriented and not self-intersecting). --at slices at that value of --axis (default t; x, y, z give the sweep\n"
     "  through time drawn in the other three coordinates) and writes the welded slice with normals.\n"
+    "  --inbetween arap puts N (default 8) layers between neighbouring keyframes of one connectivity,\n"
+    "  interpolated as rigidly as possible (Alexa 2002, 4.4: a turning limb keeps its shape); linear blends\n"
+    "  vertices (the prism build's own in-between); handles needs the editor's pose keys.\n"
     "  --sequence writes N slices on t evenly spaced over the animation as PREFIX0000.obj, ...\n"
     "  (PREFIX ending in .ply, .off or .stl picks that format)\n"
     "  --strip renders those N frames side by side on the GPU slicer (needs a display: xvfb-run).\n"
@@ -108,6 +112,8 @@ int run(const dfm::cli::Args& args) {
   dfm::SliceAxis axis = dfm::SliceAxis::T;
   bool stats = false;
   int frames = 0;
+  std::optional<dfm::InbetweenMethod> inbetween;
+  int inbetweens = 8;
   while (!r.done()) {
     const std::string f = r.next();
     if (f == "--keyframes") keyframes = r.values(f);
@@ -126,9 +132,21 @@ int run(const dfm::cli::Args& args) {
     else if (f == "--frames") frames = r.integer(f);
     else if (f == "--sequence") sequence = r.value(f);
     else if (f == "--strip") strip = r.value(f);
+    else if (f == "--inbetween") {
+      try {
+        inbetween = dfm::parse_inbetween_method(r.value(f));
+      } catch (const dfm::Error& e) {
+        throw UsageError(e.what());
+      }
+      if (*inbetween == dfm::InbetweenMethod::Handles)
+        throw UsageError("--inbetween handles needs pose keys and a rig (the editor's timeline); keyframe files have "
+                         "no handles: use arap or linear");
+    } else if (f == "--inbetweens") inbetweens = r.integer(f);
     else throw UsageError("unknown argument '" + f + "'");
   }
   if (keyframes.empty() == manifold_in.empty()) throw UsageError("give either --keyframes or --manifold");
+  if (inbetween && keyframes.empty()) throw UsageError("--inbetween goes with --keyframes");
+  if (inbetweens < 0 || inbetweens > 1000) throw UsageError("--inbetweens needs a count in 0..1000");
   if (!manifold_in.empty() && !times_text.empty()) throw UsageError("--times goes with --keyframes");
   if (!out.empty() && !at) throw UsageError("-o needs --at VALUE");
   if (at && out.empty() && !stats) throw UsageError("--at needs -o SLICE.obj (or --stats)");
@@ -166,6 +184,8 @@ int run(const dfm::cli::Args& args) {
     }
     // Neighbours sharing one triangle list: the exact prism build; others: a transition, whose keys
     // build_manifold_sequence checks first (errors name the file).
+    // Neighbours of one connectivity: in-between layers as rigid as possible (or linear) when asked.
+    if (inbetween) keys = dfm::with_mesh_inbetweens(keys, std::vector<dfm::InbetweenMethod>(keys.size(), *inbetween), inbetweens);
     dfm::SequenceStats seq;
     M = dfm::build_manifold_sequence(keys, {}, &seq);
     if (stats) print_sequence_stats(seq);

@@ -123,6 +123,7 @@ class Editor {
   void start_bind();
   bool save_scene_as(const std::string& path);  // false: failed, reported in the UI
   void save_posed(const std::string& path);
+  void draw_inbetween_choice();  // the timeline's in-between combo
   void save_frames(const std::string& pattern, int count);
   // Timeline > Key mesh...: Document::key_mesh_file at the time the button was pressed (errors: popup).
   void key_mesh_file(const std::string& path, double t);

@@ -44,6 +44,8 @@ void Editor::draw_timeline() {
   if (ImGui::Button("Delete key")) doc_.delete_key(at);
   if (at < 0) ImGui::EndDisabled();
   ImGui::SameLine();
+  draw_inbetween_choice();
+  ImGui::SameLine();
   float t = float(doc_.time());
   ImGui::SetNextItemWidth(70);
   if (ImGui::DragFloat("##time", &t, 0.01f, 0.0f, 0.0f, "t %.3f")) doc_.set_time(std::max(0.0f, t));
@@ -124,6 +126,13 @@ void Editor::draw_timeline() {
       drag_key_ = -1;
     }
   }
+  // Intervals with an ARAP or linear in-between: a bar between their keys (green, grey).
+  for (size_t i = 0; i + 1 < doc_.keys().size(); ++i) {
+    const InbetweenMethod m = doc_.keys()[i].inbetween;
+    if (m == InbetweenMethod::Handles) continue;
+    const ImU32 c = m == InbetweenMethod::Arap ? IM_COL32(110, 200, 120, 200) : IM_COL32(150, 150, 150, 200);
+    dl->AddLine(ImVec2(x_of(doc_.keys()[i].time), ky), ImVec2(x_of(doc_.keys()[i + 1].time), ky), c, 3.0f);
+  }
   // Pose keys are amber diamonds, mesh keys teal squares.
   for (size_t i = 0; i < doc_.keys().size(); ++i) {
     const float x = x_of(doc_.keys()[i].time), r = 6;
@@ -143,12 +152,35 @@ void Editor::draw_timeline() {
   if (hover_key >= 0) {
     const SceneKey& k = doc_.keys()[hover_key];
     if (k.is_mesh())
-      ImGui::SetTooltip("mesh key %d at t = %.3f: %s\n%d vertices, %d triangles (drag to move, right-click to delete)",
+      ImGui::SetTooltip("mesh key %d at t = %.3f: %s\n%d vertices, %d triangles\nin-between to the next key: %s\n"
+                        "(drag to move, right-click to delete)",
                         hover_key, k.time, std::filesystem::path(k.mesh_path).filename().string().c_str(),
-                        k.mesh.num_vertices(), k.mesh.num_faces());
+                        k.mesh.num_vertices(), k.mesh.num_faces(), inbetween_method_name(k.inbetween));
     else
-      ImGui::SetTooltip("key %d at t = %.3f (drag to move, right-click to delete)", hover_key, k.time);
+      ImGui::SetTooltip("key %d at t = %.3f\nin-between to the next key: %s\n(drag to move, right-click to delete)",
+                        hover_key, k.time, inbetween_method_name(k.inbetween));
   }
+}
+
+// The in-between of the key interval holding the current time (one undo step per change).
+void Editor::draw_inbetween_choice() {
+  const auto& keys = doc_.keys();
+  int k = -1;
+  for (size_t i = 0; i + 1 < keys.size(); ++i)
+    if (keys[i].time <= doc_.time() + 1e-9) k = int(i);
+  if (k >= 0 && doc_.time() > keys.back().time + 1e-9) k = -1;  // past the last key: no interval
+  const char* names[] = {"handles", "ARAP", "linear"};
+  int m = k >= 0 ? static_cast<int>(keys[k].inbetween) : 0;
+  if (k < 0) ImGui::BeginDisabled();
+  ImGui::SetNextItemWidth(86);
+  if (ImGui::Combo("##inbetween", &m, names, 3)) doc_.set_key_inbetween(k, static_cast<InbetweenMethod>(m));
+  if (k < 0) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("In-between of the key interval at the current time:\n"
+                      "handles: the handle transforms are interpolated and skinned\n"
+                      "ARAP: the two keyed meshes interpolated as rigidly as possible (Alexa 2002, 4.4)\n"
+                      "linear: the vertices blended linearly\n"
+                      "(ARAP and linear need one connectivity; a transition joins other meshes)");
 }
 
 }  // namespace dfm::editor

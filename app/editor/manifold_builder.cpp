@@ -36,6 +36,7 @@ std::uint64_t manifold_signature(const Document& doc) {
   const std::vector<Pose> poses = doc.key_poses();
   for (size_t i = 0; i < keys.size(); ++i) {
     h = fnv1a(h, &keys[i].time, sizeof(double));
+    h = fnv1a(h, &keys[i].inbetween, sizeof(InbetweenMethod));
     if (keys[i].is_mesh()) {
       h = fnv1a(h, "mesh", 4);
       h = mix_matrix(h, keys[i].mesh.V);
@@ -44,15 +45,15 @@ std::uint64_t manifold_signature(const Document& doc) {
       for (const auto& T : poses[i].transforms) h = fnv1a(h, T.matrix().data(), sizeof(double) * 16);
     }
   }
+  const int ib = doc.inbetweens();  // arap / linear intervals between mesh keys use it too
+  h = fnv1a(h, &ib, sizeof ib);
   if (pose_keys) {
-    const int m = static_cast<int>(doc.method()), ib = doc.inbetweens(), k = doc.bind_settings().max_influences;
-    const double* w = doc.weights().data();
-    const void* v = doc.surface().V.data();
+    const int m = static_cast<int>(doc.method()), k = doc.bind_settings().max_influences;
     h = fnv1a(h, &m, sizeof m);
-    h = fnv1a(h, &ib, sizeof ib);
     h = fnv1a(h, &k, sizeof k);
-    h = fnv1a(h, &w, sizeof w);
-    h = fnv1a(h, &v, sizeof v);
+    // By value: a re-bind assigns same-size weights into the same storage.
+    h = mix_matrix(h, doc.weights());
+    h = mix_matrix(h, doc.surface().V);
   }
   return h == 0 ? 1 : h;
 }

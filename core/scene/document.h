@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/anim/inbetween_method.h"
 #include "core/bind/bind_volume.h"
 #include "core/mesh/mesh.h"
 #include "core/pose/fast_posing.h"
@@ -66,6 +67,8 @@ struct SceneKey {
   PoseParams params;
   TriMesh mesh;           // empty (no vertices): a pose key; else closed, checked by check_transition_key
   std::string mesh_path;  // where the mesh came from (informational; the data is in the scene)
+  // From this key to the next (inbetween.h); arap and linear apply when both keys have one connectivity.
+  InbetweenMethod inbetween = InbetweenMethod::Handles;
   bool is_mesh() const { return mesh.num_vertices() > 0; }
 };
 
@@ -249,6 +252,8 @@ class Document {
   // read_surface(path) then key_mesh: what `key-mesh FILE [T]` and the timeline's "Key mesh..." do.
   void key_mesh_file(const std::string& path, double t);
   void delete_key(int index);
+  // How the animation passes from key `index` to the next one (one undo step).
+  void set_key_inbetween(int index, InbetweenMethod method);
   void move_key(int index, double new_time);  // throws if another key sits at new_time
   // Applies the key's params as the current pose (a pose edit). A mesh key has no pose: dfm::Error.
   void go_to_key(int index);

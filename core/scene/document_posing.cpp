@@ -194,6 +194,12 @@ void Document::delete_key(int index) {
   execute("delete key", kKeys, "", [&](SceneData& s) { s.keys.erase(s.keys.begin() + index); });
 }
 
+void Document::set_key_inbetween(int index, InbetweenMethod method) {
+  if (index < 0 || index >= static_cast<int>(s_.keys.size())) throw Error("no key " + std::to_string(index));
+  execute(std::string("in-between: ") + inbetween_method_name(method), kKeys, "",
+          [&](SceneData& s) { s.keys[index].inbetween = method; });
+}
+
 void Document::move_key(int index, double t) {
   if (index < 0 || index >= static_cast<int>(s_.keys.size())) throw Error("no key " + std::to_string(index));
   if (!std::isfinite(t)) throw Error("key time is not finite");

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/anim/bake.h"
+#include "core/anim/inbetween.h"
 #include "core/skin/skin.h"
 #include "core/util/error.h"
 
@@ -40,15 +41,20 @@ KeyTrack pose_key_track(const Document& doc) {
   return track;
 }
 
-std::vector<KeySurface> key_surfaces(const Document& doc) {
+namespace {
+
+// The key surfaces with the rig's in-betweens inside each run of pose keys; key[i]: where key i landed.
+std::vector<KeySurface> baked_key_surfaces(const Document& doc, std::vector<int>& key) {
   const std::vector<SceneKey>& keys = doc.keys();
   const int n = static_cast<int>(keys.size());
   std::vector<KeySurface> out;
+  key.assign(n, -1);
   SkinBinding binding;
   bool have_binding = false;
   std::vector<Pose> poses;
   for (int i = 0; i < n;) {
     if (keys[i].is_mesh()) {
+      key[i] = static_cast<int>(out.size());
       out.push_back({keys[i].time, keys[i].mesh.V, keys[i].mesh.F, key_name(doc, i)});
       ++i;
       continue;
@@ -67,13 +73,35 @@ std::vector<KeySurface> key_surfaces(const Document& doc) {
     const BakedLayers layers = bake_layers(track, doc.inbetweens(), [&](const Pose& p) {
       return skin(doc.method(), binding, p, {}).V;
     });
-    int key = i;
+    int k = i;
     for (size_t l = 0; l < layers.times.size(); ++l) {
-      const bool at_key = key < j && layers.times[l] == keys[key].time;
-      const std::string name = at_key ? key_name(doc, key++) : "in-between at t = " + std::to_string(layers.times[l]);
+      const bool at_key = k < j && layers.times[l] == keys[k].time;
+      if (at_key) key[k] = static_cast<int>(out.size());
+      const std::string name = at_key ? key_name(doc, k++) : "in-between at t = " + std::to_string(layers.times[l]);
       out.push_back({layers.times[l], layers.positions[l], doc.surface().F, name});
     }
     i = j;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<KeySurface> key_surfaces(const Document& doc) {
+  std::vector<int> key;
+  std::vector<KeySurface> baked = baked_key_surfaces(doc, key);
+  // Intervals set to arap or linear: their in-betweens come from the two keys' meshes instead.
+  const std::vector<SceneKey>& keys = doc.keys();
+  std::vector<KeySurface> out;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    out.push_back(std::move(baked[key[i]]));
+    if (i + 1 == keys.size()) break;
+    const KeySurface& next = baked[key[i + 1]];
+    if (keys[i].inbetween != InbetweenMethod::Handles && same_connectivity(out.back(), next)) {
+      for (KeySurface& s : mesh_inbetweens(out.back(), next, doc.inbetweens(), keys[i].inbetween)) out.push_back(std::move(s));
+    } else {
+      for (int l = key[i] + 1; l < key[i + 1]; ++l) out.push_back(std::move(baked[l]));
+    }
   }
   return out;
 }

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/anim/inbetween_method.h"
 #include "core/rig/handle_constraint.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
@@ -334,6 +335,8 @@ void write_scene(const std::string& json_path, const SceneData& s) {
     json key = {{"time", k.time}, {"params", params_json(k.params)}};
     // Version 2: a mesh key's own surface (a pose key has no "mesh").
     if (k.is_mesh()) key["mesh"] = {{"source", k.mesh_path}, {"V", blob.add(k.mesh.V)}, {"F", blob.add(k.mesh.F)}};
+    // Optional: the in-between to the next key, when it is not the default.
+    if (k.inbetween != InbetweenMethod::Handles) key["inbetween"] = inbetween_method_name(k.inbetween);
     j["keys"].push_back(key);
   }
   j["method"] = skin_method_name(s.method);
@@ -485,6 +488,13 @@ SceneData read_scene(const std::string& path) {
     if (keys[i].is_object() && keys[i].contains("mesh")) {
       if (version < 2) R.fail("'" + c + ".mesh' needs scene format version 2 (the file says " + std::to_string(version) + ")");
       read_mesh_key(R, keys[i]["mesh"], c + ".mesh", k);
+    }
+    if (keys[i].is_object() && keys[i].contains("inbetween")) {
+      try {
+        k.inbetween = parse_inbetween_method(R.string(keys[i]["inbetween"], c + ".inbetween"));
+      } catch (const Error& e) {
+        R.fail("'" + c + ".inbetween': " + e.what());
+      }
     }
     s.keys.push_back(std::move(k));
   }

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/anim/frame_sequence.h"
+#include "core/anim/inbetween_method.h"
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
 #include "core/pose/fast_rig.h"
@@ -51,6 +52,7 @@ const std::map<std::string, Spec>& specs() {
       {"set-key", {0, 1, -1, "set-key [TIME]"}},
       {"key-mesh", {1, 2, 0, "key-mesh FILE [TIME]"}},
       {"delete-key", {0, 1, -1, "delete-key [TIME]"}},
+      {"set-inbetween", {2, 2, 1, "set-inbetween TIME handles|arap|linear"}},
       {"set-time", {1, 1, -1, "set-time T"}},
       {"reset-pose", {0, 0, 0, "reset-pose"}},
       {"undo", {0, 0, 0, "undo"}},
@@ -164,6 +166,13 @@ std::vector<ScriptLine> parse_script(const std::string& text, const std::string&
       if (!parse_number(l.words[2], t))
         throw file_error(name, line, "'" + l.words[2] + "' is not a finite number; usage: " + s.usage);
     }
+    if (l.words[0] == "set-inbetween") {
+      try {
+        parse_inbetween_method(l.words[2]);
+      } catch (const Error& e) {
+        throw file_error(name, line, e.what());
+      }
+    }
     if (l.words[0] == "export-gltf") {
       if (!ends_with(l.words[1], ".glb") && !ends_with(l.words[1], ".gltf"))
         throw file_error(name, line, "export-gltf writes .glb or .gltf, got '" + l.words[1] + "'");
@@ -258,6 +267,10 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
         const int k = doc.key_at(t);
         if (k < 0) throw Error("no key at time " + (l.words.size() > 1 ? l.words[1] : std::to_string(t)));
         doc.delete_key(k);
+      } else if (cmd == "set-inbetween") {
+        const int k = doc.key_at(num(l, 1));
+        if (k < 0) throw Error("no key at time " + l.words[1]);
+        doc.set_key_inbetween(k, parse_inbetween_method(l.words[2]));
       } else if (cmd == "set-time") {
         doc.set_time(num(l, 1));
       } else if (cmd == "reset-pose") {
