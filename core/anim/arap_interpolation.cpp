@@ -116,12 +116,8 @@ Eigen::MatrixXd linear_interpolation(const Eigen::MatrixXd& a, const Eigen::Matr
   return (1.0 - t) * a + t * b;
 }
 
-ArapInterpolation::ArapInterpolation(const TriMesh& k0, const Eigen::MatrixXd& k1, const ArapInterpolationOptions& opts) {
-  if (k1.rows() != k0.V.rows() || k1.cols() != 3)
-    throw Error("ARAP interpolation: the second key has " + std::to_string(k1.rows()) + " vertices, the first " +
-                std::to_string(k0.V.rows()) + " (the keys must share one triangle list)");
-  keys_[0] = k0.V;
-  keys_[1] = k1;
+ArapSource::ArapSource(const TriMesh& k0, const ArapInterpolationOptions& opts)
+    : key_(k0.V), interior_iterations_(opts.interior_iterations) {
   auto t0 = std::chrono::steady_clock::now();
   const TetgenResult tg = tetrahedralize(Plc{k0.V, k0.F, {}}, opts.tetgen_switches);
   rest_ = tg.mesh;
@@ -130,58 +126,32 @@ ArapInterpolation::ArapInterpolation(const TriMesh& k0, const Eigen::MatrixXd& k
   stats_.tets = rest_.num_tets();
   stats_.tet_vertices = rest_.num_vertices();
   stats_.tetrahedralize_seconds = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
   const int n = rest_.num_vertices(), nt = rest_.num_tets();
   grad_.resize(nt);
   for (int t = 0; t < nt; ++t) grad_[t] = hat_gradients(rest_, t);
   vol_ = tet_volumes(rest_.V, rest_.T);
-  const Eigen::VectorXd& vol = vol_;
   const Eigen::SparseMatrix<double> K = cotangent_stiffness(rest_.V, rest_.T);  // sum vol G^T G
 
-  // The second key's interior: boundary at k1, interior harmonic, then local-global ARAP (Sorkine & Alexa 2007).
-  t0 = std::chrono::steady_clock::now();
+  // The interior block, for carrying a second key's interior (boundary columns kept in Kib_).
   std::vector<char> on_surface(n, 0);
-  target_ = rest_.V;
-  for (int i = 0; i < k1.rows(); ++i) on_surface[surface_to_tet_(i)] = 1, target_.row(surface_to_tet_(i)) = k1.row(i);
-  std::vector<int> interior, slot(n, -1);
+  for (int i = 0; i < surface_to_tet_.size(); ++i) on_surface[surface_to_tet_(i)] = 1;
+  std::vector<int> slot(n, -1);  // tet vertex -> row among the interior ones
   for (int i = 0; i < n; ++i)
-    if (!on_surface[i]) slot[i] = static_cast<int>(interior.size()), interior.push_back(i);
-  if (!interior.empty()) {
+    if (!on_surface[i]) slot[i] = static_cast<int>(interior_.size()), interior_.push_back(i);
+  if (!interior_.empty()) {
     std::vector<Eigen::Triplet<double>> ii, ib;
     for (int j = 0; j < K.outerSize(); ++j)
       for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it)
         if (slot[it.row()] >= 0) (slot[j] >= 0 ? ii : ib).emplace_back(slot[it.row()], slot[j] >= 0 ? slot[j] : j, it.value());
-    Eigen::SparseMatrix<double> Kii(interior.size(), interior.size()), Kib(interior.size(), n);
+    Eigen::SparseMatrix<double> Kii(interior_.size(), interior_.size());
+    Kib_.resize(interior_.size(), n);
     Kii.setFromTriplets(ii.begin(), ii.end());
-    Kib.setFromTriplets(ib.begin(), ib.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> inner(Kii);
-    if (inner.info() != Eigen::Success) throw Error("ARAP interpolation: the interior system did not factor");
-    Eigen::MatrixXd boundary = target_;
-    for (int i : interior) boundary.row(i).setZero();
-    auto solve_interior = [&](const Eigen::MatrixXd& B) {
-      Eigen::MatrixXd rhs(interior.size(), 3);
-      for (size_t k = 0; k < interior.size(); ++k) rhs.row(k) = B.row(interior[k]);
-      const Eigen::MatrixXd X = inner.solve(rhs - Kib * boundary);
-      for (size_t k = 0; k < interior.size(); ++k) target_.row(interior[k]) = X.row(k);
-    };
-    solve_interior(Eigen::MatrixXd::Zero(n, 3));
-    for (int it = 0; it < opts.interior_iterations; ++it)
-      solve_interior(gradient_rhs(rest_, grad_, vol, [&](int t) {
-        return Eigen::Matrix3d(best_rotation(deformation_gradient(target_, rest_.T, t, grad_[t]).transpose()));
-      }));
+    Kib_.setFromTriplets(ib.begin(), ib.end());
+    inner_.compute(Kii);
+    if (inner_.info() != Eigen::Success) throw Error("ARAP interpolation: the interior system did not factor");
   }
-  stats_.interior_seconds = seconds_since(t0);
 
-  // Per tet A = R S (4.1.1), R on one branch across neighbours.
-  t0 = std::chrono::steady_clock::now();
-  std::vector<Eigen::Matrix3d> R(nt);
-  stretch_.resize(nt);
-  for (int t = 0; t < nt; ++t) {
-    const Eigen::Matrix3d F = deformation_gradient(target_, rest_.T, t, grad_[t]);
-    R[t] = best_rotation(F.transpose());
-    const Eigen::Matrix3d S = R[t].transpose() * F;
-    stretch_[t] = 0.5 * (S + S.transpose());
-  }
-  angle_ = consistent_rotation_vectors(rest_.T, R);
   // Eq. 4.26 with the vertex nearest the centroid fixed (it moves linearly): K restricted to the rest.
   const Eigen::RowVector3d centroid = rest_.V.colwise().mean();
   (rest_.V.rowwise() - centroid).rowwise().squaredNorm().minCoeff(&fixed_);
@@ -204,26 +174,82 @@ ArapInterpolation::ArapInterpolation(const TriMesh& k0, const Eigen::MatrixXd& k
   stats_.factor_seconds = seconds_since(t0);
 }
 
+ArapInterpolation::ArapInterpolation(const TriMesh& k0, const Eigen::MatrixXd& k1, const ArapInterpolationOptions& opts) {
+  if (k1.rows() != k0.V.rows() || k1.cols() != 3)
+    throw Error("ARAP interpolation: the second key has " + std::to_string(k1.rows()) + " vertices, the first " +
+                std::to_string(k0.V.rows()) + " (the keys must share one triangle list)");
+  src_ = std::make_shared<const ArapSource>(k0, opts);
+  carry(k1);
+}
+
+ArapInterpolation::ArapInterpolation(std::shared_ptr<const ArapSource> source, const Eigen::MatrixXd& k1)
+    : src_(std::move(source)) {
+  if (!src_) throw Error("ARAP interpolation: no source");
+  if (k1.rows() != src_->surface_vertices() || k1.cols() != 3)
+    throw Error("ARAP interpolation: the second key has " + std::to_string(k1.rows()) + " vertices, the first " +
+                std::to_string(src_->surface_vertices()) + " (the keys must share one triangle list)");
+  carry(k1);
+}
+
+void ArapInterpolation::carry(const Eigen::MatrixXd& k1) {
+  const ArapSource& s = *src_;
+  stats_ = s.stats_;
+  key1_ = k1;
+  const int n = s.rest_.num_vertices(), nt = s.rest_.num_tets();
+  // The second key's interior: boundary at k1, interior harmonic, then local-global ARAP (Sorkine & Alexa 2007).
+  auto t0 = std::chrono::steady_clock::now();
+  target_ = s.rest_.V;
+  for (int i = 0; i < k1.rows(); ++i) target_.row(s.surface_to_tet_(i)) = k1.row(i);
+  if (!s.interior_.empty()) {
+    Eigen::MatrixXd boundary = target_;
+    for (int i : s.interior_) boundary.row(i).setZero();
+    const Eigen::MatrixXd Kb = s.Kib_ * boundary;
+    auto solve_interior = [&](const Eigen::MatrixXd& B) {
+      Eigen::MatrixXd rhs(s.interior_.size(), 3);
+      for (size_t k = 0; k < s.interior_.size(); ++k) rhs.row(k) = B.row(s.interior_[k]);
+      const Eigen::MatrixXd X = s.inner_.solve(rhs - Kb);
+      for (size_t k = 0; k < s.interior_.size(); ++k) target_.row(s.interior_[k]) = X.row(k);
+    };
+    solve_interior(Eigen::MatrixXd::Zero(n, 3));
+    for (int it = 0; it < s.interior_iterations_; ++it)
+      solve_interior(gradient_rhs(s.rest_, s.grad_, s.vol_, [&](int t) {
+        return Eigen::Matrix3d(best_rotation(deformation_gradient(target_, s.rest_.T, t, s.grad_[t]).transpose()));
+      }));
+  }
+  // Per tet A = R S (4.1.1), R on one branch across neighbours.
+  std::vector<Eigen::Matrix3d> R(nt);
+  stretch_.resize(nt);
+  for (int t = 0; t < nt; ++t) {
+    const Eigen::Matrix3d F = deformation_gradient(target_, s.rest_.T, t, s.grad_[t]);
+    R[t] = best_rotation(F.transpose());
+    const Eigen::Matrix3d S = R[t].transpose() * F;
+    stretch_[t] = 0.5 * (S + S.transpose());
+  }
+  angle_ = consistent_rotation_vectors(s.rest_.T, R);
+  stats_.interior_seconds = seconds_since(t0);
+}
+
 Eigen::MatrixXd ArapInterpolation::at(double t) const {
-  if (t == 0.0) return keys_[0];  // the keys themselves, bit for bit
-  if (t == 1.0) return keys_[1];
-  const int n = rest_.num_vertices();
-  const Eigen::MatrixXd B = gradient_rhs(rest_, grad_, vol_, [&](int k) {
+  const ArapSource& s = *src_;
+  if (t == 0.0) return s.key_;  // the keys themselves, bit for bit
+  if (t == 1.0) return key1_;
+  const int n = s.rest_.num_vertices();
+  const Eigen::MatrixXd B = gradient_rhs(s.rest_, s.grad_, s.vol_, [&](int k) {
     const Eigen::Vector3d r = t * angle_[k];
     const double a = r.norm();
     const Eigen::Matrix3d Rt = a > 0 ? Eigen::AngleAxisd(a, r / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
     return Eigen::Matrix3d(Rt * ((1.0 - t) * Eigen::Matrix3d::Identity() + t * stretch_[k]));
   });
-  const Eigen::RowVector3d p_fixed = (1.0 - t) * rest_.V.row(fixed_) + t * target_.row(fixed_);
+  const Eigen::RowVector3d p_fixed = (1.0 - t) * s.rest_.V.row(s.fixed_) + t * target_.row(s.fixed_);
   Eigen::MatrixXd rhs(n - 1, 3);
   for (int i = 0; i < n; ++i)
-    if (free_index_[i] >= 0) rhs.row(free_index_[i]) = B.row(i);
-  rhs -= K_fixed_col_ * p_fixed;
-  const Eigen::MatrixXd X = solver_.solve(rhs);
-  Eigen::MatrixXd out(surface_to_tet_.size(), 3);
-  for (int i = 0; i < surface_to_tet_.size(); ++i) {
-    const int v = surface_to_tet_(i);
-    out.row(i) = v == fixed_ ? p_fixed : Eigen::RowVector3d(X.row(free_index_[v]));
+    if (s.free_index_[i] >= 0) rhs.row(s.free_index_[i]) = B.row(i);
+  rhs -= s.K_fixed_col_ * p_fixed;
+  const Eigen::MatrixXd X = s.solver_.solve(rhs);
+  Eigen::MatrixXd out(s.surface_to_tet_.size(), 3);
+  for (int i = 0; i < s.surface_to_tet_.size(); ++i) {
+    const int v = s.surface_to_tet_(i);
+    out.row(i) = v == s.fixed_ ? p_fixed : Eigen::RowVector3d(X.row(s.free_index_[v]));
   }
   return out;
 }

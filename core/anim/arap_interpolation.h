@@ -5,7 +5,9 @@
 // compatible dissection), and each tet's affine map A = R S interpolates as R(t) ((1 - t) I + t S)
 // (4.1.1), R(t) turning by t times its angle, the angles chosen consistently across neighbouring tets
 // so a 270 degree twist is not taken as -90. The vertex paths minimize Eq. 4.24 (volume-weighted):
-// one factorization per key pair (Eq. 4.27), one back substitution per time. Keys are hit exactly.
+// one factorization per first key (Eq. 4.27; ArapSource), one back substitution per time. Keys are hit
+// exactly.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,28 +28,53 @@ struct ArapInterpolationStats {
   double tetrahedralize_seconds = 0, interior_seconds = 0, factor_seconds = 0;
 };
 
+// The first key's half of the setup, shared by every interpolation from it (a shape space's chain of
+// morphs, ch. 5, morphs one base to many targets): its tets, hat gradients, volumes and the two
+// factorizations (interior carrying and Eq. 4.27's vertex paths), which depend on the first key only.
+class ArapSource {
+ public:
+  // k0: a closed surface. Throws dfm::Error when TetGen fails on it.
+  explicit ArapSource(const TriMesh& k0, const ArapInterpolationOptions& opts = {});
+  int surface_vertices() const { return static_cast<int>(key_.rows()); }
+  const ArapInterpolationStats& stats() const { return stats_; }  // interior_seconds: 0
+
+ private:
+  friend class ArapInterpolation;
+  Eigen::MatrixXd key_;
+  int interior_iterations_ = 30;
+  TetMesh rest_;                       // the first key's tets
+  Eigen::VectorXd vol_;                // its tet volumes
+  Eigen::VectorXi surface_to_tet_;     // k0 vertex -> tet vertex
+  std::vector<Eigen::Matrix<double, 3, 4>> grad_;  // per tet: hat-function gradients
+  std::vector<int> interior_;          // tet vertices not on the surface
+  Eigen::SparseMatrix<double> Kib_;    // stiffness rows of the interior, all columns
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> inner_;   // interior block
+  Eigen::SparseMatrix<double> K_fixed_col_;  // stiffness columns of the fixed vertex, free rows
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // all but the fixed vertex
+  std::vector<int> free_index_;  // tet vertex -> row among the free ones (-1 for the fixed vertex)
+  int fixed_ = 0;
+  ArapInterpolationStats stats_;
+};
+
 class ArapInterpolation {
  public:
   // k0: a closed surface; k1: the second key's vertices on k0's triangles (same count and order).
   // Throws dfm::Error on a count mismatch or when TetGen fails on k0.
   ArapInterpolation(const TriMesh& k0, const Eigen::MatrixXd& k1, const ArapInterpolationOptions& opts = {});
+  // The same with k0's half of the setup built before (the same result as building it here).
+  ArapInterpolation(std::shared_ptr<const ArapSource> source, const Eigen::MatrixXd& k1);
   // The surface vertices at t (t = 0 and 1 give the keys; other t extrapolate).
   Eigen::MatrixXd at(double t) const;
+  // The source's stages (as measured when it was built) and this pair's interior carrying.
   const ArapInterpolationStats& stats() const { return stats_; }
 
  private:
-  Eigen::MatrixXd keys_[2];
-  TetMesh rest_;                       // the first key's tets
-  Eigen::VectorXd vol_;                // its tet volumes
-  Eigen::VectorXi surface_to_tet_;     // k0 vertex -> tet vertex
+  void carry(const Eigen::MatrixXd& k1);  // target_, angle_, stretch_ from the second key
+  std::shared_ptr<const ArapSource> src_;
+  Eigen::MatrixXd key1_;
   Eigen::MatrixXd target_;             // tet vertices carried to the second key
   std::vector<Eigen::Vector3d> angle_;  // per tet: rotation vector of R (consistent branch)
   std::vector<Eigen::Matrix3d> stretch_;  // per tet: S
-  std::vector<Eigen::Matrix<double, 3, 4>> grad_;  // per tet: hat-function gradients times volume
-  Eigen::SparseMatrix<double> K_fixed_col_;  // stiffness columns of the fixed vertex, free rows
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
-  std::vector<int> free_index_;  // tet vertex -> row among the free ones (-1 for the fixed vertex)
-  int fixed_ = 0;
   ArapInterpolationStats stats_;
 };
 
