@@ -27,6 +27,23 @@ struct RunOptions {
   long max_file_bytes = -1;  // >= 0: RLIMIT_FSIZE in the child (a "full disk"); SIGXFSZ is ignored
 };
 
+// A scratch folder under the temp directory (name and process id), removed afterwards.
+struct ScratchDir {
+  std::filesystem::path dir;
+  explicit ScratchDir(const std::string& name) {
+    dir = std::filesystem::temp_directory_path() / ("dfm_" + name + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::string operator/(const std::string& f) const { return (dir / f).string(); }
+};
+
 inline std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
@@ -73,6 +90,12 @@ inline RunResult run_program(const std::string& exe, const std::vector<std::stri
   r.out = slurp(out_path);
   r.err = slurp(err_path);
   return r;
+}
+
+// The command, how it ended and the start of its output, for test messages.
+inline std::string describe_run(const RunResult& r) {
+  return r.command + "\n  -> " + (r.signaled ? "signal " + std::to_string(r.signal) : "exit " + std::to_string(r.exit_code)) +
+         "\n  stdout: " + r.out.substr(0, 1500) + "\n  stderr: " + r.err.substr(0, 800);
 }
 
 }  // namespace dfm::test

@@ -17,31 +17,17 @@
 #include "tests/key_mesh_test_meshes.h"
 
 using dfm::test::run_program;
+using dfm::test::describe_run;
 using dfm::test::RunResult;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Scratch {
-  fs::path dir;
-  Scratch() {
-    dir = fs::temp_directory_path() / ("dfm_test_cli_key_mesh_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  std::string operator/(const std::string& f) const { return (dir / f).string(); }
+struct Scratch : dfm::test::ScratchDir {
+  Scratch() : ScratchDir("test_cli_key_mesh") {}
 };
 
 RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return run_program(DEFORM_EXE, args, s.dir); }
-
-std::string describe(const RunResult& r) {
-  return r.command + "\n  -> " + (r.signaled ? "signal " + std::to_string(r.signal) : "exit " + std::to_string(r.exit_code)) +
-         "\n  stdout: " + r.out.substr(0, 1500) + "\n  stderr: " + r.err.substr(0, 800);
-}
 
 long count_field(const std::string& text, const std::string& key) {
   std::smatch m;
@@ -65,7 +51,7 @@ TEST_CASE("deform manifold: same-connectivity keyframes are exactly the prism bu
   const RunResult r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", s / "c.obj", "--times", "0", "1",
                                  "3", "--at", "0.5", "-o", s / "slice.obj", "--stats", "--save-manifold", s / "m.tet4",
                                  "--frames", "3", "--sequence", s / "seq"});
-  INFO(describe(r));
+  INFO(describe_run(r));
   REQUIRE(r.exit_code == 0);
   CHECK(count_field(r.out, "prism slabs") == 2);
   CHECK(count_field(r.out, "transition slabs") == 0);
@@ -97,7 +83,7 @@ TEST_CASE("deform manifold: a bad keyframe exits 1 naming the file", "[cli][host
   dfm::test::write_obj_raw(s / "badindex.obj", bad);
   for (const std::string f : {"missing.obj", "open.obj", "nan.obj", "badindex.obj"}) {
     const RunResult r = deform(s, {"manifold", "--keyframes", s / "sphere.obj", s / f, "--at", "0.5", "--stats"});
-    INFO(describe(r));
+    INFO(describe_run(r));
     CHECK_FALSE(r.signaled);
     CHECK(r.exit_code == 1);
     CHECK(r.err.find("deform manifold: error: ") == 0);
@@ -111,7 +97,7 @@ TEST_CASE("deform manifold: sphere -> torus is a transition whose slice is close
   dfm::test::write_obj_raw(s / "torus.obj", torus());
   const RunResult r = deform(s, {"manifold", "--keyframes", s / "sphere.obj", s / "torus.obj", "--at", "0.5", "-o",
                                  s / "mid.obj", "--stats", "--save-manifold", s / "m.tet4"});
-  INFO(describe(r));
+  INFO(describe_run(r));
   REQUIRE(r.exit_code == 0);
   CHECK(count_field(r.out, "transition slabs") == 1);
   CHECK(count_field(r.out, "prism slabs") == 0);
