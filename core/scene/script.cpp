@@ -15,6 +15,7 @@
 #include "core/scene/bind_document.h"
 #include "core/scene/brush.h"
 #include "core/scene/key_surfaces.h"
+#include "core/scene/shape_space_keys.h"
 #include "core/mesh/io.h"
 #include "core/skin/skin.h"
 #include "core/util/atomic_file.h"
@@ -51,6 +52,7 @@ const std::map<std::string, Spec>& specs() {
       {"set-method", {1, 1, 0, "set-method lbs|dqs|stbs"}},
       {"set-key", {0, 1, -1, "set-key [TIME]"}},
       {"key-mesh", {1, 2, 0, "key-mesh FILE [TIME]"}},
+      {"shape-space-key", {5, 2001, 0, "shape-space-key linear|arap T0 T1 ... W0 W1 ... [TIME]"}},
       {"delete-key", {0, 1, -1, "delete-key [TIME]"}},
       {"set-inbetween", {2, 2, 1, "set-inbetween TIME handles|arap|linear"}},
       {"set-time", {1, 1, -1, "set-time T"}},
@@ -173,6 +175,15 @@ std::vector<ScriptLine> parse_script(const std::string& text, const std::string&
         throw file_error(name, line, e.what());
       }
     }
+    if (l.words[0] == "shape-space-key") {
+      if (l.words[1] != "linear" && l.words[1] != "arap")
+        throw file_error(name, line, "the morph must be linear or arap, got '" + l.words[1] + "'; usage: " + s.usage);
+      for (int i = 2; i <= nargs; ++i) {
+        double x;
+        if (!parse_number(l.words[i], x))
+          throw file_error(name, line, "'" + l.words[i] + "' is not a finite number; usage: " + s.usage);
+      }
+    }
     if (l.words[0] == "export-gltf") {
       if (!ends_with(l.words[1], ".glb") && !ends_with(l.words[1], ".gltf"))
         throw file_error(name, line, "export-gltf writes .glb or .gltf, got '" + l.words[1] + "'");
@@ -262,6 +273,14 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
         doc.set_key(l.words.size() > 1 ? num(l, 1) : doc.time());
       } else if (cmd == "key-mesh") {
         doc.key_mesh_file(l.words[1], l.words.size() > 2 ? num(l, 2) : doc.time());
+      } else if (cmd == "shape-space-key") {
+        // Key times, then as many weights, then an optional time to key at (Alexa 2002, ch. 5).
+        const int m = static_cast<int>(l.words.size()) - 2, n = m / 2;
+        std::vector<double> times;
+        Eigen::VectorXd x(n);
+        for (int i = 0; i < n; ++i) times.push_back(num(l, 2 + i)), x(i) = num(l, 2 + n + i);
+        ShapeSpace space = key_shape_space(doc, times, parse_shape_morph(l.words[1]));
+        key_synthesized_shape(doc, space, x, m % 2 ? num(l, static_cast<int>(l.words.size()) - 1) : doc.time());
       } else if (cmd == "delete-key") {
         const double t = l.words.size() > 1 ? num(l, 1) : doc.time();
         const int k = doc.key_at(t);

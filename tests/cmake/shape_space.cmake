@@ -4,3 +4,5 @@ dfm_test(test_shape_space SOURCES test_shape_space.cpp LIBS dfm_anim dfm_mesh)
 dfm_test(test_shape_space_cli SOURCES test_shape_space_cli.cpp LIBS dfm_mesh)
 target_compile_definitions(test_shape_space_cli PRIVATE DEFORM_EXE="$<TARGET_FILE:deform>")
 add_dependencies(test_shape_space_cli deform)
+# The script's shape-space-key over the document's keys (core/scene/shape_space_keys).
+dfm_test(test_shape_space_script SOURCES test_shape_space_script.cpp LIBS dfm_scene)
