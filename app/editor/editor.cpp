@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "app/editor/camera_sync.h"
+#include "app/editor/shape_space_panel.h"
 #include "app/editor/theme.h"
 #include "core/mesh/io.h"
 #include "core/scene/bind_document.h"
@@ -107,6 +108,7 @@ Editor::Editor(const EditorOptions& opts)
   init_imgui();
   gpu_ = std::make_unique<gl::GlBackend>();
   view_ = std::make_unique<SceneView>(*gpu_);
+  shape_space_ = std::make_unique<ShapeSpacePanel>();
   last_autosave_ = std::chrono::steady_clock::now();
 }
 

@@ -39,6 +39,8 @@ struct EditorOptions {
 enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
 enum class PaintTarget { Mask, Region };
 
+struct ShapeSpacePanel;
+
 struct Rect {
   double x = 0, y = 0, w = 1, h = 1;
   bool contains(double px, double py) const { return px >= x && py >= y && px < x + w && py < y + h; }
@@ -114,6 +116,11 @@ class Editor {
   void draw_weights_section();
   void draw_transform_section();
   void draw_posing_section();  // pose_panels.cpp
+  // shape_space_panel.cpp: the Shape space panel (Alexa 2002, ch. 5) and its --ui options.
+  void draw_shape_space_section();
+  bool shape_space_ui_option(const std::string& key, const std::string& value);
+  void update_shape_space();   // rebuilds the space when the bases' surfaces change
+  void shape_space_pad(ShapeSpacePanel& p);
   void draw_viewport_hud();
   void draw_quit_prompt();
   void draw_error_popup();
@@ -205,6 +212,7 @@ class Editor {
   std::chrono::steady_clock::time_point last_autosave_;
   std::uint64_t autosaved_revision_ = 0;
   std::vector<std::string> weight_rows_;  // the picked vertex's weights, formatted
+  std::unique_ptr<ShapeSpacePanel> shape_space_;  // the Shape space panel's view state
 };
 
 }  // namespace dfm::editor

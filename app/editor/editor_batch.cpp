@@ -99,7 +99,8 @@ void Editor::apply_ui_options(const std::string& spec) {
     if (eq == std::string::npos) throw Error("--ui: expected key=value, got '" + item + "'");
     const std::string k = item.substr(0, eq), v = item.substr(eq + 1);
     auto bad = [&]() { return Error("--ui: bad value '" + v + "' for " + k); };
-    if (k == "tool") {
+    if (shape_space_ui_option(k, v)) {
+    } else if (k == "tool") {
       if (v == "select") tool_ = Tool::Select;
       else if (v == "point") tool_ = Tool::PlacePoint;
       else if (v == "bone") tool_ = Tool::DrawBone;

@@ -305,6 +305,7 @@ void Editor::draw_right_panel() {
   if (ImGui::CollapsingHeader("Weights", ImGuiTreeNodeFlags_DefaultOpen)) draw_weights_section();
   if (ImGui::CollapsingHeader("Transform", ImGuiTreeNodeFlags_DefaultOpen)) draw_transform_section();
   if (ImGui::CollapsingHeader("Posing", ImGuiTreeNodeFlags_DefaultOpen)) draw_posing_section();
+  draw_shape_space_section();  // its own header (closed by default)
 }
 
 void Editor::draw_view_section() {
@@ -418,7 +419,7 @@ std::string Editor::hud_text() const {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%.0f fps  %.1f ms   %d verts  %d faces   %s%s", frame_stats_.fps(), frame_stats_.ms(),
                 view_->display_vertex_count(), view_->display_face_count(),
-                cam_.orthographic ? "ortho" : "persp", view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
+                cam_.orthographic ? "ortho" : "persp", view_->showing_preview() ? "   shape space" : view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
   return buf;
 }
 

@@ -166,6 +166,7 @@ void SceneView::show_rest(const TriMesh& rest) {
 
 void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
   Deformer& d = *deformer_;
+  showing_preview_ = false;
   const TriMesh& rest = doc.surface();
   error_.clear();
   bounds_.setEmpty();
@@ -468,6 +469,19 @@ void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, cons
     }
     gpu_.draw_points(cam, marks, 6.0f, false);
   }
+}
+
+void SceneView::show_preview(const TriMesh& mesh) {
+  show_rest(mesh);
+  display_is_rest_ = false;  // not the rest surface: rest-only edits stay off
+  deformer_->gpu_output_stale = false;  // display_V_ is the preview itself
+  showing_preview_ = true;
+}
+
+void SceneView::clear_preview() {
+  if (!showing_preview_) return;
+  showing_preview_ = false;
+  surface_requested_ = true;  // the next sync shows the document's frame again
 }
 
 void SceneView::show_pose() {

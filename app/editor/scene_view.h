@@ -61,6 +61,11 @@ class SceneView {
   // Shows the current pose (skinned) instead of the manifold slice until the time changes, as a pose
   // edit after a scrub does.
   void show_pose();
+  // Shows `mesh` instead of the document's frame (the Shape space panel's shape) until the next change
+  // of the document, time or view settings, or clear_preview().
+  void show_preview(const TriMesh& mesh);
+  void clear_preview();
+  bool showing_preview() const { return showing_preview_; }
   bool display_is_rest() const { return display_is_rest_; }
   Eigen::AlignedBox3d surface_bounds() const { return bounds_; }
   // Handle glyph positions as displayed (posed when posing), rows in handle order; joints separately.
@@ -87,6 +92,7 @@ class SceneView {
   Eigen::MatrixXi display_F_;
   bool display_is_rest_ = true;
   bool showing_slice_ = false;
+  bool showing_preview_ = false;
   int display_count_ = 0, display_faces_ = 0;
   Eigen::AlignedBox3d bounds_;
   Eigen::MatrixXd handle_pos_, joint_pos_;

@@ -1,0 +1,45 @@
+#pragma once
+// The Shape space panel's state (editor view state: not in the document, not saved, not undoable):
+// which keys are the bases (by time, in chain order), where each sits on the 2D pad, the cursor, the
+// morph, and the shape space built from the document's keys (its ARAP setups kept while the bases'
+// surfaces stay the same). The panel itself is Editor::draw_shape_space_section.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/anim/shape_space.h"
+#include "core/anim/shape_space_pad.h"
+
+namespace dfm::editor {
+
+struct ShapeSpacePanel {
+  std::vector<double> times;   // the bases: key times, in the order of Eq. 5.31's chain
+  PadPoints points;            // one row per base, pad coordinates in [0, 1]^2 (v down)
+  Eigen::Vector2d cursor{0.5, 0.5};
+  ShapeMorph morph = ShapeMorph::Linear;
+  bool preview = true;         // show the shape in the viewport
+  bool open_request = false;   // --ui shape_space=...: open the header and scroll to it until built
+  double key_time = 0;         // "Key this shape" keys at this time
+  bool key_time_set = false;   // key_time follows the document's time until edited
+
+  std::unique_ptr<ShapeSpace> space;  // null until two or more bases build
+  std::uint64_t built_revision = ~0ull;
+  std::vector<double> built_times;
+  ShapeMorph built_morph = ShapeMorph::Linear;
+  std::string build_error, synth_error;  // building the space from the keys; synthesizing
+
+  Eigen::VectorXd weights;      // at the cursor
+  Eigen::VectorXd shape_weights;  // of `shape` (empty: none)
+  Eigen::MatrixXd shape;        // the synthesized vertices
+  double synth_ms = 0;
+  int dragging_point = -1;
+};
+
+// Base i's default pad position: the n points on a circle (two: a horizontal segment).
+Eigen::Vector2d default_pad_point(int i, int n);
+
+}  // namespace dfm::editor
