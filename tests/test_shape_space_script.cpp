@@ -36,7 +36,9 @@ TEST_CASE("shape-space-key keys the synthesized shape: the affine combination, e
   REQUIRE(doc.keys().size() == 4);
   const SceneKey& made = doc.keys()[3];
   CHECK(made.time == 3.0);
+  REQUIRE(made.mesh.F.rows() == k[0].F.rows());
   CHECK(made.mesh.F == k[0].F);
+  REQUIRE(made.mesh.V.rows() == k[0].V.rows());
   CHECK((made.mesh.V - (0.2 * k[0].V + 0.5 * k[1].V + 0.3 * k[2].V)).cwiseAbs().maxCoeff() < 1e-12);
   CHECK(made.mesh_path == "shape space linear 0.2 0.5 0.3");
   doc.undo();

@@ -32,7 +32,8 @@ std::vector<dfm::TriMesh> read_bases(const std::vector<std::string>& files) {
 
 int analyze(const dfm::ShapeSpace& space, const std::string& file) {
   const dfm::TriMesh M = dfm::read_surface(file);
-  if (M.V.rows() != space.bases()[0].rows() || M.F != space.faces())
+  if (M.V.rows() != space.bases()[0].rows() || M.F.rows() != space.faces().rows() ||
+      M.F.cols() != space.faces().cols() || M.F != space.faces())
     throw dfm::Error(file + ": its vertices or triangles differ from " + space.names()[0] +
                      "'s (analysis needs the bases' connectivity)");
   if (!M.V.allFinite()) throw dfm::Error(file + ": a vertex position is not finite");

@@ -106,8 +106,10 @@ void Editor::update_shape_space() {
   try {
     auto next = std::make_unique<ShapeSpace>(key_shape_space(doc_, p.times, p.morph));
     // The same bases and morph (a pose edit elsewhere): keep the old space and its ARAP setups.
-    const bool same = p.space && p.space->morph() == next->morph() && p.space->faces() == next->faces() &&
-                      p.space->bases() == next->bases();
+    auto equal = [](const auto& a, const auto& b) { return a.rows() == b.rows() && a.cols() == b.cols() && a == b; };
+    bool same = p.space && p.space->morph() == next->morph() && p.space->size() == next->size() &&
+                equal(p.space->faces(), next->faces());
+    for (int i = 0; same && i < next->size(); ++i) same = equal(p.space->bases()[i], next->bases()[i]);
     if (!same) p.space = std::move(next), p.shape_weights.resize(0), p.synth_error.clear();
   } catch (const std::exception& e) {
     p.space.reset();

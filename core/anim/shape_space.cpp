@@ -40,7 +40,8 @@ void check_shape_bases(const std::vector<TriMesh>& bases, const std::vector<std:
     if (b.V.cols() != 3 || b.V.rows() == 0) throw Error(base_name(names, i) + ": no vertices");
     if (!b.V.allFinite()) throw Error(base_name(names, i) + ": a vertex position is not finite");
     if (i == 0) continue;
-    if (b.V.rows() != bases[0].V.rows() || b.F.rows() != bases[0].F.rows() || b.F != bases[0].F)
+    if (b.V.rows() != bases[0].V.rows() || b.F.rows() != bases[0].F.rows() || b.F.cols() != bases[0].F.cols() ||
+        b.F != bases[0].F)
       throw Error(base_name(names, i) + ": its vertices or triangles differ from " + base_name(names, 0) + "'s (" +
                   std::to_string(b.V.rows()) + " vertices, " + std::to_string(b.F.rows()) + " triangles against " +
                   std::to_string(bases[0].V.rows()) + " and " + std::to_string(bases[0].F.rows()) +
@@ -94,6 +95,10 @@ double ShapeAnalysis::quality() const {
 ShapeAnalysis analyze_linear(const std::vector<Eigen::MatrixXd>& bases, const Eigen::MatrixXd& M) {
   const int n = static_cast<int>(bases.size());
   if (n < 2) throw Error("a shape space needs at least 2 bases, got " + std::to_string(n));
+  for (int i = 1; i < n; ++i)
+    if (bases[i].rows() != bases[0].rows() || bases[i].cols() != bases[0].cols())
+      throw Error("base " + std::to_string(i) + " has " + std::to_string(bases[i].rows()) + " vertices, base 0 " +
+                  std::to_string(bases[0].rows()));
   if (M.rows() != bases[0].rows() || M.cols() != bases[0].cols())
     throw Error("the mesh has " + std::to_string(M.rows()) + " vertices, the bases " + std::to_string(bases[0].rows()));
   if (!M.allFinite()) throw Error("a vertex position of the mesh is not finite");
