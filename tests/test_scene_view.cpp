@@ -464,3 +464,51 @@ TEST_CASE("scene view: per-frame extras draw once, grouped by width", "[editor][
   REQUIRE(gpu.lines.empty());
   for (const auto& b : gpu.points) REQUIRE(b.vertices.empty());
 }
+
+// The Shape space panel's preview (app/editor/shape_space_panel.cpp): a mesh of the surface's
+// triangles shown instead of the document's frame until the time or the document changes, or the
+// panel clears it; the HUD and picking then see it (not the rest surface: rig edits stay off).
+TEST_CASE("scene view: a shape-space preview shows until the time, the document or clear_preview", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  doc.set_key(0.0);
+  doc.translate_handle(0, Vector3d(0.2, 0.3, 0));
+  doc.set_key(1.0);
+  doc.set_time(0.5);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const ViewSettings s;
+  scene.sync(doc, s);
+  REQUIRE(scene.showing_slice());
+  TriMesh shape = octahedron();
+  shape.V *= 1.5;
+  scene.show_preview(shape);
+  auto shows_shape = [&] {
+    REQUIRE(scene.showing_preview());
+    REQUIRE_FALSE(scene.showing_slice());
+    REQUIRE_FALSE(scene.display_is_rest());
+    REQUIRE(gpu.mesh.V == shape.V);
+    REQUIRE(gpu.geometry.vertex_buffer == gpu.mesh_vertex_buffer);
+    REQUIRE(scene.display_vertices() == shape.V);
+    REQUIRE(scene.display_faces() == shape.F);
+  };
+  shows_shape();
+  const int uploads = gpu.mesh_uploads;
+  for (int i = 0; i < 3; ++i) scene.sync(doc, s);  // nothing changed: it stays, uploaded once
+  shows_shape();
+  REQUIRE(gpu.mesh_uploads == uploads);
+  doc.set_time(0.25);  // scrubbing shows the animation again
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.showing_preview());
+  REQUIRE(scene.showing_slice());
+  scene.show_preview(shape);
+  scene.clear_preview();  // the panel closed or its preview turned off
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.showing_preview());
+  REQUIRE(scene.showing_slice());
+  scene.show_preview(shape);
+  doc.translate_handle(1, Vector3d(0, 0, -0.2));  // a document edit: the pose being edited
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.showing_preview());
+  REQUIRE(same(gpu.geometry, gpu.skins.back()->output));
+}
