@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <catch2/catch.hpp>
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 
 #include "core/anim/arap_interpolation.h"
@@ -155,4 +156,68 @@ TEST_CASE("ARAP interpolation of a bar bent by 90 degrees keeps its volume withi
        << 100 * worst_linear << "%");
   CHECK(worst_arap < 0.01);
   CHECK(worst_linear > worst_arap);
+}
+
+TEST_CASE("symmetric ARAP (Eq. 4.28): keys exact, a rigid turn rigid, one tet against its closed form, "
+          "a bent bar's volume kept", "[anim][arap]") {
+  const double L = 3.0;
+  const TriMesh k0 = capped_cylinder(31, 12, L, 0.3);
+  ArapInterpolationOptions sym;
+  sym.symmetric = true;
+  // A rigid turn stays rigid.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(2.0, Eigen::Vector3d(0.2, 0.3, 1.0).normalized()).toRotationMatrix();
+  const Eigen::MatrixXd turned = k0.V * R.transpose();
+  const ArapInterpolation rigid(k0, turned, sym);
+  CHECK(rigid.at(0.0) == k0.V);
+  CHECK(rigid.at(1.0) == turned);
+  CHECK(max_edge_length_ratio_error(k0, rigid.at(0.4)) < 1e-6);
+
+  // One tetrahedron and an affine copy of it (turned and stretched unevenly): with a single tet the
+  // minimizer has a closed form. B, the intermediate's linear map, minimizes
+  //   (1 - t) vol0 |A->(t) - B|^2 + t vol1 |A<-(1 - t) - B F^-1|^2,
+  // A->(t) = R(t)((1 - t) I + t S) from F = R S, A<-(u) the same for F^-1 (Eqs. 4.28-4.30).
+  TriMesh tet;
+  tet.V.resize(4, 3);
+  tet.V << 1, 1, 1, 1, -1, -1, -1, 1, -1, -1, -1, 1;
+  tet.F.resize(4, 3);
+  tet.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  if (enclosed_volume(tet.V, tet.F) < 0) tet.F.col(1).swap(tet.F.col(2));
+  const Eigen::Matrix3d F = Eigen::AngleAxisd(2.3, Eigen::Vector3d(1, 2, 0.5).normalized()).toRotationMatrix() *
+                            Eigen::Vector3d(2.5, 0.7, 1.2).asDiagonal();
+  const Eigen::MatrixXd moved = (tet.V * F.transpose()).rowwise() + Eigen::RowVector3d(0.3, 0.1, -0.2);
+  const ArapInterpolation one(tet, moved, sym);
+  REQUIRE(one.stats().tets == 1);
+  auto interpolated = [](const Eigen::Matrix3d& M, double u) {
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Matrix3d Rm = svd.matrixU() * svd.matrixV().transpose();  // det > 0 here
+    const Eigen::Matrix3d Sm = svd.matrixV() * svd.singularValues().asDiagonal() * svd.matrixV().transpose();
+    const Eigen::AngleAxisd aa(Rm);
+    return Eigen::Matrix3d(Eigen::AngleAxisd(u * aa.angle(), aa.axis()).toRotationMatrix() *
+                           ((1 - u) * Eigen::Matrix3d::Identity() + u * Sm));
+  };
+  const double vol0 = enclosed_volume(tet.V, tet.F), vol1 = enclosed_volume(moved, tet.F);
+  for (double t : {0.3, 0.5, 0.8}) {
+    const Eigen::Matrix3d Af = interpolated(F, t), Ab = interpolated(F.inverse(), 1 - t), Fi = F.inverse();
+    // Normal equations for the 9 entries of B, row by row: B ((1-t) vol0 I + t vol1 Fi Fi^T) = (1-t) vol0 Af + t vol1 Ab Fi^T.
+    const Eigen::Matrix3d M = (1 - t) * vol0 * Eigen::Matrix3d::Identity() + t * vol1 * Fi * Fi.transpose();
+    const Eigen::Matrix3d B = ((1 - t) * vol0 * Af + t * vol1 * Ab * Fi.transpose()) * M.inverse();
+    const Eigen::MatrixXd got = one.at(t);
+    const Eigen::MatrixXd expect = tet.V * B.transpose();
+    const Eigen::MatrixXd d = (got.rowwise() - got.colwise().mean()) - (expect.rowwise() - expect.colwise().mean());
+    CHECK(d.cwiseAbs().maxCoeff() < 1e-9);
+    // The one-sided form matches A->(t) alone, a different shape here.
+    const Eigen::MatrixXd plain = ArapInterpolation(tet, moved).at(t), expect_plain = tet.V * Af.transpose();
+    CHECK(((plain.rowwise() - plain.colwise().mean()) - (expect_plain.rowwise() - expect_plain.colwise().mean()))
+              .cwiseAbs().maxCoeff() < 1e-9);
+    // Per tet the two targets agree, A<-(1 - t) = A->(t) F^-1 (4.1.1 read backwards), so B = A->(t):
+    // a wrong reverse target or weight would pull the symmetric result away from it.
+    CHECK((Ab - Af * Fi).cwiseAbs().maxCoeff() < 1e-12);
+    CHECK((B - Af).cwiseAbs().maxCoeff() < 1e-12);
+  }
+  // Across many tets the blend keeps the bent bar's volume as the one-sided form does.
+  const TriMesh bar = capped_cylinder(31, 12, L, 0.3);
+  const Eigen::MatrixXd bar1 = bent(bar.V, 1.5, 0.5);
+  const ArapInterpolation bend(bar, bar1, sym);
+  const double v0 = enclosed_volume(bar.V, bar.F);
+  for (double t : {0.25, 0.5, 0.75}) CHECK(enclosed_volume(bend.at(t), bar.F) == Approx(v0).epsilon(0.01));
 }

@@ -3,12 +3,14 @@
 // exits 1 naming the file, and a sphere -> torus transition slices closed.
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
+#include <Eigen/Geometry>
 
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_io.h"
@@ -103,4 +105,55 @@ TEST_CASE("deform manifold: sphere -> torus is a transition whose slice is close
   CHECK(count_field(r.out, "prism slabs") == 0);
   CHECK(r.out.find("closed: yes") != std::string::npos);
   CHECK(dfm::read_manifold(s / "m.tet4").num_tets() > 0);
+}
+
+TEST_CASE("deform manifold --inbetween arap: a turning body stays rigid between same-connectivity keyframes; "
+          "deform interpolate --symmetric", "[cli]") {
+  Scratch s;
+  dfm::TriMesh a = dfm::test::icosphere({0, 0, 0}, 1.0, 1);
+  a.V.col(0) *= 3.0;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(2 * M_PI / 3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  dfm::TriMesh b = a;
+  b.V = a.V * R.transpose();
+  dfm::test::write_obj_raw(s / "a.obj", a);
+  dfm::test::write_obj_raw(s / "b.obj", b);
+  // Three in-betweens: t = 0.5 is a layer, the body turned by 60 degrees about its centre.
+  RunResult r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", "--inbetween", "arap", "--inbetweens", "3",
+                           "--at", "0.5", "-o", s / "mid.obj", "--stats"});
+  INFO(describe_run(r));
+  REQUIRE(r.exit_code == 0);
+  CHECK(count_field(r.out, "prism slabs") == 4);
+  const dfm::TriMesh mid = dfm::read_surface(s / "mid.obj");
+  const Eigen::Matrix3d R60 = Eigen::AngleAxisd(M_PI / 3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  // The slice is welded afresh: compare the point sets (each slice vertex near the turned body's vertex).
+  const Eigen::MatrixXd expect = a.V * R60.transpose();
+  const Eigen::RowVector3d shift = mid.V.colwise().mean() - expect.colwise().mean();
+  const Eigen::MatrixXd placed = expect.rowwise() + shift;
+  double worst = 0;
+  for (int i = 0; i < mid.V.rows(); ++i)
+    worst = std::max(worst, std::sqrt((placed.rowwise() - mid.V.row(i)).rowwise().squaredNorm().minCoeff()));
+  CHECK(worst < 1e-5);
+  // The linear blend of the same keys pulls the body in.
+  r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", "--at", "0.5", "-o", s / "lin.obj"});
+  REQUIRE(r.exit_code == 0);
+  const dfm::TriMesh lin = dfm::read_surface(s / "lin.obj");
+  CHECK(lin.V.rowwise().norm().maxCoeff() < 0.8 * mid.V.rowwise().norm().maxCoeff());
+  // Usage: handles needs pose keys; a bad method word.
+  r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", "--inbetween", "handles", "--at", "0.5", "-o",
+                 s / "x.obj"});
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("pose keys") != std::string::npos);
+  r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", "--inbetween", "spline", "--at", "0.5", "-o",
+                 s / "x.obj"});
+  CHECK(r.exit_code == 2);
+  // deform interpolate --symmetric: the same rigid turn at exactly t = 0.5.
+  r = deform(s, {"interpolate", "--keyframes", s / "a.obj", s / "b.obj", "--symmetric", "--at", "0.5", "-o", s / "sym.obj"});
+  INFO(describe_run(r));
+  REQUIRE(r.exit_code == 0);
+  const dfm::TriMesh sym = dfm::read_surface(s / "sym.obj");
+  const Eigen::RowVector3d sym_shift = sym.V.colwise().mean() - expect.colwise().mean();
+  CHECK(((sym.V.rowwise() - sym_shift) - expect).cwiseAbs().maxCoeff() < 1e-5);
+  r = deform(s, {"interpolate", "--keyframes", s / "a.obj", s / "b.obj", "--method", "linear", "--symmetric", "--at",
+                 "0.5", "-o", s / "x.obj"});
+  CHECK(r.exit_code == 2);
 }

@@ -11,11 +11,13 @@
 namespace {
 
 const char* kUsage =
-    "usage: deform interpolate --keyframes K0 K1 [--method arap|linear] --at T [--stats] -o OUT.obj|.ply|.off|.stl\n"
+    "usage: deform interpolate --keyframes K0 K1 [--method arap|linear] [--symmetric] --at T [--stats] -o OUT.obj|.ply|.off|.stl\n"
     "  --keyframes K0 K1  two surfaces with the same vertices and triangles (K0 closed for arap)\n"
     "  --method M         arap (default: K0's interior tetrahedralized, per-tet rotations and stretches\n"
     "                     interpolated, vertex paths by least squares; keys hit exactly) or linear\n"
     "  --at T             0 gives K0, 1 gives K1; values outside [0, 1] extrapolate\n"
+    "  --symmetric        arap with Eq. 4.28's symmetric energy (both keys' tets weigh alike; one\n"
+    "                     factorization per time instead of per key pair)\n"
     "  --stats            print the tets and the time of each stage";
 
 int run(const dfm::cli::Args& args) {
@@ -23,6 +25,7 @@ int run(const dfm::cli::Args& args) {
   std::string out, method = "arap";
   double at = 0;
   bool at_given = false, stats = false;
+  dfm::ArapInterpolationOptions arap_opts;
   dfm::cli::ArgReader r(args);
   while (!r.done()) {
     const std::string f = r.next();
@@ -30,6 +33,7 @@ int run(const dfm::cli::Args& args) {
     else if (f == "--method") method = r.value(f);
     else if (f == "--at") at = r.number(f), at_given = true;
     else if (f == "--stats") stats = true;
+    else if (f == "--symmetric") arap_opts.symmetric = true;
     else if (f == "-o" || f == "--output") out = r.value(f);
     else throw dfm::cli::UsageError("unknown option " + f);
   }
@@ -37,6 +41,7 @@ int run(const dfm::cli::Args& args) {
   if (!at_given) throw dfm::cli::UsageError("--at T is required");
   if (out.empty()) throw dfm::cli::UsageError("-o OUT is required");
   if (method != "arap" && method != "linear") throw dfm::cli::UsageError("--method must be arap or linear");
+  if (arap_opts.symmetric && method != "arap") throw dfm::cli::UsageError("--symmetric goes with --method arap");
   const dfm::TriMesh k0 = dfm::read_surface(keys[0]), k1 = dfm::read_surface(keys[1]);
   if (k0.V.rows() != k1.V.rows() || k0.F != k1.F)
     throw dfm::Error(keys[1] + ": its vertices or triangles differ from " + keys[0] +
@@ -48,7 +53,7 @@ int run(const dfm::cli::Args& args) {
   } else {
     dfm::ArapInterpolation arap = [&] {
       try {
-        return dfm::ArapInterpolation(k0, k1.V);
+        return dfm::ArapInterpolation(k0, k1.V, arap_opts);
       } catch (const dfm::Error& e) {
         throw dfm::Error(keys[0] + ": " + e.what());
       }

@@ -109,6 +109,28 @@ std::vector<Eigen::Vector3d> consistent_rotation_vectors(const Eigen::MatrixXi& 
   return out;
 }
 
+// K without the fixed vertex's row and column, and its column (free rows).
+void split_fixed(const Eigen::SparseMatrix<double>& K, int fixed, const std::vector<int>& free_index,
+                 Eigen::SparseMatrix<double>& Kff, Eigen::SparseMatrix<double>& fixed_col) {
+  const int n = static_cast<int>(K.rows());
+  std::vector<Eigen::Triplet<double>> ff, fc;
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it) {
+      if (it.row() == fixed) continue;
+      if (j == fixed) fc.emplace_back(free_index[it.row()], 0, it.value());
+      else ff.emplace_back(free_index[it.row()], free_index[j], it.value());
+    }
+  Kff.resize(n - 1, n - 1);
+  Kff.setFromTriplets(ff.begin(), ff.end());
+  fixed_col.resize(n - 1, 1);
+  fixed_col.setFromTriplets(fc.begin(), fc.end());
+}
+
+Eigen::Matrix3d rotation_of(const Eigen::Vector3d& r) {
+  const double a = r.norm();
+  return a > 0 ? Eigen::AngleAxisd(a, r / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
+}
+
 }  // namespace
 
 Eigen::MatrixXd linear_interpolation(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double t) {
@@ -117,7 +139,7 @@ Eigen::MatrixXd linear_interpolation(const Eigen::MatrixXd& a, const Eigen::Matr
 }
 
 ArapSource::ArapSource(const TriMesh& k0, const ArapInterpolationOptions& opts)
-    : key_(k0.V), interior_iterations_(opts.interior_iterations) {
+    : key_(k0.V), interior_iterations_(opts.interior_iterations), symmetric_(opts.symmetric) {
   auto t0 = std::chrono::steady_clock::now();
   const TetgenResult tg = tetrahedralize(Plc{k0.V, k0.F, {}}, opts.tetgen_switches);
   rest_ = tg.mesh;
@@ -158,19 +180,11 @@ ArapSource::ArapSource(const TriMesh& k0, const ArapInterpolationOptions& opts)
   free_index_.assign(n, -1);
   for (int i = 0, k = 0; i < n; ++i)
     if (i != fixed_) free_index_[i] = k++;
-  std::vector<Eigen::Triplet<double>> ff, fc;
-  for (int j = 0; j < K.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it) {
-      if (it.row() == fixed_) continue;
-      if (j == fixed_) fc.emplace_back(free_index_[it.row()], 0, it.value());
-      else ff.emplace_back(free_index_[it.row()], free_index_[j], it.value());
-    }
-  Eigen::SparseMatrix<double> Kff(n - 1, n - 1);
-  Kff.setFromTriplets(ff.begin(), ff.end());
-  K_fixed_col_.resize(n - 1, 1);
-  K_fixed_col_.setFromTriplets(fc.begin(), fc.end());
+  Eigen::SparseMatrix<double> Kff;
+  split_fixed(K, fixed_, free_index_, Kff, K_fixed_col_);
   solver_.compute(Kff);
   if (solver_.info() != Eigen::Success) throw Error("ARAP interpolation: the vertex-path system did not factor");
+  if (symmetric_) Kff_ = std::move(Kff);
   stats_.factor_seconds = seconds_since(t0);
 }
 
@@ -226,7 +240,53 @@ void ArapInterpolation::carry(const Eigen::MatrixXd& k1) {
     stretch_[t] = 0.5 * (S + S.transpose());
   }
   angle_ = consistent_rotation_vectors(s.rest_.T, R);
+  if (s.symmetric_) setup_reverse();
   stats_.interior_seconds = seconds_since(t0);
+}
+
+// The second key's tets as the rest shape of E<- (Eq. 4.30). A carried tet that came out inverted has no
+// rotation to interpolate from: it weighs 0 there (E-> still holds it).
+void ArapInterpolation::setup_reverse() {
+  const ArapSource& s = *src_;
+  const TetMesh carried{target_, s.rest_.T};
+  const int n = carried.num_vertices(), nt = carried.num_tets();
+  vol1_ = tet_volumes(carried.V, carried.T).cwiseMax(0.0);
+  grad1_.assign(nt, Eigen::Matrix<double, 3, 4>::Zero());
+  std::vector<Eigen::Triplet<double>> k;
+  for (int t = 0; t < nt; ++t) {
+    if (vol1_(t) <= 0) continue;
+    grad1_[t] = hat_gradients(carried, t);
+    const Eigen::Matrix4d e = vol1_(t) * grad1_[t].transpose() * grad1_[t];  // sum vol G^T G, as K
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) k.emplace_back(carried.T(t, a), carried.T(t, b), e(a, b));
+  }
+  Eigen::SparseMatrix<double> K1(n, n);
+  K1.setFromTriplets(k.begin(), k.end());
+  split_fixed(K1, s.fixed_, s.free_index_, K1ff_, K1_fixed_col_);
+}
+
+// A(t) = R(t) ((1 - t) I + t S) (4.1.1): R turned by t times its angle on the consistent branch.
+Eigen::Matrix3d ArapInterpolation::forward_target(int k, double t) const {
+  return rotation_of(t * angle_[k]) * ((1.0 - t) * Eigen::Matrix3d::Identity() + t * stretch_[k]);
+}
+
+// The map from the second key's tet to time t: A^-1 = S^-1 R^T = R^T (R S^-1 R^T), polar with rotation
+// R^T (the negated rotation vector, same branch) and stretch R S^-1 R^T, interpolated a fraction 1 - t.
+Eigen::Matrix3d ArapInterpolation::reverse_target(int k, double t) const {
+  const double u = 1.0 - t;
+  const Eigen::Matrix3d R = rotation_of(angle_[k]);
+  const Eigen::Matrix3d S_back = R * stretch_[k].inverse() * R.transpose();
+  return rotation_of(-u * angle_[k]) * ((1.0 - u) * Eigen::Matrix3d::Identity() + u * S_back);
+}
+
+Eigen::MatrixXd ArapInterpolation::surface_of(const Eigen::MatrixXd& X, const Eigen::RowVector3d& p_fixed) const {
+  const ArapSource& s = *src_;
+  Eigen::MatrixXd out(s.surface_to_tet_.size(), 3);
+  for (int i = 0; i < s.surface_to_tet_.size(); ++i) {
+    const int v = s.surface_to_tet_(i);
+    out.row(i) = v == s.fixed_ ? p_fixed : Eigen::RowVector3d(X.row(s.free_index_[v]));
+  }
+  return out;
 }
 
 Eigen::MatrixXd ArapInterpolation::at(double t) const {
@@ -234,24 +294,22 @@ Eigen::MatrixXd ArapInterpolation::at(double t) const {
   if (t == 0.0) return s.key_;  // the keys themselves, bit for bit
   if (t == 1.0) return key1_;
   const int n = s.rest_.num_vertices();
-  const Eigen::MatrixXd B = gradient_rhs(s.rest_, s.grad_, s.vol_, [&](int k) {
-    const Eigen::Vector3d r = t * angle_[k];
-    const double a = r.norm();
-    const Eigen::Matrix3d Rt = a > 0 ? Eigen::AngleAxisd(a, r / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
-    return Eigen::Matrix3d(Rt * ((1.0 - t) * Eigen::Matrix3d::Identity() + t * stretch_[k]));
-  });
+  Eigen::MatrixXd B = gradient_rhs(s.rest_, s.grad_, s.vol_, [&](int k) { return forward_target(k, t); });
+  if (s.symmetric_)
+    B = (1.0 - t) * B + t * gradient_rhs(TetMesh{target_, s.rest_.T}, grad1_, vol1_, [&](int k) {
+          return vol1_(k) > 0 ? reverse_target(k, t) : Eigen::Matrix3d::Zero().eval();
+        });
   const Eigen::RowVector3d p_fixed = (1.0 - t) * s.rest_.V.row(s.fixed_) + t * target_.row(s.fixed_);
   Eigen::MatrixXd rhs(n - 1, 3);
   for (int i = 0; i < n; ++i)
     if (s.free_index_[i] >= 0) rhs.row(s.free_index_[i]) = B.row(i);
-  rhs -= s.K_fixed_col_ * p_fixed;
-  const Eigen::MatrixXd X = s.solver_.solve(rhs);
-  Eigen::MatrixXd out(s.surface_to_tet_.size(), 3);
-  for (int i = 0; i < s.surface_to_tet_.size(); ++i) {
-    const int v = s.surface_to_tet_(i);
-    out.row(i) = v == s.fixed_ ? p_fixed : Eigen::RowVector3d(X.row(s.free_index_[v]));
-  }
-  return out;
+  if (!s.symmetric_) return surface_of(s.solver_.solve(rhs - s.K_fixed_col_ * p_fixed), p_fixed);
+  // Eq. 4.28: H(t) = (1 - t) H-> + t H<- changes with t: one factorization per time (4.4.6).
+  rhs -= ((1.0 - t) * s.K_fixed_col_ + t * K1_fixed_col_) * p_fixed;
+  const Eigen::SparseMatrix<double> H = (1.0 - t) * s.Kff_ + t * K1ff_;
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(H);
+  if (solver.info() != Eigen::Success) throw Error("ARAP interpolation: the symmetric system did not factor");
+  return surface_of(solver.solve(rhs), p_fixed);
 }
 
 }  // namespace dfm

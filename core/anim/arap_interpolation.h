@@ -21,6 +21,9 @@ namespace dfm {
 struct ArapInterpolationOptions {
   std::string tetgen_switches = "pq1.414Y";  // Y: the surface stays the key's own
   int interior_iterations = 30;              // local-global iterations carrying the second key's interior
+  // 4.4.6's symmetric form (Eq. 4.28): the energies from both keys blended, (1 - t) E-> + t E<-, so tets
+  // of very different size in the two keys weigh alike from either side. Costs one factorization per time.
+  bool symmetric = false;
 };
 
 struct ArapInterpolationStats {
@@ -53,6 +56,8 @@ class ArapSource {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // all but the fixed vertex
   std::vector<int> free_index_;  // tet vertex -> row among the free ones (-1 for the fixed vertex)
   int fixed_ = 0;
+  bool symmetric_ = false;
+  Eigen::SparseMatrix<double> Kff_;  // K without the fixed vertex (symmetric form only)
   ArapInterpolationStats stats_;
 };
 
@@ -70,11 +75,20 @@ class ArapInterpolation {
 
  private:
   void carry(const Eigen::MatrixXd& k1);  // target_, angle_, stretch_ from the second key
+  void setup_reverse();                   // the symmetric form's energy from the second key
+  // Eq. 4.22's target of tet k at t, and for the symmetric form the reverse one (second key -> time t).
+  Eigen::Matrix3d forward_target(int k, double t) const;
+  Eigen::Matrix3d reverse_target(int k, double t) const;
+  Eigen::MatrixXd surface_of(const Eigen::MatrixXd& X_free, const Eigen::RowVector3d& p_fixed) const;
   std::shared_ptr<const ArapSource> src_;
   Eigen::MatrixXd key1_;
   Eigen::MatrixXd target_;             // tet vertices carried to the second key
   std::vector<Eigen::Vector3d> angle_;  // per tet: rotation vector of R (consistent branch)
   std::vector<Eigen::Matrix3d> stretch_;  // per tet: S
+  // Symmetric form: the second key's tets (hat gradients, volumes) and its K without the fixed vertex.
+  std::vector<Eigen::Matrix<double, 3, 4>> grad1_;
+  Eigen::VectorXd vol1_;
+  Eigen::SparseMatrix<double> K1ff_, K1_fixed_col_;
   ArapInterpolationStats stats_;
 };
 
