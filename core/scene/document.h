@@ -24,6 +24,7 @@
 
 #include "core/anim/inbetween_method.h"
 #include "core/bind/bind_volume.h"
+#include "core/bind/weight_tools.h"
 #include "core/mesh/mesh.h"
 #include "core/pose/fast_posing.h"
 #include "core/rig/pose.h"
@@ -227,6 +228,16 @@ class Document {
   void set_method(SkinMethod m);
   void set_inbetweens(int n);  // 0..1000
 
+  // Weight tools (core/bind/weight_tools.h), each one undo step on the weights; they need weights
+  // (dfm::Error otherwise) and keep the rows of the vertices the bind constrained to a handle
+  // (surface_weight_constraints). `locked`: handle indices whose columns are kept bit for bit.
+  LimitReport weights_limit(const LimitOptions& opts);
+  NormalizeReport weights_normalize(const std::vector<int>& locked);
+  void weights_smooth(const SmoothOptions& opts, const std::vector<int>& locked);
+  MirrorReport weights_mirror(const MirrorOptions& opts);
+  // Handles whose largest weight is below threshold (empty without weights).
+  std::vector<ZeroWeightHandle> weights_report(double threshold = 1e-3) const;
+
   // Posing (no effect on weights). Translate/rotate act on the pose of one handle:
   //   point: translation / explicit rotation about the point; bone: translation / rotation about its
   //   first joint relative to the parent; cage vertex: translation (rotation: error); region: affine
@@ -276,6 +287,7 @@ class Document {
   void after_change();
   // open_mesh / set_surface: the new surface (and tets) with weights, mask and regions cleared.
   void replace_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet);
+  void store_weights(const std::string& name, Eigen::MatrixXd W);  // weights_*: one step, none if unchanged
   void move_handle(int handle, const Eigen::Vector3d& delta, bool solve);  // translate_handle, drag_handle
   // Re-solves s.pose's non-pinned handles (no-op without weights); inside an edit.
   void solve_fast(SceneData& s);
