@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "core/scene/document.h"
+#include "core/scene/script.h"
+#include "core/util/error.h"
 #include "tests/weight_tools_test_meshes.h"
 
 using namespace dfm;
@@ -117,4 +119,78 @@ TEST_CASE("the zero-weight report names the handles without influence") {
   CHECK(r[0].handle == 4);
   CHECK(r[0].name == "l_outer");
   CHECK(r[0].max_weight == Approx(1e-5));
+}
+
+TEST_CASE("weights-* script commands reproduce the document commands exactly") {
+  Document by_script, by_hand;
+  make_strip_document(by_script);
+  make_strip_document(by_hand);
+  std::vector<std::string> printed;
+  ScriptHost host;
+  host.print = [&](const std::string& line) { printed.push_back(line); };
+  run_script(by_script,
+             parse_script("weights-limit 3 2\n"
+                          "weights-smooth 2 0.25 cotan 1 3\n"
+                          "weights-mirror x 0 flip\n"
+                          "weights-mirror x 0.05 - 0.02\n"
+                          "weights-normalize 0 4\n"
+                          "weights-smooth\n"
+                          "weights-report 0.5\n",
+                          "s.txt"),
+             "s.txt", host);
+  by_hand.weights_limit({3, 2.0});
+  by_hand.weights_smooth({2, 0.25, true}, {1, 3});
+  MirrorOptions flip;
+  flip.mode = MirrorMode::Flip;
+  by_hand.weights_mirror(flip);
+  MirrorOptions neg;
+  neg.offset = 0.05;
+  neg.mode = MirrorMode::NegativeToPositive;
+  neg.tolerance = 0.02;
+  by_hand.weights_mirror(neg);
+  by_hand.weights_normalize({0, 4});
+  by_hand.weights_smooth({}, {});
+  CHECK(by_script.weights() == by_hand.weights());
+  CHECK(by_script.undo_depth() == by_hand.undo_depth());
+  REQUIRE(printed.size() == 7);
+  CHECK(printed[0].find("weights-limit: ") == 0);
+  // The report: every handle's largest weight is 1 at its own vertex, so none is below 0.5.
+  CHECK(printed[6] == "weights-report: 0 of 6 handles have no weight of 0.5 or more");
+  Eigen::MatrixXd W = by_hand.weights();
+  W.col(4) *= 1e-4;
+  W.col(0) += W.col(4) * (1e4 - 1);
+  by_script.set_weights(W, {});
+  printed.clear();
+  run_script(by_script, parse_script("weights-report\n", "s.txt"), "s.txt", host);
+  REQUIRE(printed.size() == 1);
+  CHECK(printed[0] == "weights-report: 1 of 6 handles have no weight of 0.001 or more\n  handle 4 l_outer: max 0.0001");
+}
+
+TEST_CASE("weights-* arguments are checked before the script runs") {
+  auto error_of = [](const std::string& text) {
+    try {
+      parse_script(text, "s.txt");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK_THAT(error_of("weights-limit 0\n"), Catch::StartsWith("s.txt:1:") && Catch::Contains("influence count"));
+  CHECK_THAT(error_of("weights-limit 2.5\n"), Catch::Contains("integer"));
+  CHECK_THAT(error_of("weights-limit 4 -1\n"), Catch::Contains("radius"));
+  CHECK_THAT(error_of("weights-normalize 1 x\n"), Catch::Contains("'x' is not a finite number"));
+  CHECK_THAT(error_of("weights-smooth 3 1.5\n"), Catch::Contains("factor"));
+  CHECK_THAT(error_of("weights-smooth 3 0.5 gauss\n"), Catch::Contains("uniform or cotan"));
+  CHECK_THAT(error_of("weights-smooth 3 0.5 uniform -2\n"), Catch::Contains("handle"));
+  CHECK_THAT(error_of("\nweights-mirror w\n"), Catch::StartsWith("s.txt:2:") && Catch::Contains("x, y or z"));
+  CHECK_THAT(error_of("weights-mirror x 0 sideways\n"), Catch::Contains("+, - or flip"));
+  CHECK_THAT(error_of("weights-mirror x 0 + 1 2\n"), Catch::Contains("takes 1..4"));
+  CHECK_THAT(error_of("weights-report nan\n"), Catch::Contains("not a finite number"));
+  CHECK(error_of("weights-limit 4\nweights-normalize\nweights-smooth 2\nweights-mirror z\nweights-report\n").empty());
+  Document d;
+  d.set_surface(mirror_strip(), "strip");
+  d.add_point({0, 0.3, 0});
+  CHECK_THROWS_WITH(run_script(d, parse_script("weights-limit 4\n", "s.txt"), "s.txt"),
+                    Catch::StartsWith("s.txt:1: weights-limit:") && Catch::Contains("needs weights"));
+  CHECK_THROWS_WITH(run_script(d, parse_script("weights-report\n", "s.txt"), "s.txt"), Catch::Contains("needs weights"));
 }

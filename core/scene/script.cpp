@@ -15,6 +15,7 @@
 #include "core/scene/bind_document.h"
 #include "core/scene/brush.h"
 #include "core/scene/key_surfaces.h"
+#include "core/scene/script_weights.h"
 #include "core/scene/shape_space_keys.h"
 #include "core/mesh/io.h"
 #include "core/skin/skin.h"
@@ -66,6 +67,11 @@ const std::map<std::string, Spec>& specs() {
       {"paint-mask", {5, 6, -1, "paint-mask X Y Z RADIUS VALUE [FALLOFF]"}},
       {"paint-dab", {6, 7, 6, "paint-dab X Y Z RADIUS STRENGTH FALLOFF [erase]"}},
       {"export-gltf", {1, 2, 0, "export-gltf OUT.glb|OUT.gltf [4|8]"}},
+      {"weights-limit", {1, 2, -1, "weights-limit K [RADIUS]"}},
+      {"weights-normalize", {0, 1000, -1, "weights-normalize [LOCKED_HANDLE ...]"}},
+      {"weights-smooth", {0, 1000, 0, "weights-smooth [N [FACTOR [uniform|cotan [LOCKED_HANDLE ...]]]]"}},
+      {"weights-mirror", {1, 4, 0, "weights-mirror x|y|z [OFFSET [+|-|flip [TOLERANCE]]]"}},
+      {"weights-report", {0, 1, -1, "weights-report [THRESHOLD]"}},
       {"quit", {0, 0, 0, "quit"}},
   };
   return s;
@@ -190,6 +196,13 @@ std::vector<ScriptLine> parse_script(const std::string& text, const std::string&
       if (nargs == 2 && l.words[2] != "4" && l.words[2] != "8")
         throw file_error(name, line, "influences per vertex must be 4 or 8, got '" + l.words[2] + "'");
     }
+    if (l.words[0].rfind("weights-", 0) == 0) {
+      try {
+        script_detail::check_weight_command(l);
+      } catch (const Error& e) {
+        throw file_error(name, line, std::string(e.what()) + "; usage: " + s.usage);
+      }
+    }
     out.push_back(std::move(l));
   }
   return out;
@@ -212,6 +225,10 @@ TriMesh posed_surface(const Document& doc) {
 ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, const std::string& name,
                         const ScriptHost& host) {
   ScriptResult res;
+  const std::function<void(const std::string&)> print = host.print ? host.print : [](const std::string& s) {
+    std::printf("%s\n", s.c_str());
+    std::fflush(stdout);
+  };
   for (const ScriptLine& l : lines) {
     const std::string& cmd = l.words[0];
     try {
@@ -329,6 +346,8 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
         host.export_gltf(l.words[1], l.words.size() > 2 ? std::stoi(l.words[2]) : 4);
       } else if (cmd == "quit") {
         res.quit = true;
+      } else {
+        script_detail::run_weight_command(doc, l, print);
       }
     } catch (const Error& e) {
       throw file_error(name, l.line, cmd + ": " + e.what());

@@ -30,6 +30,8 @@ struct ScriptHost {
   // export-gltf OUT.glb [4|8]: write the document as glTF with that many influences per vertex
   // (the editor calls export_document_gltf; core/scene cannot depend on core/export).
   std::function<void(const std::string& path, int influences)> export_gltf;
+  // The lines a command reports (weights-report, the other weights-* summaries). Empty: stdout.
+  std::function<void(const std::string& line)> print;
   // Called after each command (the editor redraws; tests may record).
   std::function<void(const ScriptLine&)> after_command;
 };
