@@ -121,6 +121,7 @@ class Editor {
   bool shape_space_ui_option(const std::string& key, const std::string& value);
   void update_shape_space();   // rebuilds the space when the bases' surfaces change
   void shape_space_pad(ShapeSpacePanel& p);
+  void draw_weight_tools_section();  // weight_tools_panel.cpp (inside the Weights section)
   void draw_viewport_hud();
   void draw_quit_prompt();
   void draw_error_popup();
@@ -213,6 +214,21 @@ class Editor {
   std::uint64_t autosaved_revision_ = 0;
   std::vector<std::string> weight_rows_;  // the picked vertex's weights, formatted
   std::unique_ptr<ShapeSpacePanel> shape_space_;  // the Shape space panel's view state
+  // The Weights panel's weight tools: their settings and the handles locked for normalize and smooth
+  // (UI state: the document commands take them as arguments).
+  struct WeightToolsUi {
+    std::vector<int> locked;
+    int limit_k = 4;
+    float limit_radius = 1.0f;
+    int smooth_iterations = 1;
+    float smooth_factor = 0.5f;
+    bool smooth_cotangent = false;
+    int mirror_axis = 0;  // x y z
+    float mirror_offset = 0.0f;
+    int mirror_mode = 0;  // MirrorMode
+    float report_threshold = 1e-3f;
+    std::string last;  // what the last tool did
+  } weight_tools_;
 };
 
 }  // namespace dfm::editor

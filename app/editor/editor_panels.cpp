@@ -411,6 +411,10 @@ void Editor::draw_weights_section() {
       }
     }
   }
+  if (ImGui::TreeNodeEx("Weight tools", ImGuiTreeNodeFlags_DefaultOpen)) {
+    draw_weight_tools_section();
+    ImGui::TreePop();
+  }
 }
 
 // fps: frames drawn per second where they follow one another (a frame after an idle wait counts as
