@@ -46,6 +46,22 @@ struct Rect {
   bool contains(double px, double py) const { return px >= x && py >= y && px < x + w && py < y + h; }
 };
 
+// The Weights panel's weight tools: their settings and the handles locked for normalize and smooth
+// (UI state: the document commands take them as arguments; weight_tools_panel.cpp).
+struct WeightToolsUi {
+  std::vector<int> locked;
+  int limit_k = 4;
+  float limit_radius = 1.0f;
+  int smooth_iterations = 1;
+  float smooth_factor = 0.5f;
+  bool smooth_cotangent = false;
+  int mirror_axis = 0;  // x y z
+  float mirror_offset = 0.0f;
+  int mirror_mode = 0;  // MirrorMode
+  float report_threshold = 1e-3f;
+  std::string last;  // what the last tool did
+};
+
 class Editor {
  public:
   explicit Editor(const EditorOptions& opts);
@@ -214,21 +230,7 @@ class Editor {
   std::uint64_t autosaved_revision_ = 0;
   std::vector<std::string> weight_rows_;  // the picked vertex's weights, formatted
   std::unique_ptr<ShapeSpacePanel> shape_space_;  // the Shape space panel's view state
-  // The Weights panel's weight tools: their settings and the handles locked for normalize and smooth
-  // (UI state: the document commands take them as arguments).
-  struct WeightToolsUi {
-    std::vector<int> locked;
-    int limit_k = 4;
-    float limit_radius = 1.0f;
-    int smooth_iterations = 1;
-    float smooth_factor = 0.5f;
-    bool smooth_cotangent = false;
-    int mirror_axis = 0;  // x y z
-    float mirror_offset = 0.0f;
-    int mirror_mode = 0;  // MirrorMode
-    float report_threshold = 1e-3f;
-    std::string last;  // what the last tool did
-  } weight_tools_;
+  WeightToolsUi weight_tools_;
 };
 
 }  // namespace dfm::editor

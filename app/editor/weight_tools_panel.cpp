@@ -20,47 +20,38 @@ std::vector<int> valid_locks(std::vector<int> locked, int num_handles) {
   return locked;
 }
 
-}  // namespace
+// Runs one tool: its summary on success (shown and returned), the error popup's text on failure.
+using RunTool = std::function<void(const char* what, const std::function<std::string()>& tool)>;
 
-void Editor::draw_weight_tools_section() {
-  WeightToolsUi& ui = weight_tools_;
-  if (!doc_.has_weights()) {
-    ImGui::TextDisabled("bind first: the tools edit the bind's weights");
-    return;
-  }
-  const int nh = doc_.num_handles();
-  ui.locked = valid_locks(ui.locked, nh);
-  const float button_w = 96, gap = ImGui::GetStyle().ItemSpacing.x;
-  // The width left on this line for one more item before a right-aligned button.
-  auto fill = [&] { return std::max(40.0f, ImGui::GetContentRegionAvail().x - button_w - gap); };
-  auto run = [&](const char* what, const std::function<std::string()>& tool) {
-    try {
-      ui.last = tool();
-      status(ui.last);
-    } catch (const std::exception& e) {
-      error_popup_ = std::string(what) + ": " + e.what();
-    }
-  };
+constexpr float kButtonW = 96;
+// The width left on this line for one more item before a right-aligned button.
+float fill() { return std::max(40.0f, ImGui::GetContentRegionAvail().x - kButtonW - ImGui::GetStyle().ItemSpacing.x); }
+
+// A combo without an arrow (the panel is narrow).
+void small_combo(const char* id, int& value, const char* const* items, int count) {
+  if (!ImGui::BeginCombo(id, items[value], ImGuiComboFlags_NoArrowButton)) return;
+  for (int i = 0; i < count; ++i)
+    if (ImGui::Selectable(items[i], i == value)) value = i;
+  ImGui::EndCombo();
+}
+
+void limit_smooth_normalize(Document& doc, WeightToolsUi& ui, const RunTool& run) {
   char buf[160];
-
-  // Limit total influences.
   ImGui::SetNextItemWidth(70);
-  ImGui::SliderInt("##k", &ui.limit_k, 1, std::max(1, std::min(nh, 8)), "k %d");
+  ImGui::SliderInt("##k", &ui.limit_k, 1, std::max(1, std::min(doc.num_handles(), 8)), "k %d");
   ImGui::SameLine();
   ImGui::SetNextItemWidth(fill());
   ImGui::SliderFloat("##radius", &ui.limit_radius, 0.0f, 5.0f, "radius %.1f");
   ImGui::SameLine();
   if (ImGui::Button("Limit total", ImVec2(-1, 0)))
     run("Limit total", [&] {
-      const LimitReport r = doc_.weights_limit({ui.limit_k, ui.limit_radius});
+      const LimitReport r = doc.weights_limit({ui.limit_k, ui.limit_radius});
       std::snprintf(buf, sizeof buf, "limit: %d vertices kept to %d influences", r.rows_limited, ui.limit_k);
       return std::string(buf);
     });
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Keeps each vertex's k largest weights; near each cut the kept weights are re-solved over\n"
                       "about `radius` edges so they fade out instead of jumping (0: plain cut and rescale).");
-
-  // Smooth and normalize (both keep the locked handles).
   ImGui::SetNextItemWidth(70);
   ImGui::SliderInt("##iter", &ui.smooth_iterations, 1, 20, "%d x");
   ImGui::SameLine();
@@ -69,44 +60,37 @@ void Editor::draw_weight_tools_section() {
   ImGui::SameLine();
   if (ImGui::Button("Smooth", ImVec2(-1, 0)))
     run("Smooth", [&] {
-      doc_.weights_smooth({ui.smooth_iterations, ui.smooth_factor, ui.smooth_cotangent}, ui.locked);
+      doc.weights_smooth({ui.smooth_iterations, ui.smooth_factor, ui.smooth_cotangent}, ui.locked);
       std::snprintf(buf, sizeof buf, "smooth: %d x %.2f%s", ui.smooth_iterations, ui.smooth_factor,
                     ui.smooth_cotangent ? " (cotangent)" : "");
       return std::string(buf);
     });
   ImGui::Checkbox("cotangent", &ui.smooth_cotangent);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Smooth with cotangent weights instead of the plain neighbour mean.");
-  ImGui::SameLine(ImGui::GetWindowContentRegionMax().x - button_w);
+  ImGui::SameLine(ImGui::GetWindowContentRegionMax().x - kButtonW);
   if (ImGui::Button("Normalize", ImVec2(-1, 0)))
     run("Normalize", [&] {
-      const NormalizeReport r = doc_.weights_normalize(ui.locked);
+      const NormalizeReport r = doc.weights_normalize(ui.locked);
       std::snprintf(buf, sizeof buf, "normalize: %d vertices rescaled, %d with locked weights over 1", r.rows_scaled,
                     r.rows_locked_over_one);
       return std::string(buf);
     });
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Rows back to a sum of 1, scaling only the unlocked handles.");
+}
 
-  // Mirror.
-  const char* axes[] = {"x", "y", "z"};
-  const char* modes[] = {"+ to -", "- to +", "flip"};
+void mirror(Document& doc, WeightToolsUi& ui, const RunTool& run) {
+  static const char* const axes[] = {"x", "y", "z"};
+  static const char* const modes[] = {"+ to -", "- to +", "flip"};
   ImGui::SetNextItemWidth(28);
-  if (ImGui::BeginCombo("##axis", axes[ui.mirror_axis], ImGuiComboFlags_NoArrowButton)) {
-    for (int a = 0; a < 3; ++a)
-      if (ImGui::Selectable(axes[a], a == ui.mirror_axis)) ui.mirror_axis = a;
-    ImGui::EndCombo();
-  }
+  small_combo("##axis", ui.mirror_axis, axes, 3);
   ImGui::SameLine();
   const float w = fill(), offset_w = 52;
   ImGui::SetNextItemWidth(offset_w);
   ImGui::InputFloat("##offset", &ui.mirror_offset, 0, 0, "%.3f");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The plane: axis = this offset.");
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(std::max(40.0f, w - offset_w - gap));
-  if (ImGui::BeginCombo("##mode", modes[ui.mirror_mode], ImGuiComboFlags_NoArrowButton)) {
-    for (int m = 0; m < 3; ++m)
-      if (ImGui::Selectable(modes[m], m == ui.mirror_mode)) ui.mirror_mode = m;
-    ImGui::EndCombo();
-  }
+  ImGui::SetNextItemWidth(std::max(40.0f, w - offset_w - ImGui::GetStyle().ItemSpacing.x));
+  small_combo("##mode", ui.mirror_mode, modes, 3);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("+ to -: the positive side copied onto the other; flip: both sides swap.");
   ImGui::SameLine();
   if (ImGui::Button("Mirror", ImVec2(-1, 0)))
@@ -115,22 +99,25 @@ void Editor::draw_weight_tools_section() {
       o.normal = Eigen::Vector3d::Unit(ui.mirror_axis);
       o.offset = ui.mirror_offset;
       o.mode = static_cast<MirrorMode>(ui.mirror_mode);
-      const MirrorReport r = doc_.weights_mirror(o);
+      const MirrorReport r = doc.weights_mirror(o);
       std::string msg = "mirror: " + std::to_string(r.vertices_changed) + " vertices changed";
       if (r.vertices_unmatched) msg += ", " + std::to_string(r.vertices_unmatched) + " without a mirror";
-      for (int h : r.unmatched_handles) msg += "; no mirror for " + handle_name(doc_.rig(), h);
+      for (int h : r.unmatched_handles) msg += "; no mirror for " + handle_name(doc.rig(), h);
       return msg;
     });
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Across the plane axis = offset. Handles pair by left/right names (l_arm / r_arm, arm.L / arm.R)\n"
                       "or else by mirrored position; a vertex reads the weights at its reflection on the surface.");
+}
 
-  // Locked handles (normalize and smooth keep their columns).
+// The locks (normalize and smooth keep those columns) and the report of handles that move nothing.
+void locks_and_report(const Document& doc, WeightToolsUi& ui) {
+  const int nh = doc.num_handles();
   if (ImGui::TreeNode("locks", "Locked handles (%d)", int(ui.locked.size()))) {
     ImGui::BeginChild("##locks", ImVec2(0, std::min(150.0f, 22.0f * nh + 4)), true);
     for (int h = 0; h < nh; ++h) {
       bool on = std::find(ui.locked.begin(), ui.locked.end(), h) != ui.locked.end();
-      if (ImGui::Checkbox((handle_name(doc_.rig(), h) + "##lock" + std::to_string(h)).c_str(), &on)) {
+      if (ImGui::Checkbox((handle_name(doc.rig(), h) + "##lock" + std::to_string(h)).c_str(), &on)) {
         if (on) ui.locked.push_back(h);
         else ui.locked.erase(std::remove(ui.locked.begin(), ui.locked.end(), h), ui.locked.end());
       }
@@ -138,18 +125,38 @@ void Editor::draw_weight_tools_section() {
     ImGui::EndChild();
     ImGui::TreePop();
   }
-
-  // The report: handles that move nothing.
   ImGui::SetNextItemWidth(-1);
   ImGui::SliderFloat("##threshold", &ui.report_threshold, 1e-5f, 0.1f, "report weights below %.4f",
                      ImGuiSliderFlags_Logarithmic);
-  const auto report = doc_.weights_report(ui.report_threshold);
+  const auto report = doc.weights_report(ui.report_threshold);
   if (report.empty()) {
     ImGui::TextDisabled("every handle reaches it somewhere");
   } else {
     ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.35f, 1), "%d handle(s) move nothing:", int(report.size()));
     for (const ZeroWeightHandle& z : report) ImGui::BulletText("%d %s (max %.2g)", z.handle, z.name.c_str(), z.max_weight);
   }
+}
+
+}  // namespace
+
+void Editor::draw_weight_tools_section() {
+  WeightToolsUi& ui = weight_tools_;
+  if (!doc_.has_weights()) {
+    ImGui::TextDisabled("bind first: the tools edit the bind's weights");
+    return;
+  }
+  ui.locked = valid_locks(ui.locked, doc_.num_handles());
+  const RunTool run = [&](const char* what, const std::function<std::string()>& tool) {
+    try {
+      ui.last = tool();
+      status(ui.last);
+    } catch (const std::exception& e) {
+      error_popup_ = std::string(what) + ": " + e.what();
+    }
+  };
+  limit_smooth_normalize(doc_, ui, run);
+  mirror(doc_, ui, run);
+  locks_and_report(doc_, ui);
   if (!ui.last.empty()) ImGui::TextWrapped("%s", ui.last.c_str());  // what the last tool did
 }
 
