@@ -2,15 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <limits>
 #include <map>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "core/export/gltf_buffer.h"
 #include "core/export/prune.h"
 #include "core/export/trs.h"
 #include "core/skin/lbs.h"
@@ -22,71 +19,6 @@ namespace dfm {
 namespace {
 
 constexpr double kShearTolerance = 1e-6;
-
-// Appends typed arrays to one buffer, one bufferView per accessor (4-byte aligned, tightly packed).
-class BufferBuilder {
- public:
-  explicit BufferBuilder(tinygltf::Model& model) : model_(model) {
-    if (model_.buffers.empty()) model_.buffers.emplace_back();
-  }
-
-  // Floats, `width` components per element; min/max written when asked (POSITION, animation input).
-  int add_floats(const std::vector<float>& data, int width, int type, int target, bool bounds,
-                 const std::string& name = "") {
-    const int view = add_view(data.data(), data.size() * sizeof(float), target);
-    tinygltf::Accessor a;
-    a.bufferView = view;
-    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    a.count = data.size() / width;
-    a.type = type;
-    a.name = name;
-    if (bounds) {
-      a.minValues.assign(width, std::numeric_limits<double>::infinity());
-      a.maxValues.assign(width, -std::numeric_limits<double>::infinity());
-      for (size_t i = 0; i < data.size(); ++i) {
-        a.minValues[i % width] = std::min<double>(a.minValues[i % width], data[i]);
-        a.maxValues[i % width] = std::max<double>(a.maxValues[i % width], data[i]);
-      }
-    }
-    model_.accessors.push_back(a);
-    return static_cast<int>(model_.accessors.size()) - 1;
-  }
-
-  template <class T>
-  int add_ints(const std::vector<T>& data, int width, int type, int component_type, int target) {
-    const int view = add_view(data.data(), data.size() * sizeof(T), target);
-    tinygltf::Accessor a;
-    a.bufferView = view;
-    a.componentType = component_type;
-    a.count = data.size() / width;
-    a.type = type;
-    model_.accessors.push_back(a);
-    return static_cast<int>(model_.accessors.size()) - 1;
-  }
-
- private:
-  int add_view(const void* bytes, size_t size, int target) {
-    auto& buf = model_.buffers[0].data;
-    while (buf.size() % 4) buf.push_back(0);
-    tinygltf::BufferView v;
-    v.buffer = 0;
-    v.byteOffset = buf.size();
-    v.byteLength = size;
-    v.target = target;  // 0 (unset) for animation and skin data
-    const auto* p = static_cast<const unsigned char*>(bytes);
-    buf.insert(buf.end(), p, p + size);
-    model_.bufferViews.push_back(v);
-    return static_cast<int>(model_.bufferViews.size()) - 1;
-  }
-  tinygltf::Model& model_;
-};
-
-std::vector<float> rows_to_floats(const Eigen::MatrixXd& M) {
-  std::vector<float> out(M.size());
-  for (int i = 0; i < M.rows(); ++i)
-    for (int j = 0; j < M.cols(); ++j) out[i * M.cols() + j] = static_cast<float>(M(i, j));
-  return out;
-}
 
 // Rest position of each handle's joint node (its rest global transform is a pure translation).
 std::vector<Eigen::Vector3d> handle_rest_positions(const Rig& rig, const Eigen::MatrixXd& surface_V) {
@@ -198,33 +130,6 @@ void set_node_trs(tinygltf::Node& node, const Trs& t) {
   node.scale = {t.scale.x(), t.scale.y(), t.scale.z()};
 }
 
-void write_model(const std::string& path, tinygltf::Model& model) {
-  const std::string ext = file_extension(path);
-  tinygltf::TinyGLTF writer;
-  if (ext == "glb") {
-    write_file_atomic(
-        path,
-        [&](std::ostream& os) {
-          if (!writer.WriteGltfSceneToStream(&model, os, false, true)) throw Error(path + ": glTF serialization failed");
-        },
-        true);
-    return;
-  }
-  // .gltf + <stem>.bin: tinygltf's stream writer embeds buffers as data URIs, so write the bin file
-  // ourselves (atomically) and point the buffer at it.
-  const std::filesystem::path p(path);
-  const std::string bin_name = p.stem().string() + ".bin";
-  const std::string bin_path = (p.parent_path() / bin_name).string();
-  const std::vector<unsigned char> bin = model.buffers.at(0).data;
-  write_file_atomic(bin_path, [&](std::ostream& os) { os.write(reinterpret_cast<const char*>(bin.data()), bin.size()); },
-                    true);
-  std::ostringstream json_text;
-  if (!writer.WriteGltfSceneToStream(&model, json_text, true, false)) throw Error(path + ": glTF serialization failed");
-  nlohmann::json j = nlohmann::json::parse(json_text.str());
-  j["buffers"][0] = nlohmann::json{{"byteLength", bin.size()}, {"uri", bin_name}};
-  write_file_atomic(path, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
-}
-
 }  // namespace
 
 GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in, const GltfExportOptions& options) {
@@ -288,7 +193,7 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "deform (dfm glTF exporter, tinygltf)";
-  BufferBuilder bb(model);
+  GltfBufferBuilder bb(model);
 
   // Mesh: positions, normals, joints/weights, indices.
   const Eigen::MatrixXd N = S.N.rows() == nv && S.N.cols() == 3 ? S.N : vertex_normals(S.V, S.F);
@@ -421,18 +326,7 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
   tinygltf::Animation anim;
   anim.name = "keys";
   auto add_channel = [&](int node, const std::string& path, int input, const std::vector<float>& values, int type,
-                         int width) {
-    tinygltf::AnimationSampler s;
-    s.input = input;
-    s.output = bb.add_floats(values, width, type, 0, false);
-    s.interpolation = "LINEAR";
-    anim.samplers.push_back(s);
-    tinygltf::AnimationChannel c;
-    c.sampler = static_cast<int>(anim.samplers.size()) - 1;
-    c.target_node = node;
-    c.target_path = path;
-    anim.channels.push_back(c);
-  };
+                         int width) { add_linear_channel(anim, bb, node, path, input, values, type, width); };
 
   if (!in.keys.empty()) {
     std::vector<float> times;
@@ -520,7 +414,7 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
                            " joint transform(s) have shear a glTF TRS cannot express (max relative residual " +
                            std::to_string(shear.max_shear) + "), e.g. " + list);
   }
-  write_model(path, model);
+  write_gltf_model(path, model);
   return report;
 }
 
