@@ -92,10 +92,10 @@ inline RunResult run_program(const std::string& exe, const std::vector<std::stri
   return r;
 }
 
-// The command, how it ended and the start of its output, for test messages.
-inline std::string describe_run(const RunResult& r) {
+// The command, how it ended and the start of its output, for failure messages.
+inline std::string describe_run(const RunResult& r, size_t out_chars = 3000) {
   return r.command + "\n  -> " + (r.signaled ? "signal " + std::to_string(r.signal) : "exit " + std::to_string(r.exit_code)) +
-         "\n  stdout: " + r.out.substr(0, 1500) + "\n  stderr: " + r.err.substr(0, 800);
+         "\n  stdout: " + r.out.substr(0, out_chars) + "\n  stderr: " + r.err.substr(0, 800);
 }
 
 }  // namespace dfm::test

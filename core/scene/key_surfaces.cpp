@@ -5,6 +5,7 @@
 
 #include "core/anim/bake.h"
 #include "core/anim/inbetween.h"
+#include "core/anim/interpolate.h"
 #include "core/skin/skin.h"
 #include "core/util/error.h"
 
@@ -102,6 +103,36 @@ std::vector<KeySurface> key_surfaces(const Document& doc) {
     } else {
       for (int l = key[i] + 1; l < key[i + 1]; ++l) out.push_back(std::move(baked[l]));
     }
+  }
+  return out;
+}
+
+BakedLayers baked_pose_frames(const Document& doc, int count) {
+  if (count < 0 || count == 1) throw Error("frames to bake: 0 (the keys and in-betweens) or at least 2, got " + std::to_string(count));
+  for (const SceneKey& k : doc.keys())
+    if (k.is_mesh())
+      throw Error("the animation has a mesh key (" + std::filesystem::path(k.mesh_path).filename().string() +
+                  ") with its own triangles: baked frames need the surface's one connectivity");
+  const KeyTrack track = pose_key_track(doc);
+  if (track.size() < 2)
+    throw Error("baking frames needs at least two pose keys (the document has " + std::to_string(track.size()) + ")");
+  BakedLayers out;
+  if (count == 0) {  // the animation's own layers, in-betweens as each interval sets them
+    for (KeySurface& s : key_surfaces(doc)) {
+      out.times.push_back(s.time);
+      out.positions.push_back(std::move(s.V));
+    }
+    return out;
+  }
+  for (size_t i = 0; i + 1 < doc.keys().size(); ++i)
+    if (doc.keys()[i].inbetween != InbetweenMethod::Handles)
+      throw Error("key " + std::to_string(i) + "'s interval uses " + inbetween_method_name(doc.keys()[i].inbetween) +
+                  " in-betweens: bake the keys and their in-betweens (a frame count of 0) instead of evenly spaced frames");
+  const SkinBinding binding = pose_binding(doc);
+  const auto skin_pose = [&](const Pose& p) { return skin(doc.method(), binding, p, {}).V; };
+  for (int i = 0; i < count; ++i) {
+    out.times.push_back(i + 1 == count ? track.end() : track.start() + (track.end() - track.start()) * i / (count - 1));
+    out.positions.push_back(skin_pose(sample_track(track, out.times.back())));
   }
   return out;
 }

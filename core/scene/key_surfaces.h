@@ -10,6 +10,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/anim/bake.h"
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold_sequence.h"
 #include "core/scene/document.h"
@@ -22,6 +23,13 @@ std::vector<KeySurface> key_surfaces(const Document& doc);
 
 // The pose keys as a track (their times and evaluated poses), mesh keys left out.
 KeyTrack pose_key_track(const Document& doc);
+
+// The pose keys as frames of the surface's one connectivity (for `deform compress`), skinned with the
+// document's method and weights. count = 0: the keys plus doc.inbetweens() in-betweens inside each
+// interval (bake_layers); count >= 2: that many evenly spaced times from the first key to the last.
+// Throws dfm::Error with fewer than two pose keys, with a mesh key (it has its own triangles), without
+// weights, or for count 1 or < 0.
+BakedLayers baked_pose_frames(const Document& doc, int count);
 
 // True when some neighbouring key surfaces differ in connectivity (a transition joins them: seconds).
 bool needs_transition(const std::vector<KeySurface>& keys);
