@@ -1,6 +1,10 @@
 #include "render/surface_pass.h"
 
 #include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/view/colormap.h"
 
 namespace dfm::gl {
 
@@ -38,9 +42,18 @@ void to_gl(const Eigen::Matrix4d& m, float out[16]) {
     for (int r = 0; r < 4; ++r) out[c * 4 + r] = static_cast<float>(m(r, c));
 }
 
+namespace {
+
+std::vector<std::string> with_turbo(std::vector<std::string> defines) {
+  for (std::string& d : view::turbo_shader_defines()) defines.push_back(std::move(d));
+  return defines;
+}
+
+}  // namespace
+
 SurfacePass::SurfacePass()
-    : shaded_(ProgramDesc{"surface.vert.glsl", "", "surface.frag.glsl", {}, {}}),
-      wireframe_(ProgramDesc{"surface.vert.glsl", "surface.geom.glsl", "surface.frag.glsl", {"WIREFRAME"}, {}}) {}
+    : shaded_(ProgramDesc{"surface.vert.glsl", "", "surface.frag.glsl", with_turbo({}), {}}),
+      wireframe_(ProgramDesc{"surface.vert.glsl", "surface.geom.glsl", "surface.frag.glsl", with_turbo({"WIREFRAME"}), {}}) {}
 
 void SurfacePass::set_geometry(GLuint vbo, int vertex_count, GLuint ibo, int index_count) {
   vao_.bind();

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/scratch_dir.h"
+
 namespace dfm::test {
 
 struct RunResult {
@@ -25,23 +27,6 @@ struct RunResult {
 
 struct RunOptions {
   long max_file_bytes = -1;  // >= 0: RLIMIT_FSIZE in the child (a "full disk"); SIGXFSZ is ignored
-};
-
-// A scratch folder under the temp directory (name and process id), removed afterwards.
-struct ScratchDir {
-  std::filesystem::path dir;
-  explicit ScratchDir(const std::string& name) {
-    dir = std::filesystem::temp_directory_path() / ("dfm_" + name + "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  std::string operator/(const std::string& f) const { return (dir / f).string(); }
 };
 
 inline std::string slurp(const std::filesystem::path& p) {

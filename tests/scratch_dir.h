@@ -19,6 +19,8 @@ struct ScratchDir {
     std::error_code ec;
     std::filesystem::remove_all(dir, ec);
   }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
   std::string operator/(const std::string& f) const { return (dir / f).string(); }
 };
 

@@ -1,10 +1,14 @@
 // The orbit camera's gestures, checked through projection (independent of how they are implemented).
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "core/view/camera.h"
+#include "core/view/colormap.h"
 
 using namespace dfm::view;
 using Eigen::Vector2d;
@@ -174,4 +178,38 @@ TEST_CASE("projection depth is monotone and inside the clip range for the scene 
     REQUIRE(zn > -1);
     REQUIRE(zf < 1);
   }
+}
+
+// The colour map: the shader's formula, evaluated here from the #define text it receives, gives the
+// legend's colours (one copy of the coefficients), and its ends are the map's dark blue and dark red.
+TEST_CASE("turbo: the shader defines evaluate to the legend's colours", "[view]") {
+  const std::vector<std::string> defs = dfm::view::turbo_shader_defines();
+  REQUIRE(defs.size() == 6);
+  auto numbers = [](const std::string& d) {
+    std::vector<double> v;
+    const char* p = d.c_str() + d.find('(') + 1;
+    char* end = nullptr;
+    for (double x = std::strtod(p, &end); end != p; x = std::strtod(p, &end)) {
+      v.push_back(x);
+      p = end;
+      while (*p == ',' || *p == ' ') ++p;
+    }
+    return v;
+  };
+  for (double x : {0.0, 0.1, 0.37, 0.5, 0.81, 1.0}) {
+    const Eigen::Vector3d c = dfm::view::turbo(x);
+    for (int ch = 0; ch < 3; ++ch) {
+      const std::vector<double> lo = numbers(defs[2 * ch]), hi = numbers(defs[2 * ch + 1]);
+      REQUIRE(lo.size() == 4);
+      REQUIRE(hi.size() == 2);
+      const double shader = lo[0] + lo[1] * x + lo[2] * x * x + lo[3] * x * x * x + hi[0] * std::pow(x, 4) + hi[1] * std::pow(x, 5);
+      CHECK(c[ch] == Approx(shader).margin(1e-9));
+    }
+  }
+  CHECK(defs[0].rfind("TURBO_R vec4(", 0) == 0);
+  CHECK(defs[5].rfind("TURBO_B2 vec2(", 0) == 0);
+  const Eigen::Vector3d lo = dfm::view::turbo(-1), hi = dfm::view::turbo(2);  // clamped
+  CHECK(lo == dfm::view::turbo(0));
+  CHECK(lo.z() > lo.x());  // blue end
+  CHECK(hi.x() > hi.z());  // red end
 }

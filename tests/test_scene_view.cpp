@@ -266,14 +266,14 @@ TEST_CASE("scene view: the manifold's slice with two keys, the pose after a pose
 
   // The sweep along x slices at that fraction of the manifold's x extent: the rest's -1 to the
   // keyed +x vertex's 1 + 0.2.
-  s.sweep_axis = 0;
+  s.slice_axis = SliceAxis::X;
   s.sweep_value = 0.25;
   scene.sync(doc, s);
   REQUIRE(gpu.slicers[0]->slices.back().first == SliceAxis::X);
   REQUIRE(gpu.slicers[0]->slices.back().second == Approx(-1 + 0.25 * 2.2));
 
   // One key left: no manifold, the pose.
-  s.sweep_axis = -1;
+  s.slice_axis = SliceAxis::T;
   doc.delete_key(1);
   scene.sync(doc, s);
   REQUIRE_FALSE(scene.showing_slice());

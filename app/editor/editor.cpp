@@ -319,9 +319,9 @@ void Editor::render_frame() {
   ViewSettings vs;
   vs.wireframe = wireframe_;
   vs.grid = show_grid_;
-  vs.handles = show_handles_ && sweep_axis_ < 0;  // a sweep slice is not in pose space: handles would mislead
+  vs.handles = show_handles_ && slice_axis_ == SliceAxis::T;  // a sweep slice is not in pose space: handles would mislead
   vs.weight_view = weight_view_;
-  vs.sweep_axis = sweep_axis_;
+  vs.slice_axis = slice_axis_;
   vs.sweep_value = sweep_value_;
   view_->sync(doc_, vs);
   stage_end(t, stages_.sync);

@@ -184,7 +184,7 @@ class Editor {
   bool playing_ = false;
   bool loop_ = true;
   double play_speed_ = 1.0;
-  int sweep_axis_ = -1;  // -1: time slices; 0..2: sweep view along x/y/z
+  SliceAxis slice_axis_ = SliceAxis::T;  // T: time slices; X, Y, Z: the sweep view along that axis
   double sweep_value_ = 0.5;  // fraction of the extent along the sweep axis
   int picked_vertex_ = -1;    // vertex whose weights are listed
   std::vector<Eigen::Vector3d> bone_chain_;  // joints clicked so far (DrawBone)

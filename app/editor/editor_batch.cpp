@@ -129,9 +129,8 @@ void Editor::apply_ui_options(const std::string& spec) {
       if (!found) throw bad();
       frame_all();
     } else if (k == "sweep") {
-      if (v == "t") sweep_axis_ = -1;
-      else if (v == "x" || v == "y" || v == "z") sweep_axis_ = v[0] - 'x';
-      else throw bad();
+      if (v != "t" && v != "x" && v != "y" && v != "z") throw bad();
+      slice_axis_ = parse_slice_axis(v);
     } else if (k == "frame") {
       if (v == "all") frame_all();
       else if (v == "selection") frame_selection_after_script_ = true;  // the script may select

@@ -18,6 +18,7 @@
 #include "core/scene/key_surfaces.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
+#include "core/view/colormap.h"
 
 namespace dfm::editor {
 namespace {
@@ -377,10 +378,8 @@ void Editor::draw_weights_section() {
     for (int i = 0; i < 32; ++i) {
       const float x0 = p.x + w * i / 32, x1 = p.x + w * (i + 1) / 32;
       const float t = (i + 0.5f) / 32;
-      // Same polynomial as the shader (turbo), evaluated here for the legend.
-      const float r = 0.13572138f + t * (4.61539260f + t * (-42.66032258f + t * (132.13108234f + t * (-152.94239396f + t * 59.28637943f))));
-      const float g = 0.09140261f + t * (2.19418839f + t * (4.84296658f + t * (-14.18503333f + t * (4.27729857f + t * 2.82956604f))));
-      const float b = 0.10667330f + t * (12.64194608f + t * (-60.58204836f + t * (110.36276771f + t * (-89.90310912f + t * 27.34824973f))));
+      const Eigen::Vector3d c = view::turbo(t);  // the shader's colour map (core/view/colormap.h)
+      const float r = float(c.x()), g = float(c.y()), b = float(c.z());
       dl->AddRectFilled(ImVec2(x0, p.y), ImVec2(x1 + 1, p.y + 8), ImGui::GetColorU32(ImVec4(r, g, b, 1)));
     }
     ImGui::Dummy(ImVec2(w, 10));

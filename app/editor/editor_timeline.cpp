@@ -57,10 +57,10 @@ void Editor::draw_timeline() {
   ImGui::TextDisabled("|");
   ImGui::SameLine();
   const char* axes[] = {"t", "x", "y", "z"};
-  int sweep = sweep_axis_ + 1;
+  int sweep = slice_axis_ == SliceAxis::T ? 0 : static_cast<int>(slice_axis_) + 1;
   ImGui::SetNextItemWidth(60);
-  if (ImGui::Combo("Slice", &sweep, axes, 4)) sweep_axis_ = sweep - 1;
-  if (sweep_axis_ >= 0) {
+  if (ImGui::Combo("Slice", &sweep, axes, 4)) slice_axis_ = sweep == 0 ? SliceAxis::T : static_cast<SliceAxis>(sweep - 1);
+  if (slice_axis_ != SliceAxis::T) {
     ImGui::SameLine();
     float sv = float(sweep_value_);
     ImGui::SetNextItemWidth(120);

@@ -112,7 +112,7 @@ void SceneView::sync(const Document& doc, const ViewSettings& s) {
   const bool content = doc.revision() != synced_revision_;
   const bool time_changed = doc.time() != synced_time_;
   const bool settings_changed = s.weight_view != synced_settings_.weight_view ||
-                                s.sweep_axis != synced_settings_.sweep_axis ||
+                                s.slice_axis != synced_settings_.slice_axis ||
                                 s.sweep_value != synced_settings_.sweep_value;
   const bool sel_changed = doc.selection().handles != synced_selection_;
   if (time_changed) deformer_->prefer_pose = false;
@@ -196,7 +196,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       if (d.pose_sig != 0) d.prefer_pose = true;
       d.pose_sig = psig;
     }
-    if (d.has_manifold && (s.sweep_axis >= 0 || !d.prefer_pose || !d.skin)) {
+    if (d.has_manifold && (s.slice_axis != SliceAxis::T || !d.prefer_pose || !d.skin)) {
       show_slice(doc, s);
     } else if (d.skin) {
       d.skin->set_pose(pose, stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
@@ -228,11 +228,11 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
 void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
   Deformer& d = *deformer_;
   const AnimationManifold& m = d.builder.manifold();
-  SliceAxis axis = SliceAxis::T;
+  const SliceAxis axis = s.slice_axis;
   double value = doc.time();
-  if (s.sweep_axis >= 0) {
-    axis = static_cast<SliceAxis>(s.sweep_axis);
-    const double lo = m.V.col(s.sweep_axis).minCoeff(), hi = m.V.col(s.sweep_axis).maxCoeff();
+  if (axis != SliceAxis::T) {
+    const int c = static_cast<int>(axis);
+    const double lo = m.V.col(c).minCoeff(), hi = m.V.col(c).maxCoeff();
     value = lo + s.sweep_value * (hi - lo);
   }
   const bool time_axis = axis == SliceAxis::T;
@@ -339,7 +339,7 @@ void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
     // A time slice shows the animation: the handles follow it (the interpolated key poses).
     const Deformer& d = *deformer_;
     const KeyTrack& track = d.builder.track();
-    pose = showing_slice_ && s.sweep_axis < 0 && track.size() >= 2 ? sample_track(track, doc.time()) : doc.pose();
+    pose = showing_slice_ && s.slice_axis == SliceAxis::T && track.size() >= 2 ? sample_track(track, doc.time()) : doc.pose();
   } catch (...) {
   }
   const bool posed = !display_is_rest_ && pose.size() == n;

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/anim/slice.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
 #include "render/backend.h"
@@ -26,7 +27,7 @@ struct ViewSettings {
   bool grid = true;
   bool handles = true;
   WeightView weight_view = WeightView::Off;
-  int sweep_axis = -1;        // -1 time slice; 0..2 sweep along x/y/z
+  SliceAxis slice_axis = SliceAxis::T;  // T: time slices; X, Y, Z: the sweep view along that axis
   double sweep_value = 0.5;   // fraction of the extent along the sweep axis
 };
 
