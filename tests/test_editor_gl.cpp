@@ -226,6 +226,8 @@ TEST_CASE("scrubbing onto a layer time shows the mesh; playback never shows an e
 // The Shape space panel (Alexa 2002, ch. 5) over two mesh keys, a sphere at t = 0 and the sphere
 // stretched 1.8x along x at t = 1: with the cursor on a base's own pad point the viewport shows that
 // base (the HUD says "shape space"), so the stretched one covers more of the view than the sphere.
+// Halfway, as rigid as possible, the shape is synthesized on the panel's worker thread and the script's
+// screenshot waits for it: it lies between the two.
 TEST_CASE("the Shape space panel shows the shape at the pad's cursor in the viewport", "[editor][gl]") {
   const dfm::TriMesh sphere = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.6, 2);
   const std::string a = tmp("ss_sphere.obj"), b = tmp("ss_wide.obj"), script = tmp("ss.txt");
@@ -235,24 +237,30 @@ TEST_CASE("the Shape space panel shows the shape at the pad's cursor in the view
     for (int i = 0; i < sphere.V.rows(); ++i) o << "v " << sx * sphere.V(i, 0) << " " << sphere.V(i, 1) << " " << sphere.V(i, 2) << "\n";
     for (int f = 0; f < sphere.F.rows(); ++f) o << "f " << sphere.F(f, 0) + 1 << " " << sphere.F(f, 1) + 1 << " " << sphere.F(f, 2) + 1 << "\n";
   }
-  double fraction[2];
-  for (int base = 0; base < 2; ++base) {
-    const std::string png = tmp("ss" + std::to_string(base) + ".png");
+  double fraction[3];
+  for (int run_i = 0; run_i < 3; ++run_i) {
+    const std::string png = tmp("ss" + std::to_string(run_i) + ".png");
     {
       std::ofstream s(script);
       s << "key-mesh " << a << " 0\nkey-mesh " << b << " 1\nscreenshot " << png << "\n";
     }
-    // Two bases sit at (0.15, 0.5) and (0.85, 0.5) on the pad; the cursor on one of them.
+    // Two bases sit at (0.15, 0.5) and (0.85, 0.5) on the pad; the cursor on one of them, or halfway.
+    const char* cursor[3] = {"0.15:0.5", "0.85:0.5", "0.5:0.5,shape_morph=arap"};
     const Run r = run(std::string("\"") + DFM_EDITOR_EXE + "\" \"" + a + "\" --ui shape_space=0:1,shape_cursor=" +
-                      (base ? "0.85" : "0.15") + ":0.5 --script \"" + script + "\" --quit");
+                      cursor[run_i] + " --script \"" + script + "\" --quit");
     INFO(r.output);
     REQUIRE(r.code == 0);
     REQUIRE(r.output.find("shape space)") != std::string::npos);
-    fraction[base] = mesh_coverage(dfm::gl::read_png(png)).fraction;
+    if (run_i == 2) {
+      REQUIRE(r.output.find("shape space: the ARAP shape at the cursor (") != std::string::npos);
+    }
+    fraction[run_i] = mesh_coverage(dfm::gl::read_png(png)).fraction;
   }
-  INFO("mesh fraction: sphere " << fraction[0] << ", stretched " << fraction[1]);
+  INFO("mesh fraction: sphere " << fraction[0] << ", stretched " << fraction[1] << ", halfway (ARAP) " << fraction[2]);
   CHECK(fraction[0] > 0.02);
   CHECK(fraction[1] > 1.4 * fraction[0]);
+  CHECK(fraction[2] > fraction[0] + 0.2 * (fraction[1] - fraction[0]));
+  CHECK(fraction[2] < fraction[1] - 0.2 * (fraction[1] - fraction[0]));
 }
 
 TEST_CASE("editor options: --msaa takes 0..8", "[editor]") {

@@ -366,7 +366,7 @@ std::string Editor::job_progress_signature() const {
     return p.stage + " " + std::to_string(static_cast<int>(100.0 * p.fraction)) + "% " +
            std::to_string(static_cast<long>(10.0 * bind_.elapsed_seconds())) + (bind_.cancel_requested() ? " cancel" : "");
   }
-  return view_->manifold_building() ? view_->manifold_progress() : std::string();
+  return view_->manifold_building() ? view_->manifold_progress() : shape_space_progress();
 }
 
 bool Editor::next_job_frame(JobFrameClock& c) {
@@ -388,7 +388,7 @@ void Editor::wait_for_frame() {
     a.input = events_ != events_seen_;
     events_seen_ = events_;
     a.playing = playing_ && doc_.keys().size() >= 2;
-    a.job_running = bind_.running() || view_->manifold_building();
+    a.job_running = bind_.running() || view_->manifold_building() || !shape_space_progress().empty();
     const std::string progress = job_progress_signature();
     a.job_progress = progress != job_progress_seen_;
     job_progress_seen_ = progress;
@@ -453,6 +453,7 @@ int Editor::run() {
     host.screenshot = [this](const std::string& png) {
       frame_stats_.pause();  // the script's commands ran since the last frame
       wait_for_manifold();  // a script's picture shows the animation it keyed, not the build in progress
+      wait_for_shape_space();  // ...and the Shape space panel's ARAP shape, not its linear stand-in
       save_screenshot(png);
       std::printf("screenshot: %s (HUD: %s)\n", png.c_str(), hud_text().c_str());
       std::fflush(stdout);
@@ -520,7 +521,7 @@ int Editor::run() {
   }
   if (frame_selection_after_script_) frame_selection();
   if (opts_.play_frames > 0) play_benchmark(opts_.play_frames);
-  if (!opts_.screenshot.empty()) wait_for_manifold(), save_screenshot(opts_.screenshot);
+  if (!opts_.screenshot.empty()) wait_for_manifold(), wait_for_shape_space(), save_screenshot(opts_.screenshot);
   if (opts_.quit || should_quit_) return 0;
 
   // Idle: sleeps until an event (glfwWaitEventsTimeout); input, playback and a running job's

@@ -137,6 +137,12 @@ class Editor {
   bool shape_space_ui_option(const std::string& key, const std::string& value);
   void update_shape_space();   // rebuilds the space when the bases' surfaces change
   void shape_space_pad(ShapeSpacePanel& p);
+  // "synthesizing (ARAP) 1.2 s" while the panel waits for its worker's shape, else "" (a job's
+  // progress: the loop draws when it changes).
+  std::string shape_space_progress() const;
+  // Draws frames until the panel's ARAP shape for the cursor has arrived (scripts, --screenshot), and
+  // prints the frames' times; editor_batch.cpp.
+  void wait_for_shape_space();
   void draw_weight_tools_section();  // weight_tools_panel.cpp (inside the Weights section)
   void draw_viewport_hud();
   void draw_quit_prompt();

@@ -1,5 +1,5 @@
-// Batch and test entry points of the editor: --play-frames (playback against posing, by stage) and
-// --ui (initial tool and view state).
+// Batch and test entry points of the editor: --play-frames (playback against posing, by stage), --ui
+// (initial tool and view state), and waiting for the Shape space panel's worker before a screenshot.
 #include "app/editor/editor.h"
 
 #include <GLFW/glfw3.h>
@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "app/editor/shape_space_panel.h"
 #include "core/util/error.h"
 
 namespace dfm::editor {
@@ -83,6 +84,40 @@ void Editor::play_benchmark(int frames) {
   } else {
     std::printf("play-frames: no posed baseline (the scene has no skinned pose to show)\n");
   }
+  std::fflush(stdout);
+}
+
+// As wait_for_manifold: frames while the panel's ARAP shape is on the worker (a frame when its
+// progress text changes, at most progress_hz, the worker getting the CPU between them), each timed as
+// the user would see it (drawn, swapped, finished): the UI frames must stay under 100 ms meanwhile.
+void Editor::wait_for_shape_space() {
+  const ShapeSpacePanel& p = *shape_space_;
+  if (p.times.size() < 2) return;  // no shape space in use
+  render_frame();  // the panel asks for the shape the last edits need (or collects it)
+  if (!p.space || p.space->morph() != ShapeMorph::Arap) return;
+  const double t0 = glfwGetTime();
+  present_frame();
+  JobFrameClock clock;
+  clock.last = t0;
+  int frames = 0, over_100 = 0;
+  double sum_ms = 0, max_ms = 0;
+  while (p.shape.waiting()) {
+    if (!next_job_frame(clock)) continue;
+    const double f0 = glfwGetTime();
+    render_frame();  // also collects the shape and shows it
+    present_frame();
+    glfwPollEvents();
+    glFinish();
+    const double ms = 1000.0 * (glfwGetTime() - f0);
+    ++frames, sum_ms += ms, max_ms = std::max(max_ms, ms), over_100 += ms > 100.0;
+  }
+  char shape[320];
+  if (p.shape.final_at(p.weights))
+    std::snprintf(shape, sizeof shape, "the ARAP shape at the cursor (%.2f s on the worker)", p.shape.synth_ms() / 1000.0);
+  else
+    std::snprintf(shape, sizeof shape, "no ARAP shape at the cursor (%s)", p.shape.error().substr(0, 200).c_str());
+  std::printf("shape space: %s; waited %.2f s, %d frames drawn meanwhile, mean %.1f ms, max %.1f ms, %d over 100 ms\n",
+              shape, glfwGetTime() - t0, frames, frames ? sum_ms / frames : 0.0, max_ms, over_100);
   std::fflush(stdout);
 }
 

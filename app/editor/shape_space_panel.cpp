@@ -2,15 +2,16 @@
 // the cursor synthesizes the shape at its barycentric coordinates in the pad's Delaunay triangulation
 // (core/anim/shape_space_pad.h) by Eq. 5.31's chain of linear or ARAP morphs, shown in the viewport;
 // "Key this shape" keys it as a mesh (core/scene/shape_space_keys.h, what the script's
-// shape-space-key does). Pad points are dragged to rearrange the space. ARAP synthesizes when the
-// cursor is released (a morph whose target is a synthesized shape carries it through a base's tets:
-// about a second on the teddy), linear while it moves.
+// shape-space-key does). Pad points are dragged to rearrange the space. Linear follows the cursor;
+// ARAP (seconds: TetGen and factorizations per base once, then about a second a shape on the teddy)
+// is requested when the cursor is released and runs on a worker thread (shape_space_cursor.h), the
+// linear blend standing in until the shape for the cursor arrives; a newer cursor or Cancel
+// supersedes it, and "Key this shape" is disabled until it is there.
 #include "app/editor/shape_space_panel.h"
 
 #include <imgui.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -62,6 +63,35 @@ void add_base(ShapeSpacePanel& p, double t) {
   for (int i = 0; i < n; ++i) p.points.row(i) = default_pad_point(i, n).transpose();
 }
 
+void text_disabled_wrapped(const char* text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s", text);
+  ImGui::PopStyleColor();
+}
+
+// Where the shown shape stands: final (and its time), or ARAP on the worker (elapsed, Cancel), or
+// cancelled (Synthesize asks again).
+void shape_space_synthesis_status(CursorShape& c, bool arap) {
+  if (c.is_final()) {
+    if (arap) ImGui::TextDisabled("synthesized (ARAP) in %.2f s", c.synth_ms() / 1000.0);
+    else ImGui::TextDisabled("synthesized in %.2f ms", c.synth_ms());
+  } else if (c.waiting()) {
+    ImGui::Text("synthesizing (ARAP)... %.1f s", c.elapsed_seconds());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Cancel##ssarap")) c.cancel();
+    text_disabled_wrapped("the viewport shows the linear blend until it is done");
+  } else if (c.cancelled()) {
+    if (ImGui::SmallButton("Synthesize##ssarap")) c.retry();  // asked for again next frame
+    ImGui::SameLine();
+    text_disabled_wrapped("ARAP cancelled: linear blend shown");
+  } else if (arap && !c.error().empty()) {
+    text_disabled_wrapped("ARAP failed (below): linear blend shown");
+  } else if (arap) {
+    text_disabled_wrapped("linear blend while dragging; ARAP on release");
+  }
+  if (arap && c.running() && !c.waiting()) text_disabled_wrapped("(the worker finishes a superseded synthesis)");
+}
+
 void remove_base(ShapeSpacePanel& p, int i) {
   p.times.erase(p.times.begin() + i);
   PadPoints kept(p.points.rows() - 1, 2);
@@ -100,20 +130,18 @@ void Editor::update_shape_space() {
   p.build_error.clear();
   if (p.times.size() < 2) {
     p.space.reset();
-    p.shape_weights.resize(0);
     return;
   }
   try {
-    auto next = std::make_unique<ShapeSpace>(key_shape_space(doc_, p.times, p.morph));
+    auto next = std::make_shared<ShapeSpace>(key_shape_space(doc_, p.times, p.morph));
     // The same bases and morph (a pose edit elsewhere): keep the old space and its ARAP setups.
     auto equal = [](const auto& a, const auto& b) { return a.rows() == b.rows() && a.cols() == b.cols() && a == b; };
     bool same = p.space && p.space->morph() == next->morph() && p.space->size() == next->size() &&
                 equal(p.space->faces(), next->faces());
     for (int i = 0; same && i < next->size(); ++i) same = equal(p.space->bases()[i], next->bases()[i]);
-    if (!same) p.space = std::move(next), p.shape_weights.resize(0), p.synth_error.clear();
+    if (!same) p.space = std::move(next);  // the cursor's shape starts afresh (CursorShape::update)
   } catch (const std::exception& e) {
     p.space.reset();
-    p.shape_weights.resize(0);
     p.build_error = e.what();
   }
 }
@@ -180,6 +208,7 @@ void Editor::draw_shape_space_section() {
   if (p.open_request) ImGui::SetNextItemOpen(true);
   if (!ImGui::CollapsingHeader("Shape space")) {
     view_->clear_preview();
+    p.shape.pause();  // ARAP is asked for again when it opens
     return;
   }
   if (p.open_request) ImGui::SetScrollHereY(0.0f);  // --ui shape_space=...: in view once it has a space
@@ -217,25 +246,12 @@ void Editor::draw_shape_space_section() {
   shape_space_pad(p);
   const bool dragging = ImGui::IsItemActive();
 
-  // Synthesize: linear as the cursor moves, ARAP once it is released.
-  if (p.space && p.weights.size() == p.space->size() &&
-      (p.shape_weights.size() != p.weights.size() || p.shape_weights != p.weights) &&
-      (p.morph == ShapeMorph::Linear || !dragging)) {
-    const auto t0 = std::chrono::steady_clock::now();
-    try {
-      p.shape = p.space->synthesize(p.weights);
-      p.shape_weights = p.weights;
-      p.synth_error.clear();
-    } catch (const std::exception& e) {
-      p.synth_error = e.what();
-      p.shape_weights = p.weights;  // do not retry every frame
-      p.shape.resize(0, 3);
-    }
-    p.synth_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (p.preview && p.shape.rows() > 0) view_->show_preview(TriMesh{p.shape, p.space->faces(), {}});
-  }
-  const bool have_shape = p.space && p.shape.rows() > 0 && p.shape_weights.size() == p.space->size();
-  if (p.preview && have_shape && !view_->showing_preview()) view_->show_preview(TriMesh{p.shape, p.space->faces(), {}});
+  // Linear follows the cursor; ARAP runs on the worker once the cursor is released.
+  CursorShape& c = p.shape;
+  const bool changed = c.update(p.space, p.weights, dragging);
+  const bool have_shape = p.space && c.vertices().rows() > 0 && c.weights().size() == p.space->size();
+  if (p.preview && have_shape && (changed || !view_->showing_preview()))
+    view_->show_preview(TriMesh{c.vertices(), p.space->faces(), {}});
   if (!p.preview || !have_shape) view_->clear_preview();
 
   if (p.weights.size() == static_cast<Eigen::Index>(p.times.size()) && p.times.size() >= 2) {
@@ -246,10 +262,9 @@ void Editor::draw_shape_space_section() {
       w += b;
     }
     ImGui::TextWrapped("%s", w.c_str());
-    if (have_shape) ImGui::TextDisabled("synthesized in %.1f ms%s", p.synth_ms,
-                                        p.morph == ShapeMorph::Arap ? " (ARAP: on release)" : "");
+    if (have_shape) shape_space_synthesis_status(c, p.space->morph() == ShapeMorph::Arap);
   }
-  for (const std::string* e : {&p.build_error, &p.synth_error})
+  for (const std::string* e : std::initializer_list<const std::string*>{&p.build_error, &c.error()})
     if (!e->empty()) {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.45f, 0.35f, 1));
       ImGui::TextWrapped("%s", e->substr(0, 300).c_str());
@@ -261,17 +276,30 @@ void Editor::draw_shape_space_section() {
   ImGui::SetNextItemWidth(90);
   if (ImGui::InputDouble("##sskt", &p.key_time, 0, 0, "t = %.3f")) p.key_time_set = true;
   ImGui::SameLine();
-  if (!p.space) ImGui::BeginDisabled();
-  if (ImGui::Button("Key this shape", ImVec2(-1, 0)) && p.space) {
+  // The shape keyed is the one shown, once it is the morph's own for the cursor (an ARAP one still on
+  // the worker: disabled until it arrives); it is what core's synthesize returns for these weights.
+  const bool can_key = have_shape && c.final_at(p.weights);
+  if (!can_key) ImGui::BeginDisabled();
+  if (ImGui::Button("Key this shape", ImVec2(-1, 0)) && can_key) {
     try {
-      key_synthesized_shape(doc_, *p.space, p.weights, p.key_time);
+      doc_.key_mesh(TriMesh{c.vertices(), p.space->faces(), {}}, shape_space_key_name(*p.space, p.weights), p.key_time);
       status("keyed the shape-space shape at t = " + std::to_string(p.key_time));
       p.key_time_set = false;
     } catch (const std::exception& e) {
       error_popup_ = e.what();
     }
   }
-  if (!p.space) ImGui::EndDisabled();
+  if (!can_key) ImGui::EndDisabled();
+  if (!can_key && c.waiting() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("waits for the ARAP shape at the cursor");
+}
+
+std::string Editor::shape_space_progress() const {
+  const ShapeSpacePanel& p = *shape_space_;
+  if (!p.shape.waiting()) return "";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "synthesizing (ARAP) %.1f s", p.shape.elapsed_seconds());
+  return buf;
 }
 
 }  // namespace dfm::editor

@@ -2,7 +2,9 @@
 // The Shape space panel's state (editor view state: not in the document, not saved, not undoable):
 // which keys are the bases (by time, in chain order), where each sits on the 2D pad, the cursor, the
 // morph, and the shape space built from the document's keys (its ARAP setups kept while the bases'
-// surfaces stay the same). The panel itself is Editor::draw_shape_space_section.
+// surfaces stay the same). ARAP shapes are synthesized on a worker thread (shape_space_cursor.h), the
+// linear blend at the cursor standing in until the one for the cursor arrives. The panel itself is
+// Editor::draw_shape_space_section.
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -11,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "app/editor/shape_space_cursor.h"
 #include "core/anim/shape_space.h"
 #include "core/anim/shape_space_pad.h"
 
@@ -26,16 +29,17 @@ struct ShapeSpacePanel {
   double key_time = 0;         // "Key this shape" keys at this time
   bool key_time_set = false;   // key_time follows the document's time until edited
 
-  std::unique_ptr<ShapeSpace> space;  // null until two or more bases build
+  // Null until two or more bases build. Built from copies of the keys; shared with the worker's
+  // requests, which alone call its synthesize (and fill its ARAP cache); this thread reads only its
+  // bases, faces and morph, which synthesize never writes.
+  std::shared_ptr<ShapeSpace> space;
   std::uint64_t built_revision = ~0ull;
   std::vector<double> built_times;
   ShapeMorph built_morph = ShapeMorph::Linear;
-  std::string build_error, synth_error;  // building the space from the keys; synthesizing
+  std::string build_error;      // building the space from the keys
 
   Eigen::VectorXd weights;      // at the cursor
-  Eigen::VectorXd shape_weights;  // of `shape` (empty: none)
-  Eigen::MatrixXd shape;        // the synthesized vertices
-  double synth_ms = 0;
+  CursorShape shape;            // what the viewport shows at the cursor (ARAP on a worker)
   int dragging_point = -1;
 };
 
