@@ -181,7 +181,7 @@ TEST_CASE("projection depth is monotone and inside the clip range for the scene 
 }
 
 // The colour map: the shader's formula, evaluated here from the #define text it receives, gives the
-// legend's colours (one copy of the coefficients), and its ends are the map's dark blue and dark red.
+// legend's colours (one copy of the coefficients), blue for low weights, green in the middle, red for high.
 TEST_CASE("turbo: the shader defines evaluate to the legend's colours", "[view]") {
   const std::vector<std::string> defs = dfm::view::turbo_shader_defines();
   REQUIRE(defs.size() == 6);
@@ -210,6 +210,9 @@ TEST_CASE("turbo: the shader defines evaluate to the legend's colours", "[view]"
   CHECK(defs[5].rfind("TURBO_B2 vec2(", 0) == 0);
   const Eigen::Vector3d lo = dfm::view::turbo(-1), hi = dfm::view::turbo(2);  // clamped
   CHECK(lo == dfm::view::turbo(0));
-  CHECK(lo.z() > lo.x());  // blue end
-  CHECK(hi.x() > hi.z());  // red end
+  const Eigen::Vector3d blue = dfm::view::turbo(0.1), green = dfm::view::turbo(0.5), red = dfm::view::turbo(0.9);
+  CHECK(blue.z() > std::max(blue.x(), blue.y()));  // low weights blue, middle green, high red
+  CHECK(green.y() > std::max(green.x(), green.z()));
+  CHECK(red.x() > std::max(red.y(), red.z()));
+  CHECK(hi.x() > hi.z());
 }
