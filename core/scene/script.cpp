@@ -222,6 +222,158 @@ TriMesh posed_surface(const Document& doc) {
   return still_frame(doc);
 }
 
+namespace {
+
+// Surface, rig, bind and mask commands; false when the line is not one of them.
+bool run_rig_command(Document& doc, const ScriptLine& l, const ScriptHost& host) {
+  const std::string& cmd = l.words[0];
+  if (cmd == "open") {
+    const std::string& f = l.words[1];
+    if (ends_with(f, ".json")) doc.load_scene(f);
+    else doc.open_mesh(f);
+  } else if (cmd == "add-point") {
+    doc.add_point({num(l, 1), num(l, 2), num(l, 3)});
+  } else if (cmd == "add-bone") {
+    std::vector<Eigen::Vector3d> joints;
+    for (size_t i = 1; i + 2 < l.words.size(); i += 3) joints.push_back({num(l, i), num(l, i + 1), num(l, i + 2)});
+    doc.add_bone_chain(joints);
+  } else if (cmd == "load-skeleton") {
+    doc.load_skeleton(l.words[1]);
+  } else if (cmd == "load-cage") {
+    doc.load_cage(l.words[1]);
+  } else if (cmd == "pseudo-edge") {
+    doc.add_pseudo_edge(integer_arg(l, 1), integer_arg(l, 2));
+  } else if (cmd == "bind") {
+    if (host.bind) host.bind(doc);
+    else run_bind_blocking(doc);
+  } else if (cmd == "paint-mask" || cmd == "paint-dab") {
+    // One dab of the Paint tool's brush (brush.h): paint-mask sets VALUE, paint-dab adds or erases.
+    Brush brush{num(l, 4), num(l, 5), 0.0, BrushMode::Set};
+    if (cmd == "paint-mask") {
+      if (brush.strength < 0 || brush.strength > 1) throw Error("mask values are in [0, 1], got " + l.words[5]);
+      if (l.words.size() > 6) brush.falloff = num(l, 6);
+    } else {
+      brush.falloff = num(l, 6);
+      if (l.words.size() > 7 && l.words[7] != "erase") throw Error("the last word is 'erase' or nothing, got " + l.words[7]);
+      brush.mode = l.words.size() > 7 ? BrushMode::Erase : BrushMode::Add;
+    }
+    if (brush.radius <= 0) throw Error("radius must be > 0");
+    const BrushDab dab = brush_dab(doc.surface().V, doc.mask(), Eigen::Vector3d(num(l, 1), num(l, 2), num(l, 3)), brush);
+    if (dab.vertices.empty()) throw Error("no surface vertex within " + l.words[4] + " of the point");
+    doc.paint_mask(dab.vertices, dab.values);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// Selection, posing and undo commands; false when the line is not one of them.
+bool run_pose_command(Document& doc, const ScriptLine& l) {
+  const std::string& cmd = l.words[0];
+  if (cmd == "select") {
+    Selection s;
+    for (size_t i = 1; i < l.words.size(); ++i) s.handles.push_back(integer_arg(l, i));
+    doc.set_selection(s);
+  } else if (cmd == "translate") {
+    const Eigen::Vector3d d(num(l, 1), num(l, 2), num(l, 3));
+    for (int h : selected_or_fail(doc)) doc.translate_handle(h, d);
+  } else if (cmd == "rotate") {
+    const Eigen::Vector3d axis(num(l, 2), num(l, 3), num(l, 4));
+    if (axis.norm() < 1e-12) throw Error("rotation axis is zero");
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(num(l, 1) * M_PI / 180.0, axis.normalized()));
+    for (int h : selected_or_fail(doc)) doc.rotate_handle(h, q);
+  } else if (cmd == "drag") {
+    doc.drag_handle(integer_arg(l, 1), Eigen::Vector3d(num(l, 2), num(l, 3), num(l, 4)));
+  } else if (cmd == "handle-state") {
+    double h = 0;
+    if (!parse_number(l.words[1], h) || h != std::floor(h)) throw Error("'" + l.words[1] + "' is not a handle index");
+    doc.set_handle_state(static_cast<int>(h), parse_constraint_state(l.words[2]));
+  } else if (cmd == "ik-chain") {
+    PosingSettings p = doc.posing();
+    p.fast = true;
+    p.states = ik_chain_states(doc.rig(), doc.handle_states(), integer_arg(l, 1));
+    doc.set_posing(p);
+  } else if (cmd == "fast") {
+    if (l.words[1] != "on" && l.words[1] != "off") throw Error("fast: expected on or off, got '" + l.words[1] + "'");
+    PosingSettings p = doc.posing();
+    p.fast = l.words[1] == "on";
+    if (l.words.size() > 2) {
+      double n = 0;
+      if (!parse_number(l.words[2], n) || n != std::floor(n)) throw Error("'" + l.words[2] + "' is not an iteration count");
+      p.iterations = static_cast<int>(n);
+    }
+    doc.set_posing(p);
+  } else if (cmd == "set-method") {
+    doc.set_method(parse_skin_method(l.words[1]));
+  } else if (cmd == "reset-pose") {
+    doc.reset_pose();
+  } else if (cmd == "undo") {
+    doc.undo();
+  } else if (cmd == "redo") {
+    doc.redo();
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// Key and time commands; false when the line is not one of them.
+bool run_animation_command(Document& doc, const ScriptLine& l) {
+  const std::string& cmd = l.words[0];
+  if (cmd == "set-key") {
+    doc.set_key(l.words.size() > 1 ? num(l, 1) : doc.time());
+  } else if (cmd == "key-mesh") {
+    doc.key_mesh_file(l.words[1], l.words.size() > 2 ? num(l, 2) : doc.time());
+  } else if (cmd == "shape-space-key") {
+    // Key times, then as many weights, then an optional time to key at (Alexa 2002, ch. 5).
+    const int m = static_cast<int>(l.words.size()) - 2, n = m / 2;
+    std::vector<double> times;
+    Eigen::VectorXd x(n);
+    for (int i = 0; i < n; ++i) times.push_back(num(l, 2 + i)), x(i) = num(l, 2 + n + i);
+    ShapeSpace space = key_shape_space(doc, times, parse_shape_morph(l.words[1]));
+    key_synthesized_shape(doc, space, x, m % 2 ? num(l, static_cast<int>(l.words.size()) - 1) : doc.time());
+  } else if (cmd == "delete-key") {
+    const double t = l.words.size() > 1 ? num(l, 1) : doc.time();
+    const int k = doc.key_at(t);
+    if (k < 0) throw Error("no key at time " + (l.words.size() > 1 ? l.words[1] : std::to_string(t)));
+    doc.delete_key(k);
+  } else if (cmd == "set-inbetween") {
+    const int k = doc.key_at(num(l, 1));
+    if (k < 0) throw Error("no key at time " + l.words[1]);
+    doc.set_key_inbetween(k, parse_inbetween_method(l.words[2]));
+  } else if (cmd == "set-time") {
+    doc.set_time(num(l, 1));
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// Commands that write files; false when the line is not one of them.
+bool run_file_command(Document& doc, const ScriptLine& l, const ScriptHost& host) {
+  const std::string& cmd = l.words[0];
+  if (cmd == "save-posed") {
+    write_surface(l.words[1], posed_surface(doc));
+  } else if (cmd == "save-frames") {
+    const int count = l.words.size() > 2 ? integer_arg(l, 2) : kDefaultFrameCount;
+    if (doc.keys().size() < 2) throw Error("save-frames needs at least two keys");
+    write_frame_sequence(document_manifold(doc), l.words[1], count);
+  } else if (cmd == "save-scene") {
+    doc.save_scene(l.words[1]);
+  } else if (cmd == "screenshot") {
+    if (!host.screenshot) throw Error("screenshots need the editor (no renderer here)");
+    host.screenshot(l.words[1]);
+  } else if (cmd == "export-gltf") {
+    if (!host.export_gltf) throw Error("glTF export needs the editor (or `deform export`)");
+    host.export_gltf(l.words[1], l.words.size() > 2 ? std::stoi(l.words[2]) : 4);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, const std::string& name,
                         const ScriptHost& host) {
   ScriptResult res;
@@ -232,121 +384,10 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
   for (const ScriptLine& l : lines) {
     const std::string& cmd = l.words[0];
     try {
-      if (cmd == "open") {
-        const std::string& f = l.words[1];
-        if (ends_with(f, ".json")) doc.load_scene(f);
-        else doc.open_mesh(f);
-      } else if (cmd == "add-point") {
-        doc.add_point({num(l, 1), num(l, 2), num(l, 3)});
-      } else if (cmd == "add-bone") {
-        std::vector<Eigen::Vector3d> joints;
-        for (size_t i = 1; i + 2 < l.words.size(); i += 3) joints.push_back({num(l, i), num(l, i + 1), num(l, i + 2)});
-        doc.add_bone_chain(joints);
-      } else if (cmd == "load-skeleton") {
-        doc.load_skeleton(l.words[1]);
-      } else if (cmd == "load-cage") {
-        doc.load_cage(l.words[1]);
-      } else if (cmd == "pseudo-edge") {
-        doc.add_pseudo_edge(integer_arg(l, 1), integer_arg(l, 2));
-      } else if (cmd == "bind") {
-        if (host.bind) host.bind(doc);
-        else run_bind_blocking(doc);
-      } else if (cmd == "select") {
-        Selection s;
-        for (size_t i = 1; i < l.words.size(); ++i) s.handles.push_back(integer_arg(l, i));
-        doc.set_selection(s);
-      } else if (cmd == "translate") {
-        const Eigen::Vector3d d(num(l, 1), num(l, 2), num(l, 3));
-        for (int h : selected_or_fail(doc)) doc.translate_handle(h, d);
-      } else if (cmd == "rotate") {
-        const Eigen::Vector3d axis(num(l, 2), num(l, 3), num(l, 4));
-        if (axis.norm() < 1e-12) throw Error("rotation axis is zero");
-        const Eigen::Quaterniond q(Eigen::AngleAxisd(num(l, 1) * M_PI / 180.0, axis.normalized()));
-        for (int h : selected_or_fail(doc)) doc.rotate_handle(h, q);
-      } else if (cmd == "drag") {
-        doc.drag_handle(integer_arg(l, 1), Eigen::Vector3d(num(l, 2), num(l, 3), num(l, 4)));
-      } else if (cmd == "handle-state") {
-        double h = 0;
-        if (!parse_number(l.words[1], h) || h != std::floor(h)) throw Error("'" + l.words[1] + "' is not a handle index");
-        doc.set_handle_state(static_cast<int>(h), parse_constraint_state(l.words[2]));
-      } else if (cmd == "ik-chain") {
-        PosingSettings p = doc.posing();
-        p.fast = true;
-        p.states = ik_chain_states(doc.rig(), doc.handle_states(), integer_arg(l, 1));
-        doc.set_posing(p);
-      } else if (cmd == "fast") {
-        if (l.words[1] != "on" && l.words[1] != "off") throw Error("fast: expected on or off, got '" + l.words[1] + "'");
-        PosingSettings p = doc.posing();
-        p.fast = l.words[1] == "on";
-        if (l.words.size() > 2) {
-          double n = 0;
-          if (!parse_number(l.words[2], n) || n != std::floor(n)) throw Error("'" + l.words[2] + "' is not an iteration count");
-          p.iterations = static_cast<int>(n);
-        }
-        doc.set_posing(p);
-      } else if (cmd == "set-method") {
-        doc.set_method(parse_skin_method(l.words[1]));
-      } else if (cmd == "set-key") {
-        doc.set_key(l.words.size() > 1 ? num(l, 1) : doc.time());
-      } else if (cmd == "key-mesh") {
-        doc.key_mesh_file(l.words[1], l.words.size() > 2 ? num(l, 2) : doc.time());
-      } else if (cmd == "shape-space-key") {
-        // Key times, then as many weights, then an optional time to key at (Alexa 2002, ch. 5).
-        const int m = static_cast<int>(l.words.size()) - 2, n = m / 2;
-        std::vector<double> times;
-        Eigen::VectorXd x(n);
-        for (int i = 0; i < n; ++i) times.push_back(num(l, 2 + i)), x(i) = num(l, 2 + n + i);
-        ShapeSpace space = key_shape_space(doc, times, parse_shape_morph(l.words[1]));
-        key_synthesized_shape(doc, space, x, m % 2 ? num(l, static_cast<int>(l.words.size()) - 1) : doc.time());
-      } else if (cmd == "delete-key") {
-        const double t = l.words.size() > 1 ? num(l, 1) : doc.time();
-        const int k = doc.key_at(t);
-        if (k < 0) throw Error("no key at time " + (l.words.size() > 1 ? l.words[1] : std::to_string(t)));
-        doc.delete_key(k);
-      } else if (cmd == "set-inbetween") {
-        const int k = doc.key_at(num(l, 1));
-        if (k < 0) throw Error("no key at time " + l.words[1]);
-        doc.set_key_inbetween(k, parse_inbetween_method(l.words[2]));
-      } else if (cmd == "set-time") {
-        doc.set_time(num(l, 1));
-      } else if (cmd == "reset-pose") {
-        doc.reset_pose();
-      } else if (cmd == "undo") {
-        doc.undo();
-      } else if (cmd == "redo") {
-        doc.redo();
-      } else if (cmd == "save-posed") {
-        write_surface(l.words[1], posed_surface(doc));
-      } else if (cmd == "save-frames") {
-        const int count = l.words.size() > 2 ? integer_arg(l, 2) : kDefaultFrameCount;
-        if (doc.keys().size() < 2) throw Error("save-frames needs at least two keys");
-        write_frame_sequence(document_manifold(doc), l.words[1], count);
-      } else if (cmd == "save-scene") {
-        doc.save_scene(l.words[1]);
-      } else if (cmd == "screenshot") {
-        if (!host.screenshot) throw Error("screenshots need the editor (no renderer here)");
-        host.screenshot(l.words[1]);
-      } else if (cmd == "paint-mask" || cmd == "paint-dab") {
-        // One dab of the Paint tool's brush (brush.h): paint-mask sets VALUE, paint-dab adds or erases.
-        Brush brush{num(l, 4), num(l, 5), 0.0, BrushMode::Set};
-        if (cmd == "paint-mask") {
-          if (brush.strength < 0 || brush.strength > 1) throw Error("mask values are in [0, 1], got " + l.words[5]);
-          if (l.words.size() > 6) brush.falloff = num(l, 6);
-        } else {
-          brush.falloff = num(l, 6);
-          if (l.words.size() > 7 && l.words[7] != "erase") throw Error("the last word is 'erase' or nothing, got " + l.words[7]);
-          brush.mode = l.words.size() > 7 ? BrushMode::Erase : BrushMode::Add;
-        }
-        if (brush.radius <= 0) throw Error("radius must be > 0");
-        const BrushDab dab = brush_dab(doc.surface().V, doc.mask(), Eigen::Vector3d(num(l, 1), num(l, 2), num(l, 3)), brush);
-        if (dab.vertices.empty()) throw Error("no surface vertex within " + l.words[4] + " of the point");
-        doc.paint_mask(dab.vertices, dab.values);
-      } else if (cmd == "export-gltf") {
-        if (!host.export_gltf) throw Error("glTF export needs the editor (or `deform export`)");
-        host.export_gltf(l.words[1], l.words.size() > 2 ? std::stoi(l.words[2]) : 4);
-      } else if (cmd == "quit") {
+      if (cmd == "quit") {
         res.quit = true;
-      } else {
+      } else if (!run_rig_command(doc, l, host) && !run_pose_command(doc, l) && !run_animation_command(doc, l) &&
+                 !run_file_command(doc, l, host)) {
         script_detail::run_weight_command(doc, l, print);
       }
     } catch (const Error& e) {
