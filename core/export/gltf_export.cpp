@@ -130,9 +130,8 @@ void set_node_trs(tinygltf::Node& node, const Trs& t) {
   node.scale = {t.scale.x(), t.scale.y(), t.scale.z()};
 }
 
-}  // namespace
-
-GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in, const GltfExportOptions& options) {
+// Throws for input the file could not represent consistently.
+void check_input(const std::string& path, const GltfExportInput& in, const GltfExportOptions& options) {
   const std::string ext = file_extension(path);
   if (ext != "glb" && ext != "gltf") throw Error(path + ": glTF export needs a .glb or .gltf file name");
   if (options.influences != 4 && options.influences != 8)
@@ -148,8 +147,7 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
     throw Error("glTF export: weights are " + std::to_string(in.weights.rows()) + " x " +
                 std::to_string(in.weights.cols()) + ", expected " + std::to_string(nv) + " x " + std::to_string(nh) +
                 " (surface vertices x handles)");
-  const Pose current = in.current.size() ? in.current : identity_pose(nh);
-  check_pose(current, nh, "the current pose");
+  if (in.current.size()) check_pose(in.current, nh, "the current pose");
   for (size_t k = 0; k < in.keys.size(); ++k) {
     check_pose(in.keys[k].pose, nh, "key " + std::to_string(k));
     if (!std::isfinite(in.keys[k].time) || in.keys[k].time < 0 || (k > 0 && in.keys[k].time <= in.keys[k - 1].time))
@@ -163,24 +161,19 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
     if (!std::isfinite(in.morph_times[i]) || in.morph_times[i] < 0 || (i > 0 && in.morph_times[i] <= in.morph_times[i - 1]))
       throw Error("glTF export: morph times must be finite, >= 0 and strictly increasing");
   }
+}
 
-  GltfExportReport report;
-  report.vertices = nv;
-  report.triangles = S.num_faces();
-  report.joints = nh;
-  report.influences = options.influences;
-  report.keys = static_cast<int>(in.keys.size());
-  report.morph_targets = static_cast<int>(in.morph_frames.size());
-  report.bbox_diagonal = (S.V.colwise().maxCoeff() - S.V.colwise().minCoeff()).norm();
-
-  // Pruning and its cost over every pose that will be shown.
+// The kept influences (refit if asked) and what pruning costs over every pose that will be shown.
+Influences pruned_influences(const GltfExportInput& in, const GltfExportOptions& options, const Pose& current,
+                             GltfExportReport& report) {
+  const TriMesh& S = in.surface;
   Influences inf = prune_for_export(in.weights, options.influences);
   if (options.refit) {
     std::vector<Pose> shown = {current};
     for (const auto& k : in.keys) shown.push_back(k.pose);
     report.refit_vertices = refit_influences(inf, S.V, in.weights, shown);
   }
-  const Eigen::MatrixXd Wp = influences_to_dense(inf, nh);
+  const Eigen::MatrixXd Wp = influences_to_dense(inf, num_handles(in.rig));
   auto prune_error = [&](const Pose& pose) {
     return (lbs(S.V, in.weights, pose) - lbs(S.V, Wp, pose)).rowwise().norm().maxCoeff();
   };
@@ -189,39 +182,52 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
     const double e = prune_error(in.keys[k].pose);
     if (e > report.max_prune_error) report.max_prune_error = e, report.max_prune_error_key = static_cast<int>(k);
   }
+  return inf;
+}
 
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "deform (dfm glTF exporter, tinygltf)";
-  GltfBufferBuilder bb(model);
+// The rest mesh's shared accessors: positions, unit normals, triangle indices.
+struct MeshAccessors {
+  int position = -1, normal = -1, indices = -1;
+  Eigen::MatrixXd unit_normals;
+};
 
-  // Mesh: positions, normals, joints/weights, indices.
-  const Eigen::MatrixXd N = S.N.rows() == nv && S.N.cols() == 3 ? S.N : vertex_normals(S.V, S.F);
-  Eigen::MatrixXd Nu = N;
+MeshAccessors add_rest_mesh(GltfBufferBuilder& bb, const TriMesh& S) {
+  const int nv = S.num_vertices();
+  MeshAccessors a;
+  a.unit_normals = S.N.rows() == nv && S.N.cols() == 3 ? S.N : vertex_normals(S.V, S.F);
   for (int v = 0; v < nv; ++v) {
-    const double len = Nu.row(v).norm();
-    if (len > 0 && std::isfinite(len)) Nu.row(v) /= len;
-    else Nu.row(v) << 0, 0, 1;
+    const double len = a.unit_normals.row(v).norm();
+    if (len > 0 && std::isfinite(len)) a.unit_normals.row(v) /= len;
+    else a.unit_normals.row(v) << 0, 0, 1;
   }
-  const int pos_acc = bb.add_floats(rows_to_floats(S.V), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-  const int nrm_acc = bb.add_floats(rows_to_floats(Nu), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+  a.position = bb.add_floats(rows_to_floats(S.V), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  a.normal = bb.add_floats(rows_to_floats(a.unit_normals), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
   std::vector<uint32_t> idx(S.F.size());
   for (int f = 0; f < S.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) idx[3 * f + k] = static_cast<uint32_t>(S.F(f, k));
-  const int idx_acc = bb.add_ints(idx, 1, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-                                  TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  a.indices = bb.add_ints(idx, 1, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  return a;
+}
 
+tinygltf::Primitive mesh_primitive(const MeshAccessors& a) {
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.indices = idx_acc;
-  prim.attributes["POSITION"] = pos_acc;
-  prim.attributes["NORMAL"] = nrm_acc;
-  const int sets = options.influences / 4;
+  prim.indices = a.indices;
+  prim.attributes["POSITION"] = a.position;
+  prim.attributes["NORMAL"] = a.normal;
+  return prim;
+}
+
+// JOINTS_s / WEIGHTS_s sets of four. Returns the weights as the file holds them (float), for the residuals.
+Eigen::MatrixXd add_skin_attributes(GltfBufferBuilder& bb, tinygltf::Primitive& prim, const Influences& inf,
+                                    int influences, int nh) {
+  const int nv = static_cast<int>(inf.weight.rows()), sets = influences / 4;
   std::vector<std::vector<float>> wsets(sets, std::vector<float>(4 * nv));
-  Eigen::MatrixXd stored_w(nv, options.influences);  // what the file holds, for the residual targets
+  Eigen::MatrixXd stored_w(nv, influences);
   for (int v = 0; v < nv; ++v) {
     const std::vector<float> row = float_weights_row(inf.weight.row(v));
-    for (int j = 0; j < options.influences; ++j) wsets[j / 4][4 * v + j % 4] = row[j], stored_w(v, j) = row[j];
+    for (int j = 0; j < influences; ++j) wsets[j / 4][4 * v + j % 4] = row[j], stored_w(v, j) = row[j];
   }
   for (int s = 0; s < sets; ++s) {
     int jacc;
@@ -240,46 +246,54 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
     prim.attributes["WEIGHTS_" + std::to_string(s)] =
         bb.add_floats(wsets[s], 4, TINYGLTF_TYPE_VEC4, TINYGLTF_TARGET_ARRAY_BUFFER, false);
   }
-  // Residual morph targets: one per key, then the current pose unless it is one of the keys.
-  std::vector<int> residual_key;  // per target: key index, or -1 for the current pose
-  int current_target = -1;
-  const double tol = options.residual_morph_tolerance;
-  if (tol > 0 && report.max_prune_error > tol * report.bbox_diagonal) {
-    for (size_t k = 0; k < in.keys.size(); ++k) {
-      residual_key.push_back(static_cast<int>(k));
-      if (current_target < 0 && in.keys[k].pose.transforms.size() == current.transforms.size() &&
-          std::equal(current.transforms.begin(), current.transforms.end(), in.keys[k].pose.transforms.begin(),
-                     [](const Eigen::Affine3d& a, const Eigen::Affine3d& b) { return a.matrix() == b.matrix(); }))
-        current_target = static_cast<int>(k);
-    }
-    if (current_target < 0) current_target = static_cast<int>(residual_key.size()), residual_key.push_back(-1);
-    const Eigen::MatrixXd Vf = S.V.cast<float>().cast<double>();
-    for (int key : residual_key) {
-      const Pose& pose = key < 0 ? current : in.keys[key].pose;
-      const Eigen::MatrixXd D = residual_offsets(Vf, inf, stored_w, pose, lbs(S.V, in.weights, pose));
-      std::map<std::string, int> target;
-      target["POSITION"] = bb.add_floats(rows_to_floats(D), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-      prim.targets.push_back(target);
-    }
-    report.residual_targets = static_cast<int>(residual_key.size());
-    std::ostringstream note;
-    note << options.influences << " influences miss LBS with all weights by up to " << report.max_prune_error
-         << " (" << report.max_prune_error / report.bbox_diagonal << " of the bbox diagonal): the misses at the "
-         << (in.keys.empty() ? "current pose" : "keys") << " are stored as " << residual_key.size()
-         << " residual morph target(s) of the skinned mesh";
-    report.notes.push_back(note.str());
-  }
-  tinygltf::Mesh mesh;
-  mesh.name = in.name;
-  mesh.primitives.push_back(prim);
-  if (!residual_key.empty()) {
-    mesh.weights.assign(residual_key.size(), 0.0);
-    mesh.weights[current_target] = 1.0;
-  }
-  model.meshes.push_back(mesh);
+  return stored_w;
+}
 
-  // Nodes: 0 = skinned mesh, 1 = "rig", 2 + h = handle h's joint.
-  const JointLayout layout = joint_layout(in.rig, S.V);
+// Residual morph targets: one per key, then the current pose unless it is one of the keys; the target
+// shown at rest is the current pose's.
+struct ResidualTargets {
+  std::vector<int> key;  // per target: key index, or -1 for the current pose
+  int current = -1;
+};
+
+ResidualTargets add_residual_targets(GltfBufferBuilder& bb, tinygltf::Primitive& prim, const GltfExportInput& in,
+                                     const GltfExportOptions& options, const Influences& inf,
+                                     const Eigen::MatrixXd& stored_w, const Pose& current, GltfExportReport& report) {
+  ResidualTargets r;
+  const double tol = options.residual_morph_tolerance;
+  if (!(tol > 0 && report.max_prune_error > tol * report.bbox_diagonal)) return r;
+  for (size_t k = 0; k < in.keys.size(); ++k) {
+    r.key.push_back(static_cast<int>(k));
+    if (r.current < 0 && in.keys[k].pose.transforms.size() == current.transforms.size() &&
+        std::equal(current.transforms.begin(), current.transforms.end(), in.keys[k].pose.transforms.begin(),
+                   [](const Eigen::Affine3d& a, const Eigen::Affine3d& b) { return a.matrix() == b.matrix(); }))
+      r.current = static_cast<int>(k);
+  }
+  if (r.current < 0) r.current = static_cast<int>(r.key.size()), r.key.push_back(-1);
+  const TriMesh& S = in.surface;
+  const Eigen::MatrixXd Vf = S.V.cast<float>().cast<double>();
+  for (int key : r.key) {
+    const Pose& pose = key < 0 ? current : in.keys[key].pose;
+    const Eigen::MatrixXd D = residual_offsets(Vf, inf, stored_w, pose, lbs(S.V, in.weights, pose));
+    std::map<std::string, int> target;
+    target["POSITION"] = bb.add_floats(rows_to_floats(D), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    prim.targets.push_back(target);
+  }
+  report.residual_targets = static_cast<int>(r.key.size());
+  std::ostringstream note;
+  note << options.influences << " influences miss LBS with all weights by up to " << report.max_prune_error << " ("
+       << report.max_prune_error / report.bbox_diagonal << " of the bbox diagonal): the misses at the "
+       << (in.keys.empty() ? "current pose" : "keys") << " are stored as " << r.key.size()
+       << " residual morph target(s) of the skinned mesh";
+  report.notes.push_back(note.str());
+  return r;
+}
+
+// Nodes: 0 = skinned mesh, 1 = "rig", 2 + h = handle h's joint (at the current pose), and the skin.
+// Returns the joint nodes' names.
+std::vector<std::string> add_rig(tinygltf::Model& model, GltfBufferBuilder& bb, const GltfExportInput& in,
+                                 const JointLayout& layout, const Pose& current, NodeTrsSink& shear) {
+  const int nh = num_handles(in.rig);
   tinygltf::Node mesh_node;
   mesh_node.name = in.name;
   mesh_node.mesh = 0;
@@ -288,7 +302,6 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
   tinygltf::Node rig_node;
   rig_node.name = "rig";
   model.nodes.push_back(rig_node);
-  NodeTrsSink shear;
   const std::vector<TrsFit> cur = local_transforms(layout, current);
   std::vector<std::string> names(nh);
   for (int h = 0; h < nh; ++h) {
@@ -303,7 +316,6 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
     const int parent_node = layout.parent[h] < 0 ? 1 : 2 + layout.parent[h];
     model.nodes[parent_node].children.push_back(2 + h);
   }
-
   tinygltf::Skin skin;
   skin.name = in.name + "-skin";
   skin.skeleton = 1;
@@ -316,104 +328,146 @@ GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in,
   }
   skin.inverseBindMatrices = bb.add_floats(ibm, 16, TINYGLTF_TYPE_MAT4, 0, false);
   model.skins.push_back(skin);
-
   tinygltf::Scene scene;
   scene.name = "skinned";
   scene.nodes = {0, 1};
   model.scenes.push_back(scene);
   model.defaultScene = 0;
+  return names;
+}
 
-  tinygltf::Animation anim;
-  anim.name = "keys";
-  auto add_channel = [&](int node, const std::string& path, int input, const std::vector<float>& values, int type,
-                         int width) { add_linear_channel(anim, bb, node, path, input, values, type, width); };
-
-  if (!in.keys.empty()) {
-    std::vector<float> times;
-    for (const auto& k : in.keys) times.push_back(static_cast<float>(k.time));
-    for (size_t k = 1; k < times.size(); ++k)
-      if (!(times[k] > times[k - 1])) throw Error("glTF export: key times collide in single precision");
-    const int input = bb.add_floats(times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
-    const int nk = static_cast<int>(in.keys.size());
-    std::vector<std::vector<TrsFit>> locals(nk);
+// The keys as TRS channels of the joint nodes, and (with residual targets) at key k only target k.
+void add_key_channels(tinygltf::Animation& anim, GltfBufferBuilder& bb, const GltfExportInput& in,
+                      const JointLayout& layout, const std::vector<std::string>& names, int residual_targets,
+                      NodeTrsSink& shear) {
+  if (in.keys.empty()) return;
+  const int nh = num_handles(in.rig), nk = static_cast<int>(in.keys.size());
+  std::vector<float> times;
+  for (const auto& k : in.keys) times.push_back(static_cast<float>(k.time));
+  for (size_t k = 1; k < times.size(); ++k)
+    if (!(times[k] > times[k - 1])) throw Error("glTF export: key times collide in single precision");
+  const int input = bb.add_floats(times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
+  std::vector<std::vector<TrsFit>> locals(nk);
+  for (int k = 0; k < nk; ++k) {
+    locals[k] = local_transforms(layout, in.keys[k].pose);
+    for (int h = 0; h < nh; ++h) shear.add(locals[k][h], names[h]);
+  }
+  for (int h = 0; h < nh; ++h) {
+    std::vector<float> t, r, s;
+    Eigen::Quaterniond prev = Eigen::Quaterniond::Identity();
     for (int k = 0; k < nk; ++k) {
-      locals[k] = local_transforms(layout, in.keys[k].pose);
-      for (int h = 0; h < nh; ++h) shear.add(locals[k][h], names[h]);
+      const Trs& x = locals[k][h].trs;
+      for (int c = 0; c < 3; ++c) t.push_back(static_cast<float>(x.translation[c]));
+      for (int c = 0; c < 3; ++c) s.push_back(static_cast<float>(x.scale[c]));
+      // q and -q are the same rotation; pick the one nearer the previous key so slerp takes the short way.
+      Eigen::Quaterniond q = x.rotation.normalized();
+      if (k > 0 && q.dot(prev) < 0) q.coeffs() = -q.coeffs();
+      prev = q;
+      for (double c : {q.x(), q.y(), q.z(), q.w()}) r.push_back(static_cast<float>(c));
     }
-    for (int h = 0; h < nh; ++h) {
-      std::vector<float> t, r, s;
-      Eigen::Quaterniond prev = Eigen::Quaterniond::Identity();
-      for (int k = 0; k < nk; ++k) {
-        const Trs& x = locals[k][h].trs;
-        for (int c = 0; c < 3; ++c) t.push_back(static_cast<float>(x.translation[c]));
-        for (int c = 0; c < 3; ++c) s.push_back(static_cast<float>(x.scale[c]));
-        // q and -q are the same rotation; pick the one nearer the previous key so slerp takes the short way.
-        Eigen::Quaterniond q = x.rotation.normalized();
-        if (k > 0 && q.dot(prev) < 0) q.coeffs() = -q.coeffs();
-        prev = q;
-        for (double c : {q.x(), q.y(), q.z(), q.w()}) r.push_back(static_cast<float>(c));
-      }
-      add_channel(2 + h, "translation", input, t, TINYGLTF_TYPE_VEC3, 3);
-      add_channel(2 + h, "rotation", input, r, TINYGLTF_TYPE_VEC4, 4);
-      add_channel(2 + h, "scale", input, s, TINYGLTF_TYPE_VEC3, 3);
-    }
-    if (!residual_key.empty()) {  // at key k only target k
-      const int nt = static_cast<int>(residual_key.size());
-      std::vector<float> w(nk * nt, 0.0f);
-      for (int k = 0; k < nk; ++k) w[k * nt + k] = 1.0f;
-      add_channel(0, "weights", input, w, TINYGLTF_TYPE_SCALAR, 1);
-    }
+    add_linear_channel(anim, bb, 2 + h, "translation", input, t, TINYGLTF_TYPE_VEC3, 3);
+    add_linear_channel(anim, bb, 2 + h, "rotation", input, r, TINYGLTF_TYPE_VEC4, 4);
+    add_linear_channel(anim, bb, 2 + h, "scale", input, s, TINYGLTF_TYPE_VEC3, 3);
   }
-
-  if (!in.morph_frames.empty()) {
-    // Baked frames: an unskinned copy of the mesh in its own scene, one morph target per frame.
-    const int nf = static_cast<int>(in.morph_frames.size());
-    tinygltf::Primitive bp;
-    bp.mode = TINYGLTF_MODE_TRIANGLES;
-    bp.indices = idx_acc;
-    bp.attributes["POSITION"] = pos_acc;
-    bp.attributes["NORMAL"] = nrm_acc;
-    for (int i = 0; i < nf; ++i) {
-      const Eigen::MatrixXd dV = in.morph_frames[i] - S.V;
-      const Eigen::MatrixXd dN = vertex_normals(in.morph_frames[i], S.F) - Nu;
-      std::map<std::string, int> target;
-      target["POSITION"] = bb.add_floats(rows_to_floats(dV), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
-      target["NORMAL"] = bb.add_floats(rows_to_floats(dN), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
-      bp.targets.push_back(target);
-    }
-    tinygltf::Mesh bm;
-    bm.name = in.name + "-baked";
-    bm.primitives.push_back(bp);
-    bm.weights.assign(nf, 0.0);
-    model.meshes.push_back(bm);
-    tinygltf::Node bn;
-    bn.name = in.name + "-baked";
-    bn.mesh = static_cast<int>(model.meshes.size()) - 1;
-    model.nodes.push_back(bn);
-    tinygltf::Scene bs;
-    bs.name = "baked";
-    bs.nodes = {static_cast<int>(model.nodes.size()) - 1};
-    model.scenes.push_back(bs);
-
-    std::vector<float> times, w(nf * nf, 0.0f);
-    for (int i = 0; i < nf; ++i) times.push_back(static_cast<float>(in.morph_times[i]));
-    for (size_t k = 1; k < times.size(); ++k)
-      if (!(times[k] > times[k - 1])) throw Error("glTF export: morph times collide in single precision");
-    for (int i = 0; i < nf; ++i) w[i * nf + i] = 1.0f;  // at frame i's time, only target i
-    const int input = bb.add_floats(times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
-    add_channel(bs.nodes[0], "weights", input, w, TINYGLTF_TYPE_SCALAR, 1);
+  if (residual_targets > 0) {
+    std::vector<float> w(nk * residual_targets, 0.0f);
+    for (int k = 0; k < nk; ++k) w[k * residual_targets + k] = 1.0f;
+    add_linear_channel(anim, bb, 0, "weights", input, w, TINYGLTF_TYPE_SCALAR, 1);
   }
-  if (!anim.channels.empty()) model.animations.push_back(anim);
+}
 
+// Baked frames: an unskinned copy of the mesh in its own scene, one morph target per frame, and at frame
+// i's time only target i.
+void add_baked_frames(tinygltf::Model& model, tinygltf::Animation& anim, GltfBufferBuilder& bb,
+                      const GltfExportInput& in, const MeshAccessors& acc) {
+  if (in.morph_frames.empty()) return;
+  const TriMesh& S = in.surface;
+  const int nf = static_cast<int>(in.morph_frames.size());
+  tinygltf::Primitive bp = mesh_primitive(acc);
+  for (int i = 0; i < nf; ++i) {
+    const Eigen::MatrixXd dV = in.morph_frames[i] - S.V;
+    const Eigen::MatrixXd dN = vertex_normals(in.morph_frames[i], S.F) - acc.unit_normals;
+    std::map<std::string, int> target;
+    target["POSITION"] = bb.add_floats(rows_to_floats(dV), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    target["NORMAL"] = bb.add_floats(rows_to_floats(dN), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, false);
+    bp.targets.push_back(target);
+  }
+  tinygltf::Mesh bm;
+  bm.name = in.name + "-baked";
+  bm.primitives.push_back(bp);
+  bm.weights.assign(nf, 0.0);
+  model.meshes.push_back(bm);
+  tinygltf::Node bn;
+  bn.name = in.name + "-baked";
+  bn.mesh = static_cast<int>(model.meshes.size()) - 1;
+  model.nodes.push_back(bn);
+  tinygltf::Scene bs;
+  bs.name = "baked";
+  bs.nodes = {static_cast<int>(model.nodes.size()) - 1};
+  model.scenes.push_back(bs);
+  std::vector<float> times, w(nf * nf, 0.0f);
+  for (int i = 0; i < nf; ++i) times.push_back(static_cast<float>(in.morph_times[i]));
+  for (size_t k = 1; k < times.size(); ++k)
+    if (!(times[k] > times[k - 1])) throw Error("glTF export: morph times collide in single precision");
+  for (int i = 0; i < nf; ++i) w[i * nf + i] = 1.0f;
+  const int input = bb.add_floats(times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
+  add_linear_channel(anim, bb, bs.nodes[0], "weights", input, w, TINYGLTF_TYPE_SCALAR, 1);
+}
+
+void report_shear(const NodeTrsSink& shear, GltfExportReport& report) {
   report.max_shear = shear.max_shear;
   report.sheared_transforms = shear.sheared;
-  if (shear.sheared > 0) {
-    std::string list;
-    for (const auto& n : shear.names) list += (list.empty() ? "" : ", ") + n;
-    report.notes.push_back(std::to_string(shear.sheared) +
-                           " joint transform(s) have shear a glTF TRS cannot express (max relative residual " +
-                           std::to_string(shear.max_shear) + "), e.g. " + list);
+  if (shear.sheared == 0) return;
+  std::string list;
+  for (const auto& n : shear.names) list += (list.empty() ? "" : ", ") + n;
+  report.notes.push_back(std::to_string(shear.sheared) +
+                         " joint transform(s) have shear a glTF TRS cannot express (max relative residual " +
+                         std::to_string(shear.max_shear) + "), e.g. " + list);
+}
+
+}  // namespace
+
+GltfExportReport export_gltf(const std::string& path, const GltfExportInput& in, const GltfExportOptions& options) {
+  check_input(path, in, options);
+  const TriMesh& S = in.surface;
+  const int nh = num_handles(in.rig);
+  const Pose current = in.current.size() ? in.current : identity_pose(nh);
+  GltfExportReport report;
+  report.vertices = S.num_vertices();
+  report.triangles = S.num_faces();
+  report.joints = nh;
+  report.influences = options.influences;
+  report.keys = static_cast<int>(in.keys.size());
+  report.morph_targets = static_cast<int>(in.morph_frames.size());
+  report.bbox_diagonal = (S.V.colwise().maxCoeff() - S.V.colwise().minCoeff()).norm();
+  const Influences inf = pruned_influences(in, options, current, report);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "deform (dfm glTF exporter, tinygltf)";
+  GltfBufferBuilder bb(model);
+  const MeshAccessors acc = add_rest_mesh(bb, S);
+  tinygltf::Primitive prim = mesh_primitive(acc);
+  const Eigen::MatrixXd stored_w = add_skin_attributes(bb, prim, inf, options.influences, nh);
+  const ResidualTargets residual = add_residual_targets(bb, prim, in, options, inf, stored_w, current, report);
+  tinygltf::Mesh mesh;
+  mesh.name = in.name;
+  mesh.primitives.push_back(prim);
+  if (!residual.key.empty()) {
+    mesh.weights.assign(residual.key.size(), 0.0);
+    mesh.weights[residual.current] = 1.0;
   }
+  model.meshes.push_back(mesh);
+
+  const JointLayout layout = joint_layout(in.rig, S.V);
+  NodeTrsSink shear;
+  const std::vector<std::string> names = add_rig(model, bb, in, layout, current, shear);
+  tinygltf::Animation anim;
+  anim.name = "keys";
+  add_key_channels(anim, bb, in, layout, names, static_cast<int>(residual.key.size()), shear);
+  add_baked_frames(model, anim, bb, in, acc);
+  if (!anim.channels.empty()) model.animations.push_back(anim);
+  report_shear(shear, report);
   write_gltf_model(path, model);
   return report;
 }
