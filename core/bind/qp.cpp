@@ -281,6 +281,274 @@ void projected_gauss_seidel(const Eigen::SparseMatrix<double>& H, const Eigen::V
   }
 }
 
+
+// ---------------------------------------------------------------------------------------- the solver
+
+// The argument checks, in the order their messages have always come.
+void check_box_qp_arguments(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g,
+                            const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, const Eigen::VectorXd& x0,
+                            const BoxQPOptions& opts) {
+  const int n = static_cast<int>(g.size());
+  if (H.rows() != n || H.cols() != n || lo.size() != n || hi.size() != n || (x0.size() != 0 && x0.size() != n))
+    throw Error("box QP: inconsistent sizes");
+  if ((lo.array() > hi.array()).any()) throw Error("box QP: a lower bound exceeds its upper bound");
+  if (!(opts.smoothing_relaxation > 0 && opts.smoothing_relaxation < 2))
+    throw Error("box QP: the smoothing relaxation factor must lie in (0, 2)");
+}
+
+// H's lower triangle in elimination order, as the face solves read it: H itself when it is already in
+// that order, else an OrderedLower (the caller's, or one built here with an AMD ordering). Owns what
+// the view points into, so it is neither copied nor moved.
+struct FaceMatrix {
+  FaceMatrix(const Eigen::SparseMatrix<double>& H, const BoxQPOptions& opts) {
+    const int n = static_cast<int>(H.rows());
+    view.n = n;
+    if (opts.in_elimination_order && H.isCompressed()) {
+      const int* hp = H.outerIndexPtr();
+      const int* hi_ = H.innerIndexPtr();
+      diagonal.resize(n);
+      for (int c = 0; c < n; ++c) diagonal[c] = static_cast<int>(std::lower_bound(hi_ + hp[c], hi_ + hp[c + 1], c) - hi_);
+      view.begin = diagonal.data();
+      view.end = hp + 1;
+      view.rows = hi_;
+      view.values = H.valuePtr();
+    } else {
+      if (!opts.ordered) own = ordered_lower(H, fill_reducing_ordering(H));
+      const OrderedLower& ordered = opts.ordered ? *opts.ordered : own;
+      if (static_cast<int>(ordered.perm.size()) != n) throw Error("box QP: the ordering does not match the matrix");
+      view.perm = ordered.perm.data();
+      view.begin = ordered.colptr.data();
+      view.end = ordered.colptr.data() + 1;
+      view.rows = ordered.rows.data();
+      view.values = ordered.values.data();
+    }
+  }
+  FaceMatrix(const FaceMatrix&) = delete;
+  FaceMatrix& operator=(const FaceMatrix&) = delete;
+
+  OrderedLower own;
+  std::vector<int> diagonal;  // where each column's lower part starts, when H is read directly
+  LowerView view;
+};
+
+// One solve: the problem, the iterate and its active set, and the face solver, which the primal-dual
+// active set iterations and the monotone fallback share.
+struct BoxQpSolve {
+  BoxQpSolve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
+             const Eigen::VectorXd& hi, const Eigen::VectorXd& x0, const BoxQPOptions& opts, const LowerView& faces)
+      : H(H), g(g), lo(lo), hi(hi), opts(opts), n(static_cast<int>(g.size())), face(faces), st(n, 0),
+        x(x0.size() ? x0 : lo), xa(n), r(n), hd(H.diagonal()), sweeping(opts.smoothing_sweeps > 0),
+        relative(opts.smoothing_threshold_relative) {
+    status_from_position();
+    if (!(hd.array() > 0).all()) throw Error("box QP: the matrix has a non-positive diagonal entry");
+  }
+
+  void presmooth();
+  bool primal_dual_active_set();
+  bool monotone_fallback();
+  BoxQPResult result(bool done);
+
+  void check_cancel() const {
+    if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
+  }
+  void status_from_position();
+  void solve_face(Eigen::VectorXd& out);
+  int update_active_set();
+  bool sweep_after_face(double kkt);
+  double step_to_first_bound(const Eigen::VectorXd& xt) const;
+  void activate_reached_bounds();
+  int release_wrong_signs();
+
+  const Eigen::SparseMatrix<double>& H;
+  const Eigen::VectorXd& g;
+  const Eigen::VectorXd& lo;
+  const Eigen::VectorXd& hi;
+  const BoxQPOptions& opts;
+  const int n;
+  FaceSolver face;
+  std::vector<signed char> st;  // -1 at lower bound, +1 at upper bound, 0 free
+  Eigen::VectorXd x, grad;
+  Eigen::VectorXd xa, r;        // solve_face's buffers
+  const Eigen::VectorXd hd;     // H's diagonal, > 0
+  bool sweeping;                // projected Gauss-Seidel sweeps after each PDAS face
+  double relative;              // see smoothing_threshold_relative
+  double previous_kkt = std::numeric_limits<double>::infinity();
+  BoxQPResult res;
+};
+
+// Each variable's status read off where x is: at a bound, or free.
+void BoxQpSolve::status_from_position() {
+  for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
+}
+
+// Minimizer over the free variables with the others at their bounds.
+void BoxQpSolve::solve_face(Eigen::VectorXd& out) {
+  bool any_free = false;
+  for (int i = 0; i < n; ++i) {
+    xa(i) = st[i] == 0 ? 0.0 : (st[i] < 0 ? lo(i) : hi(i));
+    any_free = any_free || st[i] == 0;
+  }
+  out = xa;
+  ++res.iterations;
+  if (!any_free) return;
+  const int* hp = H.outerIndexPtr();
+  const int* hi_ = H.innerIndexPtr();
+  const double* hx = H.valuePtr();
+  r = -g;  // -(H xa + g), H xa summed over xa's nonzeros only (most bound variables sit at 0)
+  for (int j = 0; j < n; ++j)
+    if (xa(j) != 0.0)
+      for (int p = hp[j]; p < hp[j + 1]; ++p) r(hi_[p]) -= hx[p] * xa(j);
+  face.solve(st, r, out);
+}
+
+// Sweeps from the start before the first face: a start carried from a coarser mesh is smooth on the
+// coarse scale but off on the fine one, which is what the sweeps fix first (multigrid's smoothing after
+// prolongation), so the first face is read off a better active set.
+void BoxQpSolve::presmooth() {
+  x = x.cwiseMax(lo).cwiseMin(hi);
+  gradient(H, g, x, grad);
+  const int sweeps = std::max(opts.smoothing_sweeps, static_cast<int>(opts.presmoothing_sweeps_per_variable * n));
+  const double threshold = std::max(0.1 * opts.tolerance, opts.smoothing_threshold_relative *
+                                                              kkt_residual_from_gradient(lo, hi, hd, x, grad));
+  projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
+  status_from_position();
+}
+
+// PDAS's next active set from the face solution x and its gradient: a free variable past a bound is
+// fixed there, a bound one whose gradient points into the box is freed. Returns how many changed.
+int BoxQpSolve::update_active_set() {
+  const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
+  int changes = 0;
+  for (int i = 0; i < n; ++i) {
+    signed char s = st[i];
+    const double eps = 1e-13 * (hi(i) - lo(i));
+    if (s == 0) {
+      if (x(i) < lo(i) - eps) s = -1;
+      else if (x(i) > hi(i) + eps) s = 1;
+    } else if (s < 0 && grad(i) < -tau * hd(i)) {
+      s = 0;
+    } else if (s > 0 && grad(i) > tau * hd(i)) {
+      s = 0;
+    }
+    if (s != st[i]) ++changes, st[i] = s;
+  }
+  return changes;
+}
+
+// The face solve is exact but releases bound variables only where the gradient reaches them (a 2-ring
+// stencil), so the support creeps outwards a ring or two per factorization. A few projected
+// Gauss-Seidel sweeps, confined to where the iterate still moves, carry that front many rings for the
+// cost of a fraction of one factorization; the next face is read off the swept iterate. kkt: the
+// residual of the face's (clipped) solution. True when the swept iterate is a KKT point.
+bool BoxQpSolve::sweep_after_face(double kkt) {
+  const int sweeps = std::max(opts.smoothing_sweeps, static_cast<int>(kSweepsPerFreeVariable * face.last_size()));
+  // Skipping small moves speeds up sweeps that make progress; once a face fails to halve the
+  // residual, the active set is oscillating near the front: full sweeps from then on.
+  if (kkt > 0.5 * previous_kkt) relative = 0;
+  previous_kkt = kkt;
+  const double threshold = std::max(0.1 * opts.tolerance, relative * kkt);
+  projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
+  gradient(H, g, x, grad);
+  if (kkt_residual_from_gradient(lo, hi, hd, x, grad) <= opts.tolerance) return true;
+  status_from_position();
+  return false;
+}
+
+// Primal-dual active set. True at a KKT point; false when it cycles without sweeps or runs out of
+// iterations (the monotone fallback goes on from there).
+bool BoxQpSolve::primal_dual_active_set() {
+  std::unordered_set<uint64_t> seen;
+  Eigen::VectorXd xc;
+  for (int it = 0; it < kMaxPdasIterations; ++it) {
+    check_cancel();
+    solve_face(x);
+    gradient(H, g, x, grad);
+    const int changes = update_active_set();
+    // The tail of PDAS moves a few variables with tiny multipliers: stop as soon as the clipped iterate
+    // is a KKT point to the tolerance (checked exactly, not estimated).
+    xc = x.cwiseMax(lo).cwiseMin(hi);
+    update_gradient(H, x, xc, grad);  // now the gradient at xc
+    x.swap(xc);
+    const double kkt = kkt_residual_from_gradient(lo, hi, hd, x, grad);
+    if (changes == 0 || kkt <= opts.tolerance) return true;
+    if (sweeping && sweep_after_face(kkt)) return true;
+    if (!seen.insert(hash_status(st)).second) {
+      // Cycling. The sweeps move the active set by other rules than PDAS's own: first try without them
+      // (plain PDAS from here, locally fast), and go monotone if that cycles too.
+      if (!sweeping) return false;
+      sweeping = false;
+      res.sweeps_dropped = true;
+      seen.clear();
+    }
+  }
+  return false;
+}
+
+// Ratio test: the largest step in [0, 1] from x towards the face solution xt that keeps every free
+// variable in the box.
+double BoxQpSolve::step_to_first_bound(const Eigen::VectorXd& xt) const {
+  double alpha = 1.0;
+  for (int i = 0; i < n; ++i) {
+    if (st[i] != 0) continue;
+    const double d = xt(i) - x(i);
+    if (xt(i) < lo(i) && d < 0) alpha = std::min(alpha, (lo(i) - x(i)) / d);
+    if (xt(i) > hi(i) && d > 0) alpha = std::min(alpha, (hi(i) - x(i)) / d);
+  }
+  return std::max(alpha, 0.0);
+}
+
+// Fixes the free variables a shortened step brought to a bound (to rounding) at that bound.
+void BoxQpSolve::activate_reached_bounds() {
+  for (int i = 0; i < n; ++i) {
+    if (st[i] != 0) continue;
+    const double eps = 1e-12 * (hi(i) - lo(i));
+    if (x(i) <= lo(i) + eps) st[i] = -1, x(i) = lo(i);
+    else if (x(i) >= hi(i) - eps) st[i] = 1, x(i) = hi(i);
+  }
+}
+
+// Frees the bound variables whose gradient points into the box; returns how many.
+int BoxQpSolve::release_wrong_signs() {
+  const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
+  int released = 0;
+  for (int i = 0; i < n; ++i)
+    if ((st[i] < 0 && grad(i) < -tau * hd(i)) || (st[i] > 0 && grad(i) > tau * hd(i))) st[i] = 0, ++released;
+  return released;
+}
+
+// Primal active set with a ratio test: the objective strictly decreases, so it cannot cycle. True at a
+// KKT point, false at the iteration cap.
+bool BoxQpSolve::monotone_fallback() {
+  x = x.cwiseMax(lo).cwiseMin(hi);
+  status_from_position();
+  Eigen::VectorXd xt;
+  while (res.iterations < kMaxIterations) {
+    check_cancel();
+    ++res.fallback_iterations;
+    solve_face(xt);
+    const double alpha = step_to_first_bound(xt);
+    for (int i = 0; i < n; ++i)
+      if (st[i] == 0) x(i) += alpha * (xt(i) - x(i));
+    if (alpha < 1.0) {
+      activate_reached_bounds();
+      continue;
+    }
+    gradient(H, g, x, grad);
+    if (release_wrong_signs() == 0) return true;
+  }
+  return false;
+}
+
+BoxQPResult BoxQpSolve::result(bool done) {
+  x = x.cwiseMax(lo).cwiseMin(hi);
+  res.x = x;
+  res.kkt_residual = box_qp_kkt_residual(H, g, lo, hi, x);
+  res.converged = done && res.kkt_residual <= opts.tolerance;
+  res.num_free = 0;
+  for (int i = 0; i < n; ++i) res.num_free += (x(i) > lo(i) && x(i) < hi(i));
+  return res;
+}
+
 }  // namespace
 
 double box_qp_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
@@ -297,195 +565,12 @@ double box_qp_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen::Ve
 
 BoxQPResult solve_box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo,
                          const Eigen::VectorXd& hi, const Eigen::VectorXd& x0, const BoxQPOptions& opts) {
-  const int n = static_cast<int>(g.size());
-  if (H.rows() != n || H.cols() != n || lo.size() != n || hi.size() != n || (x0.size() != 0 && x0.size() != n))
-    throw Error("box QP: inconsistent sizes");
-  if ((lo.array() > hi.array()).any()) throw Error("box QP: a lower bound exceeds its upper bound");
-  if (!(opts.smoothing_relaxation > 0 && opts.smoothing_relaxation < 2))
-    throw Error("box QP: the smoothing relaxation factor must lie in (0, 2)");
-  BoxQPResult res;
-  // status: -1 at lower bound, +1 at upper bound, 0 free.
-  std::vector<signed char> st(n, 0);
-  Eigen::VectorXd x = x0.size() ? x0 : lo;
-  // Each variable's status read off where x is: at a bound, or free.
-  auto status_from_position = [&] {
-    for (int i = 0; i < n; ++i) st[i] = x(i) <= lo(i) ? -1 : (x(i) >= hi(i) ? 1 : 0);
-  };
-  status_from_position();
-
-  auto check_cancel = [&] {
-    if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
-  };
-  // Minimizer over the free variables with the others at their bounds.
-  const int* hp = H.outerIndexPtr();
-  const int* hi_ = H.innerIndexPtr();
-  const double* hx = H.valuePtr();
-  OrderedLower own;
-  std::vector<int> diagonal;  // where each column's lower part starts, when H is read directly
-  LowerView view;
-  view.n = n;
-  if (opts.in_elimination_order && H.isCompressed()) {
-    diagonal.resize(n);
-    for (int c = 0; c < n; ++c) diagonal[c] = static_cast<int>(std::lower_bound(hi_ + hp[c], hi_ + hp[c + 1], c) - hi_);
-    view.begin = diagonal.data();
-    view.end = hp + 1;
-    view.rows = hi_;
-    view.values = hx;
-  } else {
-    if (!opts.ordered) own = ordered_lower(H, fill_reducing_ordering(H));
-    const OrderedLower& ordered = opts.ordered ? *opts.ordered : own;
-    if (static_cast<int>(ordered.perm.size()) != n) throw Error("box QP: the ordering does not match the matrix");
-    view.perm = ordered.perm.data();
-    view.begin = ordered.colptr.data();
-    view.end = ordered.colptr.data() + 1;
-    view.rows = ordered.rows.data();
-    view.values = ordered.values.data();
-  }
-  FaceSolver face(view);
-  Eigen::VectorXd xa(n), r(n);
-  auto solve_face = [&](Eigen::VectorXd& out) {
-    bool any_free = false;
-    for (int i = 0; i < n; ++i) {
-      xa(i) = st[i] == 0 ? 0.0 : (st[i] < 0 ? lo(i) : hi(i));
-      any_free = any_free || st[i] == 0;
-    }
-    out = xa;
-    ++res.iterations;
-    if (!any_free) return;
-    r = -g;  // -(H xa + g), H xa summed over xa's nonzeros only (most bound variables sit at 0)
-    for (int j = 0; j < n; ++j)
-      if (xa(j) != 0.0)
-        for (int p = hp[j]; p < hp[j + 1]; ++p) r(hi_[p]) -= hx[p] * xa(j);
-    face.solve(st, r, out);
-  };
-
-  const Eigen::VectorXd hd = H.diagonal();
-  if (!(hd.array() > 0).all()) throw Error("box QP: the matrix has a non-positive diagonal entry");
-  Eigen::VectorXd grad, xc;
-  // ---- primal-dual active set
-  std::unordered_set<uint64_t> seen;
-  bool done = false;
-  bool sweeping = opts.smoothing_sweeps > 0;
-  double relative = opts.smoothing_threshold_relative;  // see smoothing_threshold_relative
-  double previous_kkt = std::numeric_limits<double>::infinity();
-  // Sweeps from the start before the first face: a start carried from a coarser mesh is smooth on the
-  // coarse scale but off on the fine one, which is what the sweeps fix first (multigrid's smoothing after
-  // prolongation), so the first face is read off a better active set.
-  if (sweeping && x0.size() && opts.presmoothing_sweeps_per_variable > 0) {
-    x = x.cwiseMax(lo).cwiseMin(hi);
-    gradient(H, g, x, grad);
-    const int sweeps = std::max(opts.smoothing_sweeps, static_cast<int>(opts.presmoothing_sweeps_per_variable * n));
-    const double threshold = std::max(0.1 * opts.tolerance, opts.smoothing_threshold_relative *
-                                                                kkt_residual_from_gradient(lo, hi, hd, x, grad));
-    projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
-    status_from_position();
-  }
-  for (int it = 0; it < kMaxPdasIterations && !done; ++it) {
-    check_cancel();
-    solve_face(x);
-    gradient(H, g, x, grad);
-    const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
-    int changes = 0;
-    for (int i = 0; i < n; ++i) {
-      signed char s = st[i];
-      const double eps = 1e-13 * (hi(i) - lo(i));
-      if (s == 0) {
-        if (x(i) < lo(i) - eps) s = -1;
-        else if (x(i) > hi(i) + eps) s = 1;
-      } else if (s < 0 && grad(i) < -tau * hd(i)) {
-        s = 0;
-      } else if (s > 0 && grad(i) > tau * hd(i)) {
-        s = 0;
-      }
-      if (s != st[i]) ++changes, st[i] = s;
-    }
-    // The tail of PDAS moves a few variables with tiny multipliers: stop as soon as the clipped iterate
-    // is a KKT point to the tolerance (checked exactly, not estimated).
-    xc = x.cwiseMax(lo).cwiseMin(hi);
-    update_gradient(H, x, xc, grad);  // now the gradient at xc
-    x.swap(xc);
-    const double kkt = kkt_residual_from_gradient(lo, hi, hd, x, grad);
-    if (changes == 0 || kkt <= opts.tolerance) {
-      done = true;
-      break;
-    }
-    // The face solve is exact but releases bound variables only where the gradient reaches them (a
-    // 2-ring stencil), so the support creeps outwards a ring or two per factorization. A few projected
-    // Gauss-Seidel sweeps, confined to where the iterate still moves, carry that front many rings for
-    // the cost of a fraction of one factorization; the next face is read off the swept iterate.
-    if (sweeping) {
-      const int sweeps =
-          std::max(opts.smoothing_sweeps, static_cast<int>(kSweepsPerFreeVariable * face.last_size()));
-      // Skipping small moves speeds up sweeps that make progress; once a face fails to halve the
-      // residual, the active set is oscillating near the front: full sweeps from then on.
-      if (kkt > 0.5 * previous_kkt) relative = 0;
-      previous_kkt = kkt;
-      const double threshold = std::max(0.1 * opts.tolerance, relative * kkt);
-      projected_gauss_seidel(H, g, lo, hi, hd, grad, sweeps, opts.smoothing_relaxation, threshold, x);
-      gradient(H, g, x, grad);
-      if (kkt_residual_from_gradient(lo, hi, hd, x, grad) <= opts.tolerance) {
-        done = true;
-        break;
-      }
-      status_from_position();
-    }
-    if (!seen.insert(hash_status(st)).second) {
-      // Cycling. The sweeps move the active set by other rules than PDAS's own: first try without them
-      // (plain PDAS from here, locally fast), and go monotone if that cycles too.
-      if (!sweeping) break;
-      sweeping = false;
-      res.sweeps_dropped = true;
-      seen.clear();
-    }
-  }
-
-  // ---- monotone fallback: primal active set with a ratio test (objective strictly decreases).
-  if (!done) {
-    x = x.cwiseMax(lo).cwiseMin(hi);
-    status_from_position();
-    Eigen::VectorXd xt;
-    while (res.iterations < kMaxIterations) {
-      check_cancel();
-      ++res.fallback_iterations;
-      solve_face(xt);
-      double alpha = 1.0;
-      for (int i = 0; i < n; ++i) {
-        if (st[i] != 0) continue;
-        const double d = xt(i) - x(i);
-        if (xt(i) < lo(i) && d < 0) alpha = std::min(alpha, (lo(i) - x(i)) / d);
-        if (xt(i) > hi(i) && d > 0) alpha = std::min(alpha, (hi(i) - x(i)) / d);
-      }
-      alpha = std::max(alpha, 0.0);
-      for (int i = 0; i < n; ++i)
-        if (st[i] == 0) x(i) += alpha * (xt(i) - x(i));
-      if (alpha < 1.0) {
-        for (int i = 0; i < n; ++i) {
-          if (st[i] != 0) continue;
-          const double eps = 1e-12 * (hi(i) - lo(i));
-          if (x(i) <= lo(i) + eps) st[i] = -1, x(i) = lo(i);
-          else if (x(i) >= hi(i) - eps) st[i] = 1, x(i) = hi(i);
-        }
-        continue;
-      }
-      gradient(H, g, x, grad);
-      const double tau = 0.1 * opts.tolerance;  // in the Jacobi-scaled units of the KKT residual
-      int released = 0;
-      for (int i = 0; i < n; ++i)
-        if ((st[i] < 0 && grad(i) < -tau * hd(i)) || (st[i] > 0 && grad(i) > tau * hd(i))) st[i] = 0, ++released;
-      if (released == 0) {
-        done = true;
-        break;
-      }
-    }
-  }
-
-  x = x.cwiseMax(lo).cwiseMin(hi);
-  res.x = x;
-  res.kkt_residual = box_qp_kkt_residual(H, g, lo, hi, x);
-  res.converged = done && res.kkt_residual <= opts.tolerance;
-  res.num_free = 0;
-  for (int i = 0; i < n; ++i) res.num_free += (x(i) > lo(i) && x(i) < hi(i));
-  return res;
+  check_box_qp_arguments(H, g, lo, hi, x0, opts);
+  const FaceMatrix faces(H, opts);
+  BoxQpSolve qp(H, g, lo, hi, x0, opts, faces.view);  // throws on a non-positive diagonal
+  if (qp.sweeping && x0.size() && opts.presmoothing_sweeps_per_variable > 0) qp.presmooth();
+  const bool done = qp.primal_dual_active_set() || qp.monotone_fallback();
+  return qp.result(done);
 }
 
 }  // namespace dfm
