@@ -118,29 +118,18 @@ void attach_free_parts(BindVolume& vol) {
                       " separate parts of the volume touch no handle: each follows its nearest handle rigidly");
 }
 
-}  // namespace
 
-BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const VolumeOptions& opts) {
-  const auto t0 = Clock::now();
+void check_surface(const TriMesh& surface) {
   const int nu = surface.num_vertices();
   if (nu == 0 || surface.num_faces() == 0) throw Error("bind: the surface has no faces");
   if (surface.F.cols() != 3 || surface.V.cols() != 3) throw Error("bind: the surface must be a triangle mesh");
   if (!surface.V.allFinite()) throw Error("bind: the surface has non-finite vertex coordinates");
   if (surface.F.minCoeff() < 0 || surface.F.maxCoeff() >= nu) throw Error("bind: a face index is out of range");
-  check_rig(rig);
-  if (num_handles(rig) == 0) throw Error("bind: the rig has no handles");
+}
 
-  BindVolume vol;
-  WeldedSurface ws = weld_surface(surface.V, surface.F);
-  if (ws.F.rows() == 0) throw Error("bind: every face of the surface is degenerate");
-  vol.notes.push_back("surface: " + ws.report.describe());
-
-  // Handle geometry joins the surface's vertices (first, unchanged) as PLC points.
-  CageSoup cages = stack_cages(rig);
-  Eigen::MatrixXd all(ws.V.rows() + cages.V.rows(), 3);
-  all << ws.V, cages.V;
-  const double diag = bbox_diagonal(all);
-  const double tol = 1e-7 * diag;
+// The PLC points: the welded surface's vertices first (unchanged), then the handles' samples and the
+// cages' vertices, welded within tol; the cages' facets and edges renumbered into them.
+HandlePlc handle_plc(const WeldedSurface& ws, const Rig& rig, const CageSoup& cages, double tol) {
   HandlePlc plc(tol);
   for (int i = 0; i < ws.V.rows(); ++i) plc.points.insert(ws.V.row(i).transpose());
   plc.samples = sample_handles(rig, mean_edge_length(ws.V, ws.F));
@@ -154,103 +143,126 @@ BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const Volum
   plc.cage_E.resize(cages.E.rows(), 2);
   for (int e = 0; e < cages.E.rows(); ++e)
     for (int k = 0; k < 2; ++k) plc.cage_E(e, k) = cage_point[cages.E(e, k)];
-  const Eigen::MatrixXd P = plc.points.matrix();
+  return plc;
+}
 
-  bool robust = opts.robust == VolumeOptions::Robust::Always;
-  if (opts.robust == VolumeOptions::Robust::Auto && !ws.report.watertight()) {
-    robust = true;
-    vol.notes.push_back("surface is not a closed manifold: robust (winding number) volume");
-  }
-
-  TetMesh raw;
+// A tet mesh before compaction, and where each PLC point went in it (-1: not a vertex).
+struct RawVolume {
+  TetMesh mesh;
   Eigen::VectorXi input_to_raw;
-  if (!robust) {
-    Plc in;
-    in.V = P;
-    in.F.resize(ws.F.rows() + plc.cage_F.rows(), 3);
-    in.F << ws.F, plc.cage_F;
-    in.E = plc.cage_E;
-    try {
-      TetgenResult r = tetrahedralize(in, opts.tetgen_switches);
-      raw = std::move(r.mesh);
-      input_to_raw = r.input_to_tet;
-      vol.notes.push_back("TetGen -" + opts.tetgen_switches + ": " + std::to_string(raw.T.rows()) + " tets in " +
-                          std::to_string(r.seconds) + " s");
-    } catch (const Error& e) {
-      if (opts.robust == VolumeOptions::Robust::Never) throw;
-      vol.notes.push_back(std::string("TetGen failed on the surface (") + e.what() + "): robust (winding number) volume");
-      robust = true;
-    }
-  }
-  if (robust) {
-    // Points (surface vertices, handle geometry) and a padded box; cages stay constraint facets.
-    const Eigen::RowVector3d lo = P.colwise().minCoeff(), hi = P.colwise().maxCoeff();
-    const Eigen::RowVector3d pad = Eigen::RowVector3d::Constant(0.05 * std::max(diag, 1e-12));
-    Plc in;
-    in.V.resize(P.rows() + 8, 3);
-    in.V.topRows(P.rows()) = P;
-    const int o = static_cast<int>(P.rows());
-    for (int c = 0; c < 8; ++c)
-      for (int k = 0; k < 3; ++k) in.V(o + c, k) = ((c >> k) & 1) ? hi(k) + pad(k) : lo(k) - pad(k);
-    static const int box[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-    in.F.resize(12 + plc.cage_F.rows(), 3);
-    for (int f = 0; f < 12; ++f)
-      for (int k = 0; k < 3; ++k) in.F(f, k) = o + box[f][k];
-    in.F.bottomRows(plc.cage_F.rows()) = plc.cage_F;
-    in.E = plc.cage_E;
-    std::string sw = opts.tetgen_switches;
-    if (sw.find('p') == std::string::npos) sw = "p" + sw;
-    TetgenResult r = tetrahedralize(in, sw);
-    const auto tw = Clock::now();
-    // Inside = winding number of the surface > 1/2, or inside a closed cage.
-    const Eigen::MatrixXd C = tet_centroids(r.mesh);
-    // Only the side of 1/2 matters here: a loose tree (errors ~1e-3) is several times faster.
-    const WindingAccuracy loose{2.0, 1e300};
-    Eigen::VectorXd w = winding_numbers(build_winding_tree(ws.V, ws.F), C, loose);
-    for (const Cage& cage : rig.cages)
-      if (is_closed_surface(cage.mesh.F)) w = w.cwiseMax(winding_numbers(build_winding_tree(cage.mesh.V, cage.mesh.F), C, loose).cwiseAbs());
-    std::vector<char> keep(r.mesh.T.rows(), 0);
-    for (int t = 0; t < r.mesh.T.rows(); ++t) keep[t] = w(t) > 0.5;
-    // Required handle points must be in the volume: a point right on the surface may have lost every
-    // incident tet to the threshold; give it back its most-inside tet.
-    std::vector<std::vector<int>> incident(r.mesh.V.rows());
-    for (int t = 0; t < r.mesh.T.rows(); ++t)
-      for (int k = 0; k < 4; ++k) incident[r.mesh.T(t, k)].push_back(t);
-    int rescued = 0;
-    for (size_t s = 0; s < plc.samples.size(); ++s) {
-      const int v = r.input_to_tet(plc.sample_point[s]);
-      if (v < 0) continue;
-      int best = -1;
-      for (int t : incident[v]) {
-        if (keep[t]) { best = -2; break; }
-        if (best < 0 || w(t) > w(best)) best = t;
-      }
-      if (best >= 0 && plc.samples[s].required && w(best) > 0.1) keep[best] = 1, ++rescued;
-    }
-    int nk = 0;
-    for (char k : keep) nk += k;
-    raw.V = r.mesh.V;
-    raw.T.resize(nk, 4);
-    for (int t = 0, j = 0; t < r.mesh.T.rows(); ++t)
-      if (keep[t]) raw.T.row(j++) = r.mesh.T.row(t);
-    input_to_raw = r.input_to_tet.head(P.rows());
-    vol.notes.push_back("robust volume: TetGen -" + sw + " on " + std::to_string(P.rows()) + " points + box: " +
-                        std::to_string(r.mesh.T.rows()) + " tets in " + std::to_string(r.seconds) + " s; kept " +
-                        std::to_string(nk) + " with winding number > 0.5 (" +
-                        std::to_string(std::chrono::duration<double>(Clock::now() - tw).count()) + " s)" +
-                        (rescued ? "; " + std::to_string(rescued) + " handle tets added back" : ""));
-    if (nk == 0) throw Error("bind: the surface encloses no volume (every winding number <= 0.5)");
-  }
+};
 
-  // Compact (drop vertices no kept tet uses); order is preserved, so the surface's vertices stay first.
-  Eigen::VectorXi raw_to_tet;
-  vol.tets = compact_tet_mesh(raw, raw_to_tet);
-  Eigen::VectorXi plc_to_tet(P.rows());
-  for (int i = 0; i < P.rows(); ++i) plc_to_tet(i) = input_to_raw(i) >= 0 ? raw_to_tet(input_to_raw(i)) : -1;
-  vol.tets.F = tet_boundary_faces(vol.tets.T);
+// TetGen on the surface and the handle geometry. False (with a note) when TetGen fails and the robust
+// volume may take over; with Robust::Never its error is thrown.
+bool tetrahedralize_surface(const WeldedSurface& ws, const HandlePlc& plc, const Eigen::MatrixXd& P,
+                            const VolumeOptions& opts, RawVolume& raw, std::vector<std::string>& notes) {
+  Plc in;
+  in.V = P;
+  in.F.resize(ws.F.rows() + plc.cage_F.rows(), 3);
+  in.F << ws.F, plc.cage_F;
+  in.E = plc.cage_E;
+  try {
+    TetgenResult r = tetrahedralize(in, opts.tetgen_switches);
+    raw.mesh = std::move(r.mesh);
+    raw.input_to_raw = r.input_to_tet;
+    notes.push_back("TetGen -" + opts.tetgen_switches + ": " + std::to_string(raw.mesh.T.rows()) + " tets in " +
+                    std::to_string(r.seconds) + " s");
+  } catch (const Error& e) {
+    if (opts.robust == VolumeOptions::Robust::Never) throw;
+    notes.push_back(std::string("TetGen failed on the surface (") + e.what() + "): robust (winding number) volume");
+    return false;
+  }
+  return true;
+}
 
-  // User vertices -> tet vertices, or barycentric in the (nearest) tet when the volume lost them.
+// The points (surface vertices, handle geometry) in a box padded by 5% of the diagonal; cages stay
+// constraint facets.
+Plc padded_box_plc(const Eigen::MatrixXd& P, double diag, const HandlePlc& plc) {
+  const Eigen::RowVector3d lo = P.colwise().minCoeff(), hi = P.colwise().maxCoeff();
+  const Eigen::RowVector3d pad = Eigen::RowVector3d::Constant(0.05 * std::max(diag, 1e-12));
+  Plc in;
+  in.V.resize(P.rows() + 8, 3);
+  in.V.topRows(P.rows()) = P;
+  const int o = static_cast<int>(P.rows());
+  for (int c = 0; c < 8; ++c)
+    for (int k = 0; k < 3; ++k) in.V(o + c, k) = ((c >> k) & 1) ? hi(k) + pad(k) : lo(k) - pad(k);
+  static const int box[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  in.F.resize(12 + plc.cage_F.rows(), 3);
+  for (int f = 0; f < 12; ++f)
+    for (int k = 0; k < 3; ++k) in.F(f, k) = o + box[f][k];
+  in.F.bottomRows(plc.cage_F.rows()) = plc.cage_F;
+  in.E = plc.cage_E;
+  return in;
+}
+
+// Per tet of `tets`: how far inside it is, the winding number of the surface at its centroid, or its
+// absolute winding number in a closed cage when that is larger.
+Eigen::VectorXd insideness(const WeldedSurface& ws, const Rig& rig, const TetMesh& tets) {
+  const Eigen::MatrixXd C = tet_centroids(tets);
+  // Only the side of 1/2 matters here: a loose tree (errors ~1e-3) is several times faster.
+  const WindingAccuracy loose{2.0, 1e300};
+  Eigen::VectorXd w = winding_numbers(build_winding_tree(ws.V, ws.F), C, loose);
+  for (const Cage& cage : rig.cages)
+    if (is_closed_surface(cage.mesh.F)) w = w.cwiseMax(winding_numbers(build_winding_tree(cage.mesh.V, cage.mesh.F), C, loose).cwiseAbs());
+  return w;
+}
+
+// Required handle points must be in the volume: a point right on the surface may have lost every
+// incident tet to the threshold; give it back its most-inside tet. Returns how many tets came back.
+int rescue_handle_tets(const HandlePlc& plc, const TetgenResult& r, const Eigen::VectorXd& w, std::vector<char>& keep) {
+  std::vector<std::vector<int>> incident(r.mesh.V.rows());
+  for (int t = 0; t < r.mesh.T.rows(); ++t)
+    for (int k = 0; k < 4; ++k) incident[r.mesh.T(t, k)].push_back(t);
+  int rescued = 0;
+  for (size_t s = 0; s < plc.samples.size(); ++s) {
+    const int v = r.input_to_tet(plc.sample_point[s]);
+    if (v < 0) continue;
+    int best = -1;
+    for (int t : incident[v]) {
+      if (keep[t]) { best = -2; break; }
+      if (best < 0 || w(t) > w(best)) best = t;
+    }
+    if (best >= 0 && plc.samples[s].required && w(best) > 0.1) keep[best] = 1, ++rescued;
+  }
+  return rescued;
+}
+
+// The robust volume (Jacobson 2013, section 8.3): a Delaunay tetrahedralization of the points in a
+// padded box, carved to the tets whose winding number is above 1/2 (or inside a closed cage).
+RawVolume robust_volume(const WeldedSurface& ws, const Rig& rig, const HandlePlc& plc, const Eigen::MatrixXd& P,
+                        double diag, const VolumeOptions& opts, std::vector<std::string>& notes) {
+  std::string sw = opts.tetgen_switches;
+  if (sw.find('p') == std::string::npos) sw = "p" + sw;
+  TetgenResult r = tetrahedralize(padded_box_plc(P, diag, plc), sw);
+  const auto tw = Clock::now();
+  const Eigen::VectorXd w = insideness(ws, rig, r.mesh);
+  std::vector<char> keep(r.mesh.T.rows(), 0);
+  for (int t = 0; t < r.mesh.T.rows(); ++t) keep[t] = w(t) > 0.5;
+  const int rescued = rescue_handle_tets(plc, r, w, keep);
+  int nk = 0;
+  for (char k : keep) nk += k;
+  RawVolume raw;
+  raw.mesh.V = r.mesh.V;
+  raw.mesh.T.resize(nk, 4);
+  for (int t = 0, j = 0; t < r.mesh.T.rows(); ++t)
+    if (keep[t]) raw.mesh.T.row(j++) = r.mesh.T.row(t);
+  raw.input_to_raw = r.input_to_tet.head(P.rows());
+  notes.push_back("robust volume: TetGen -" + sw + " on " + std::to_string(P.rows()) + " points + box: " +
+                  std::to_string(r.mesh.T.rows()) + " tets in " + std::to_string(r.seconds) + " s; kept " +
+                  std::to_string(nk) + " with winding number > 0.5 (" +
+                  std::to_string(std::chrono::duration<double>(Clock::now() - tw).count()) + " s)" +
+                  (rescued ? "; " + std::to_string(rescued) + " handle tets added back" : ""));
+  if (nk == 0) throw Error("bind: the surface encloses no volume (every winding number <= 0.5)");
+  return raw;
+}
+
+// User vertices -> tet vertices (#user V x #tet V), or barycentric in the (nearest) tet when the volume
+// lost them.
+Eigen::SparseMatrix<double> to_user_matrix(const TriMesh& surface, const WeldedSurface& ws,
+                                            const Eigen::VectorXi& plc_to_tet, const TetMesh& tets,
+                                            std::vector<std::string>& notes) {
+  const int nu = surface.num_vertices();
   std::vector<Eigen::Triplet<double>> trip;
   std::vector<int> missing;
   for (int u = 0; u < nu; ++u) {
@@ -261,16 +273,58 @@ BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const Volum
   if (!missing.empty()) {
     Eigen::MatrixXd Q(missing.size(), 3);
     for (size_t i = 0; i < missing.size(); ++i) Q.row(i) = surface.V.row(missing[i]);
-    const Eigen::SparseMatrix<double> B = tet_interpolation(vol.tets, Q);
+    const Eigen::SparseMatrix<double> B = tet_interpolation(tets, Q);
     for (int k = 0; k < B.outerSize(); ++k)
       for (Eigen::SparseMatrix<double>::InnerIterator it(B, k); it; ++it) trip.emplace_back(missing[it.row()], it.col(), it.value());
-    vol.notes.push_back(std::to_string(missing.size()) + " surface vertices are not tet vertices: interpolated in their tets");
+    notes.push_back(std::to_string(missing.size()) + " surface vertices are not tet vertices: interpolated in their tets");
   }
-  vol.to_user.resize(nu, vol.tets.V.rows());
-  vol.to_user.setFromTriplets(trip.begin(), trip.end());
+  Eigen::SparseMatrix<double> to_user(nu, tets.V.rows());
+  to_user.setFromTriplets(trip.begin(), trip.end());
+  return to_user;
+}
 
-  Eigen::VectorXi user_to_plc = ws.user_to_welded;  // the welded surface vertices are the first PLC points
-  constrain(rig, plc, plc_to_tet, user_to_plc, tol, vol);
+}  // namespace
+
+BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const VolumeOptions& opts) {
+  const auto t0 = Clock::now();
+  check_surface(surface);
+  check_rig(rig);
+  if (num_handles(rig) == 0) throw Error("bind: the rig has no handles");
+
+  BindVolume vol;
+  const WeldedSurface ws = weld_surface(surface.V, surface.F);
+  if (ws.F.rows() == 0) throw Error("bind: every face of the surface is degenerate");
+  vol.notes.push_back("surface: " + ws.report.describe());
+
+  // Handle geometry joins the surface's vertices as PLC points.
+  const CageSoup cages = stack_cages(rig);
+  Eigen::MatrixXd all(ws.V.rows() + cages.V.rows(), 3);
+  all << ws.V, cages.V;
+  const double diag = bbox_diagonal(all);
+  const double tol = 1e-7 * diag;
+  const HandlePlc plc = handle_plc(ws, rig, cages, tol);
+  const Eigen::MatrixXd P = plc.points.matrix();
+
+  bool robust = opts.robust == VolumeOptions::Robust::Always;
+  if (opts.robust == VolumeOptions::Robust::Auto && !ws.report.watertight()) {
+    robust = true;
+    vol.notes.push_back("surface is not a closed manifold: robust (winding number) volume");
+  }
+  RawVolume raw;
+  if (!robust) robust = !tetrahedralize_surface(ws, plc, P, opts, raw, vol.notes);
+  if (robust) raw = robust_volume(ws, rig, plc, P, diag, opts, vol.notes);
+
+  // Compact (drop vertices no kept tet uses); order is preserved, so the surface's vertices stay first.
+  Eigen::VectorXi raw_to_tet;
+  vol.tets = compact_tet_mesh(raw.mesh, raw_to_tet);
+  Eigen::VectorXi plc_to_tet(P.rows());
+  for (int i = 0; i < P.rows(); ++i)
+    plc_to_tet(i) = raw.input_to_raw(i) >= 0 ? raw_to_tet(raw.input_to_raw(i)) : -1;
+  vol.tets.F = tet_boundary_faces(vol.tets.T);
+  vol.to_user = to_user_matrix(surface, ws, plc_to_tet, vol.tets, vol.notes);
+
+  // The welded surface vertices are the first PLC points: user_to_welded maps user vertices to PLC points.
+  constrain(rig, plc, plc_to_tet, ws.user_to_welded, tol, vol);
   attach_free_parts(vol);
   vol.meshing_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return vol;
