@@ -106,51 +106,70 @@ class Body {
   ByteCursor bc_;
 };
 
-}  // namespace
+// ---- header
 
-TriMesh read_ply(const std::string& path) {
-  std::string data = read_file(path);
+struct Header {
+  Fmt fmt = Fmt::Ascii;
+  std::vector<Element> elements;
+  size_t bytes = 0;    // the body starts here, just after the end_header line
+  long body_line = 0;  // the body's first line (ascii)
+};
+
+// "format <ascii|binary_little_endian|binary_big_endian> 1.0"; line: for errors.
+Fmt parse_format(const std::string& path, long line_no, std::string_view line, const std::vector<std::string_view>& t) {
+  auto fail = [&](const std::string& p) { throw file_error(path, line_no, p); };
+  Fmt fmt = Fmt::Ascii;
+  if (t.size() != 3) fail("bad format line " + quote(line));
+  if (t[1] == "ascii") fmt = Fmt::Ascii;
+  else if (t[1] == "binary_little_endian") fmt = Fmt::BinLE;
+  else if (t[1] == "binary_big_endian") fmt = Fmt::BinBE;
+  else fail("unknown PLY format " + quote(t[1]));
+  if (t[2] != "1.0") fail("unsupported PLY version " + quote(t[2]));
+  return fmt;
+}
+
+// "property <type> <name>" or "property list <count type> <type> <name>".
+Prop parse_property(const std::string& path, long line_no, std::string_view line, const std::vector<std::string_view>& t) {
+  auto fail = [&](const std::string& p) { throw file_error(path, line_no, p); };
+  Prop p;
+  if (t.size() == 5 && t[1] == "list") {
+    if (!parse_type(t[2], p.count_type) || !p.count_type.integral) fail("bad list count type " + quote(t[2]));
+    if (!parse_type(t[3], p.type)) fail("unknown property type " + quote(t[3]));
+    p.list = true;
+    p.name = t[4];
+  } else if (t.size() == 3) {
+    if (!parse_type(t[1], p.type)) fail("unknown property type " + quote(t[1]));
+    p.name = t[2];
+  } else {
+    fail("bad property line " + quote(line));
+  }
+  return p;
+}
+
+Header read_header(const std::string& path, const std::string& data) {
   LineReader lr(data);
   std::string_view line;
   std::vector<std::string_view> t;
   auto fail = [&](const std::string& p) { throw file_error(path, lr.line(), p); };
   if (data.empty()) throw file_error(path, 0, "empty file");
   if (!lr.next(line) || line != "ply") fail("not a PLY file (first line must be \"ply\")");
-  Fmt fmt = Fmt::Ascii;
+  Header h;
   bool have_format = false, have_end = false;
-  std::vector<Element> elements;
   while (!have_end && lr.next(line)) {
     split_ws(line, t);
     if (t.empty()) continue;
     if (t[0] == "comment" || t[0] == "obj_info") continue;
     if (t[0] == "format") {
-      if (t.size() != 3) fail("bad format line " + quote(line));
-      if (t[1] == "ascii") fmt = Fmt::Ascii;
-      else if (t[1] == "binary_little_endian") fmt = Fmt::BinLE;
-      else if (t[1] == "binary_big_endian") fmt = Fmt::BinBE;
-      else fail("unknown PLY format " + quote(t[1]));
-      if (t[2] != "1.0") fail("unsupported PLY version " + quote(t[2]));
+      h.fmt = parse_format(path, lr.line(), line, t);
       have_format = true;
     } else if (t[0] == "element") {
       long long n;
       if (t.size() != 3 || !parse_int(t[2], n)) fail("bad element line " + quote(line));
       if (n < 0 || n > INT_MAX) fail("element " + quote(t[1]) + " count " + std::string(t[2]) + " out of range");
-      elements.push_back({std::string(t[1]), n, lr.line(), {}});
+      h.elements.push_back({std::string(t[1]), n, lr.line(), {}});
     } else if (t[0] == "property") {
-      if (elements.empty()) fail("property before any element");
-      Prop p;
-      if (t.size() == 5 && t[1] == "list") {
-        if (!parse_type(t[2], p.count_type) || !p.count_type.integral) fail("bad list count type " + quote(t[2]));
-        if (!parse_type(t[3], p.type)) fail("unknown property type " + quote(t[3]));
-        p.list = true;
-        p.name = t[4];
-      } else if (t.size() == 3) {
-        if (!parse_type(t[1], p.type)) fail("unknown property type " + quote(t[1]));
-        p.name = t[2];
-      } else {
-        fail("bad property line " + quote(line));
-      }
-      elements.back().props.push_back(p);
+      if (h.elements.empty()) fail("property before any element");
+      h.elements.back().props.push_back(parse_property(path, lr.line(), line, t));
     } else if (t[0] == "end_header") {
       have_end = true;
     } else {
@@ -159,39 +178,88 @@ TriMesh read_ply(const std::string& path) {
   }
   if (!have_end) throw file_error(path, lr.line(), "header has no end_header line (truncated?)");
   if (!have_format) throw file_error(path, lr.line(), "header has no format line");
-  // Body offset: just after the end_header line.
-  const size_t header_bytes = data.size() - static_cast<size_t>(lr.bytes_left() < 0 ? 0 : lr.bytes_left());
-  const long long body_bytes = static_cast<long long>(data.size() - std::min(header_bytes, data.size()));
+  h.bytes = data.size() - static_cast<size_t>(lr.bytes_left() < 0 ? 0 : lr.bytes_left());
+  h.body_line = lr.line() + 1;
+  return h;
+}
 
-  const Element* ve = nullptr;
-  int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1, iface = -1;
-  for (const Element& e : elements) {
+// Element counts against the body's size (each value takes at least a byte or two), before anything
+// is allocated for them.
+void check_element_sizes(const std::string& path, const Header& h, long long body_bytes) {
+  for (const Element& e : h.elements) {
     long long min_bytes = 0;  // per element: a binary list needs its count; ascii needs 2 chars per value
-    for (const Prop& p : e.props) min_bytes += fmt == Fmt::Ascii ? 2 : (p.list ? p.count_type.size : p.type.size);
+    for (const Prop& p : e.props) min_bytes += h.fmt == Fmt::Ascii ? 2 : (p.list ? p.count_type.size : p.type.size);
     check_count(path, e.line, e.count, min_bytes, body_bytes, "element " + quote(e.name));
     if (e.props.empty() && e.count > 0) throw file_error(path, e.line, "element " + quote(e.name) + " has no properties");
   }
+}
+
+// Which element holds the vertices, and which of its properties are x, y, z and the normal (-1: none).
+struct VertexLayout {
+  const Element* element = nullptr;
+  int ix = -1, iy = -1, iz = -1, inx = -1, iny = -1, inz = -1;
+  bool normals() const { return inx >= 0 && iny >= 0 && inz >= 0; }
+};
+
+VertexLayout vertex_layout(const std::string& path, const std::vector<Element>& elements) {
+  VertexLayout L;
   for (const Element& e : elements)
     if (e.name == "vertex") {
-      ve = &e;
+      L.element = &e;
       for (int i = 0; i < static_cast<int>(e.props.size()); ++i) {
         const std::string& n = e.props[i].name;
         if (e.props[i].list) continue;
-        int* slot = n == "x" ? &ix : n == "y" ? &iy : n == "z" ? &iz : n == "nx" ? &inx : n == "ny" ? &iny : n == "nz" ? &inz : nullptr;
+        int* slot = n == "x" ? &L.ix : n == "y" ? &L.iy : n == "z" ? &L.iz : n == "nx" ? &L.inx : n == "ny" ? &L.iny : n == "nz" ? &L.inz : nullptr;
         if (slot) *slot = i;
       }
-      if (ix < 0 || iy < 0 || iz < 0) throw file_error(path, e.line, "element vertex lacks an x, y or z property");
+      if (L.ix < 0 || L.iy < 0 || L.iz < 0) throw file_error(path, e.line, "element vertex lacks an x, y or z property");
     }
-  if (!ve || ve->count == 0) throw file_error(path, 0, "no vertices (missing or empty element vertex)");
-  const bool normals = inx >= 0 && iny >= 0 && inz >= 0;
+  if (!L.element || L.element->count == 0) throw file_error(path, 0, "no vertices (missing or empty element vertex)");
+  return L;
+}
 
-  TriMesh m;
-  m.V.resize(ve->count, 3);
-  if (normals) m.N.resize(ve->count, 3);
+// ---- body
+
+// Scalar property i of vertex k, into m when it is a coordinate or (with all three present) a normal.
+void store_vertex_value(const VertexLayout& L, int i, long long k, double v, TriMesh& m) {
+  const bool normals = L.normals();
+  if (i == L.ix) m.V(k, 0) = v;
+  if (i == L.iy) m.V(k, 1) = v;
+  if (i == L.iz) m.V(k, 2) = v;
+  if (normals && i == L.inx) m.N(k, 0) = v;
+  if (normals && i == L.iny) m.N(k, 1) = v;
+  if (normals && i == L.inz) m.N(k, 2) = v;
+}
+
+// One list property. indices: it is the face's vertex list, checked against the vertex count and
+// fan-triangulated into F; any other list is read and dropped.
+void read_list(Body& body, const Prop& p, const std::string& what, bool indices, long long num_vertices,
+               std::vector<int>& poly, std::vector<int>& F) {
+  double n = body.get(p.count_type, what + " list length");
+  if (n < 0 || n > body.bytes_left())
+    body.fail(what + " list length " + num(n) + " is impossible (" + std::to_string(body.bytes_left()) + " bytes left)",
+              p.count_type.size);
+  if (indices && n < 3) body.fail(what + " has " + num(n) + " vertices (at least 3 needed)", p.count_type.size);
+  poly.clear();
+  for (long long j = 0; j < static_cast<long long>(n); ++j) {
+    double v = body.get(p.type, what + " list entry");
+    if (!indices) continue;
+    if (!(v >= 0 && v < num_vertices && v == std::floor(v)))
+      body.fail(what + " has vertex index " + num(v) + " out of range [0, " + std::to_string(num_vertices - 1) + "]",
+                p.type.size);
+    poly.push_back(static_cast<int>(v));
+  }
+  for (size_t j = 1; j + 1 < poly.size(); ++j) F.insert(F.end(), {poly[0], poly[j], poly[j + 1]});
+}
+
+// Every element's values in file order: the vertices (and normals) into m, the faces' triangles
+// returned; the other elements' values are read (and checked) and dropped.
+std::vector<int> read_elements(const std::string& path, const std::vector<Element>& elements, const VertexLayout& L,
+                               Body& body, TriMesh& m) {
   std::vector<int> F, poly;
-  Body body(path, data, header_bytes, lr.line() + 1, fmt);
+  int iface = -1;
   for (const Element& e : elements) {
-    const bool is_v = &e == ve, is_f = e.name == "face";
+    const bool is_v = &e == L.element, is_f = e.name == "face";
     if (is_f) {
       for (int i = 0; i < static_cast<int>(e.props.size()); ++i)
         if (e.props[i].list && (e.props[i].name == "vertex_indices" || e.props[i].name == "vertex_index")) iface = i;
@@ -201,38 +269,33 @@ TriMesh read_ply(const std::string& path) {
       const std::string what = e.name + " " + std::to_string(k);
       for (int i = 0; i < static_cast<int>(e.props.size()); ++i) {
         const Prop& p = e.props[i];
-        if (!p.list) {
-          double v = body.get(p.type, what + " property " + p.name);
-          if (is_v && !std::isfinite(v)) body.fail(what + " property " + p.name + " is not finite", p.type.size);
-          if (is_v) {
-            if (i == ix) m.V(k, 0) = v;
-            if (i == iy) m.V(k, 1) = v;
-            if (i == iz) m.V(k, 2) = v;
-            if (normals && i == inx) m.N(k, 0) = v;
-            if (normals && i == iny) m.N(k, 1) = v;
-            if (normals && i == inz) m.N(k, 2) = v;
-          }
+        if (p.list) {
+          read_list(body, p, what, is_f && i == iface, L.element->count, poly, F);
           continue;
         }
-        double n = body.get(p.count_type, what + " list length");
-        const bool indices = is_f && i == iface;
-        if (n < 0 || n > body.bytes_left())
-          body.fail(what + " list length " + num(n) + " is impossible (" + std::to_string(body.bytes_left()) + " bytes left)",
-                    p.count_type.size);
-        if (indices && n < 3) body.fail(what + " has " + num(n) + " vertices (at least 3 needed)", p.count_type.size);
-        poly.clear();
-        for (long long j = 0; j < static_cast<long long>(n); ++j) {
-          double v = body.get(p.type, what + " list entry");
-          if (!indices) continue;
-          if (!(v >= 0 && v < ve->count && v == std::floor(v)))
-            body.fail(what + " has vertex index " + num(v) + " out of range [0, " + std::to_string(ve->count - 1) + "]",
-                      p.type.size);
-          poly.push_back(static_cast<int>(v));
-        }
-        for (size_t j = 1; j + 1 < poly.size(); ++j) F.insert(F.end(), {poly[0], poly[j], poly[j + 1]});
+        double v = body.get(p.type, what + " property " + p.name);
+        if (is_v && !std::isfinite(v)) body.fail(what + " property " + p.name + " is not finite", p.type.size);
+        if (is_v) store_vertex_value(L, i, k, v, m);
       }
     }
   }
+  return F;
+}
+
+}  // namespace
+
+TriMesh read_ply(const std::string& path) {
+  const std::string data = read_file(path);
+  const Header header = read_header(path, data);
+  const long long body_bytes = static_cast<long long>(data.size() - std::min(header.bytes, data.size()));
+  check_element_sizes(path, header, body_bytes);
+  const VertexLayout layout = vertex_layout(path, header.elements);
+
+  TriMesh m;
+  m.V.resize(layout.element->count, 3);
+  if (layout.normals()) m.N.resize(layout.element->count, 3);
+  Body body(path, data, header.bytes, header.body_line, header.fmt);
+  std::vector<int> F = read_elements(path, header.elements, layout, body, m);
   if (F.empty()) throw file_error(path, 0, "no faces (a surface needs at least one triangle)");
   m.F = Eigen::Map<Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(F.data(), F.size() / 3, 3);
   return m;
