@@ -77,6 +77,13 @@ inline RunResult run_program(const std::string& exe, const std::vector<std::stri
   return r;
 }
 
+#ifdef DEFORM_EXE
+// `deform ARGS` run in a scratch folder (DEFORM_EXE: the tool, set by the CLI tests' CMake).
+inline RunResult run_deform(const ScratchDir& s, const std::vector<std::string>& args, const RunOptions& o = {}) {
+  return run_program(DEFORM_EXE, args, s.dir, o);
+}
+#endif
+
 // The command, how it ended and the start of its output, for failure messages.
 inline std::string describe_run(const RunResult& r, size_t out_chars = 3000) {
   return r.command + "\n  -> " + (r.signaled ? "signal " + std::to_string(r.signal) : "exit " + std::to_string(r.exit_code)) +

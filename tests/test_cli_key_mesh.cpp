@@ -29,7 +29,7 @@ struct Scratch : dfm::test::ScratchDir {
   Scratch() : ScratchDir("test_cli_key_mesh") {}
 };
 
-RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return run_program(DEFORM_EXE, args, s.dir); }
+RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return dfm::test::run_deform(s, args); }
 
 long count_field(const std::string& text, const std::string& key) {
   std::smatch m;

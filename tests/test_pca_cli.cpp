@@ -27,7 +27,7 @@ namespace {
 using Scratch = dfm::test::ScratchDir;
 using dfm::test::describe_run;
 
-RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return run_program(DEFORM_EXE, args, s.dir); }
+RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return dfm::test::run_deform(s, args); }
 
 // The frames written as OBJ (17 significant digits: they read back exactly).
 std::vector<std::string> write_frames(const Scratch& s, const dfm::TriMesh& bar, const std::vector<Eigen::MatrixXd>& frames) {

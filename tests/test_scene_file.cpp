@@ -14,6 +14,7 @@
 #include "core/scene/document.h"
 #include "core/scene/scene_file.h"
 #include "core/util/error.h"
+#include "tests/volume_test_meshes.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
@@ -51,24 +52,15 @@ struct TempDir {
   std::string operator/(const std::string& f) const { return (dir / f).string(); }
 };
 
-TriMesh octahedron() {
-  TriMesh m;
-  m.V.resize(6, 3);
-  m.V << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
-  m.F.resize(8, 3);
-  m.F << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
-  return m;
-}
-
 // A document using every feature of the format.
 void fill(Document& d) {
-  d.set_surface(octahedron(), "octa.obj");
+  d.set_surface(test::octahedron(), "octa.obj");
   d.add_point({0.1, 0.2, 0.3}, "ear");
   d.add_point({-0.1, 0.0, 0.1}, "belly");
   d.add_pseudo_edge(0, 1);
   d.add_bone_chain({{0, -0.5, 0}, {0, 0, 0}, {0, 0.5, 0.1}});
   Cage c;
-  c.mesh = octahedron();
+  c.mesh = test::octahedron();
   c.mesh.V *= 0.2;
   c.mesh.F.conservativeResize(4, 3);  // open: half the faces
   c.edges.resize(1, 2);
@@ -84,7 +76,7 @@ void fill(Document& d) {
   d.set_key(0.0);
   d.translate_handle(4, {1.0 / 3.0, 0, 0});
   d.set_key(0.75);
-  TriMesh key = octahedron();  // a mesh key (format version 2)
+  TriMesh key = test::octahedron();  // a mesh key (format version 2)
   key.V *= 0.5;
   d.key_mesh(key, "octa-key.obj", 1.5);
   d.set_method(SkinMethod::DQS);
@@ -268,7 +260,7 @@ TEST_CASE("hostile scene files give errors naming the file and the problem") {
     spit(jp, t);
     spit(bp, bin);
     Document e;
-    e.set_surface(octahedron(), "keep");
+    e.set_surface(test::octahedron(), "keep");
     try {
       e.load_scene(jp);
       FAIL("no error for: " << what);

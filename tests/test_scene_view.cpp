@@ -12,6 +12,7 @@
 #include "app/editor/scene_view.h"
 #include "core/scene/document.h"
 #include "tests/mock_render_backend.h"
+#include "tests/volume_test_meshes.h"
 
 using namespace dfm;
 using dfm::editor::SceneView;
@@ -22,16 +23,6 @@ using Eigen::Vector3d;
 using Eigen::Vector4f;
 
 namespace {
-
-// Vertices 0..5: +x -x +y -y +z -z; faces outward.
-TriMesh octahedron() {
-  TriMesh m;
-  m.V.resize(6, 3);
-  m.V << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
-  m.F.resize(8, 3);
-  m.F << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
-  return m;
-}
 
 // Three point handles; rows sum to 1, no ties (k = 1 keeps each row's largest).
 Eigen::MatrixXd weights() {
@@ -44,7 +35,7 @@ Eigen::MatrixXd weights() {
 }
 
 void make_bound(Document& doc) {
-  doc.set_surface(octahedron(), "octahedron");
+  doc.set_surface(test::octahedron(), "octahedron");
   doc.add_point(Vector3d(0.5, 0, 0));
   doc.add_point(Vector3d(-0.5, 0, 0));
   doc.add_point(Vector3d(0, 0.5, 0));
@@ -53,7 +44,7 @@ void make_bound(Document& doc) {
 
 // V + W d, d one translation per handle.
 Eigen::MatrixXd translated(const Eigen::MatrixXd& W, const std::vector<Vector3d>& d) {
-  Eigen::MatrixXd V = octahedron().V;
+  Eigen::MatrixXd V = test::octahedron().V;
   for (int i = 0; i < V.rows(); ++i)
     for (int j = 0; j < W.cols(); ++j) V.row(i) += W(i, j) * d[j].transpose();
   return V;
@@ -113,14 +104,14 @@ const Vector4f kActive(1.0f, 0.85f, 0.30f, 1.0f), kSelected(1.0f, 0.62f, 0.12f, 
 
 TEST_CASE("scene view: the rest surface uploads once per content revision", "[editor][scene_view]") {
   Document doc;
-  doc.set_surface(octahedron(), "octahedron");
+  doc.set_surface(test::octahedron(), "octahedron");
   MockRenderBackend gpu;
   SceneView scene(gpu);
   const ViewSettings s;
   scene.sync(doc, s);
   REQUIRE(gpu.mesh_uploads == 1);
-  REQUIRE(gpu.mesh.V == octahedron().V);
-  REQUIRE(gpu.mesh.F == octahedron().F);
+  REQUIRE(gpu.mesh.V == test::octahedron().V);
+  REQUIRE(gpu.mesh.F == test::octahedron().F);
   REQUIRE(gpu.geometry.vertex_buffer == gpu.mesh_vertex_buffer);
   REQUIRE(gpu.geometry.index_count == 24);
   REQUIRE(scene.display_is_rest());
@@ -154,7 +145,7 @@ TEST_CASE("scene view: one skin per binding, re-run per pose, drawn and read bac
   REQUIRE(gpu.skins.size() == 1);
   const auto& skin = *gpu.skins[0];
   REQUIRE(skin.runs == 1);
-  REQUIRE(skin.F == octahedron().F);
+  REQUIRE(skin.F == test::octahedron().F);
   REQUIRE(skin.binding.num_handles == 3);
   REQUIRE(same(gpu.geometry, skin.output));
   REQUIRE_FALSE(scene.display_is_rest());
@@ -169,7 +160,7 @@ TEST_CASE("scene view: one skin per binding, re-run per pose, drawn and read bac
   REQUIRE(skin.runs == 2);
   REQUIRE(skin.method == SkinMethod::LBS);
   REQUIRE((scene.display_vertices() - translated(weights(), {d0, d1, d2})).cwiseAbs().maxCoeff() < 1e-6);
-  REQUIRE(scene.display_faces() == octahedron().F);
+  REQUIRE(scene.display_faces() == test::octahedron().F);
   // The handles are drawn where the pose puts them.
   REQUIRE(scene.handle_positions().row(0).transpose().isApprox(Vector3d(0.7, 0.3, 0)));
   REQUIRE(scene.handle_positions().row(1).transpose().isApprox(Vector3d(-0.5, 0, -0.2)));
@@ -344,7 +335,7 @@ TEST_CASE("scene view: weight colours follow the Weights panel and the selection
 
 TEST_CASE("scene view: region handles band the mask view", "[editor][scene_view]") {
   Document doc;
-  doc.set_surface(octahedron(), "octahedron");
+  doc.set_surface(test::octahedron(), "octahedron");
   doc.paint_mask({0, 1}, {0.5, 0.9});
   const int r = doc.add_region("band");
   doc.paint_region(r, {1, 2}, false);
@@ -359,7 +350,7 @@ TEST_CASE("scene view: region handles band the mask view", "[editor][scene_view]
 
 TEST_CASE("scene view: handle overlays by selection and FAST state", "[editor][scene_view]") {
   Document doc;
-  doc.set_surface(octahedron(), "octahedron");
+  doc.set_surface(test::octahedron(), "octahedron");
   doc.add_point(Vector3d(0.5, 0, 0));
   doc.add_point(Vector3d(-0.5, 0, 0));
   doc.add_point(Vector3d(0, 0.5, 0));
@@ -433,7 +424,7 @@ TEST_CASE("scene view: handle overlays by selection and FAST state", "[editor][s
 
 TEST_CASE("scene view: per-frame extras draw once, grouped by width", "[editor][scene_view]") {
   Document doc;
-  doc.set_surface(octahedron(), "octahedron");
+  doc.set_surface(test::octahedron(), "octahedron");
   MockRenderBackend gpu;
   SceneView scene(gpu);
   const view::Camera cam;
@@ -480,7 +471,7 @@ TEST_CASE("scene view: a shape-space preview shows until the time, the document 
   const ViewSettings s;
   scene.sync(doc, s);
   REQUIRE(scene.showing_slice());
-  TriMesh shape = octahedron();
+  TriMesh shape = test::octahedron();
   shape.V *= 1.5;
   scene.show_preview(shape);
   auto shows_shape = [&] {

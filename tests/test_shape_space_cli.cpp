@@ -27,7 +27,7 @@ struct Scratch : dfm::test::ScratchDir {
   Scratch() : ScratchDir("test_shape_space_cli") {}
 };
 
-RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return run_program(DEFORM_EXE, args, s.dir); }
+RunResult deform(const Scratch& s, const std::vector<std::string>& args) { return dfm::test::run_deform(s, args); }
 
 // Three wobbly icospheres (one connectivity) written as OBJ (17 digits: they read back exactly).
 std::vector<std::string> write_bases(const Scratch& s, std::vector<dfm::TriMesh>& meshes) {

@@ -25,6 +25,16 @@ inline TriMesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
 }
 
 // Icosphere of radius r around c, `levels` subdivisions, outward.
+// Vertices 0..5: +x -x +y -y +z -z; faces outward.
+inline TriMesh octahedron() {
+  TriMesh m;
+  m.V.resize(6, 3);
+  m.V << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  m.F.resize(8, 3);
+  m.F << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  return m;
+}
+
 inline TriMesh icosphere(const Eigen::Vector3d& c, double r, int levels) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   std::vector<Eigen::Vector3d> V = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
