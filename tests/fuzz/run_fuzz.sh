@@ -21,7 +21,7 @@ build() {
   # The scene reader needs rig/ and skin/ (handle counts, skin method names) and the in-between method
   # names, but not bind/ or the GL.
   for src in "$ROOT"/core/util/*.cpp "$ROOT"/core/mesh/*.cpp "$ROOT"/core/rig/*.cpp "$ROOT"/core/skin/*.cpp \
-             "$ROOT"/core/anim/inbetween_method.cpp "$ROOT"/core/scene/scene_file.cpp; do
+             "$ROOT"/core/anim/inbetween_method.cpp "$ROOT"/core/scene/scene_file.cpp "$ROOT"/core/scene/scene_reader.cpp; do
     o="$out/obj/$(basename "$src" .cpp).o"
     # Rebuilt when the source or any header it includes (its -MM dependency list) is newer.
     if [ ! -f "$o.d" ]; then "$CXX" $flags -MM -MT "$o" "$src" > "$o.d"; fi
