@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/bind/closest_surface_point.h"
 #include "core/bind/handle_geometry.h"
 #include "core/bind/robust_volume.h"
 #include "core/bind/tetrahedralize.h"
@@ -196,34 +197,46 @@ Plc padded_box_plc(const Eigen::MatrixXd& P, double diag, const HandlePlc& plc) 
   return in;
 }
 
-// Per tet of `tets`: how far inside it is, the winding number of the surface at its centroid, or its
-// absolute winding number in a closed cage when that is larger.
-Eigen::VectorXd insideness(const WeldedSurface& ws, const Rig& rig, const TetMesh& tets) {
-  const Eigen::MatrixXd C = tet_centroids(tets);
+// Per point of X: how far inside it is, the winding number of the surface there, or its absolute
+// winding number in a closed cage when that is larger.
+Eigen::VectorXd insideness_at(const WeldedSurface& ws, const Rig& rig, const Eigen::MatrixXd& X) {
   // Only the side of 1/2 matters here: a loose tree (errors ~1e-3) is several times faster.
   const WindingAccuracy loose{2.0, 1e300};
-  Eigen::VectorXd w = winding_numbers(build_winding_tree(ws.V, ws.F), C, loose);
+  Eigen::VectorXd w = winding_numbers(build_winding_tree(ws.V, ws.F), X, loose);
   for (const Cage& cage : rig.cages)
-    if (is_closed_surface(cage.mesh.F)) w = w.cwiseMax(winding_numbers(build_winding_tree(cage.mesh.V, cage.mesh.F), C, loose).cwiseAbs());
+    if (is_closed_surface(cage.mesh.F)) w = w.cwiseMax(winding_numbers(build_winding_tree(cage.mesh.V, cage.mesh.F), X, loose).cwiseAbs());
   return w;
 }
 
-// Required handle points must be in the volume: a point right on the surface may have lost every
-// incident tet to the threshold; give it back its most-inside tet. Returns how many tets came back.
-int rescue_handle_tets(const HandlePlc& plc, const TetgenResult& r, const Eigen::VectorXd& w, std::vector<char>& keep) {
+// Per sample: whether its point is on the input surface or within `reach` of it (1% of the surface's
+// bbox diagonal): such a handle is always accepted, whatever the winding number says there (issue 19).
+std::vector<char> samples_near_surface(const WeldedSurface& ws, const HandlePlc& plc, double reach) {
+  const SurfaceLocator locator(ws.V, ws.F, reach);
+  std::vector<char> near(plc.samples.size(), 0);
+  for (size_t s = 0; s < plc.samples.size(); ++s) near[s] = locator.closest(plc.samples[s].x).found();
+  return near;
+}
+
+// Required handle points must be in the volume: a point on (or near) the surface may have lost every
+// incident tet to the threshold (open boundaries, non-manifold seams); give it back its most-inside tet.
+// A point farther from the surface gets one only when it is inside by winding number; otherwise it stays
+// out and constrain() refuses it by name. Returns how many tets came back.
+int rescue_handle_tets(const HandlePlc& plc, const TetgenResult& r, const Eigen::VectorXd& w,
+                       const std::vector<char>& near, const Eigen::VectorXd& point_w, std::vector<char>& keep) {
   std::vector<std::vector<int>> incident(r.mesh.V.rows());
   for (int t = 0; t < r.mesh.T.rows(); ++t)
     for (int k = 0; k < 4; ++k) incident[r.mesh.T(t, k)].push_back(t);
   int rescued = 0;
   for (size_t s = 0; s < plc.samples.size(); ++s) {
     const int v = r.input_to_tet(plc.sample_point[s]);
-    if (v < 0) continue;
+    if (v < 0 || !plc.samples[s].required) continue;
+    if (!near[s] && !(point_w(s) > 0.5)) continue;
     int best = -1;
     for (int t : incident[v]) {
       if (keep[t]) { best = -2; break; }
       if (best < 0 || w(t) > w(best)) best = t;
     }
-    if (best >= 0 && plc.samples[s].required && w(best) > 0.1) keep[best] = 1, ++rescued;
+    if (best >= 0) keep[best] = 1, ++rescued;
   }
   return rescued;
 }
@@ -236,10 +249,13 @@ RawVolume robust_volume(const WeldedSurface& ws, const Rig& rig, const HandlePlc
   if (sw.find('p') == std::string::npos) sw = "p" + sw;
   TetgenResult r = tetrahedralize(padded_box_plc(P, diag, plc), sw);
   const auto tw = Clock::now();
-  const Eigen::VectorXd w = insideness(ws, rig, r.mesh);
+  const Eigen::VectorXd w = insideness_at(ws, rig, tet_centroids(r.mesh));
   std::vector<char> keep(r.mesh.T.rows(), 0);
   for (int t = 0; t < r.mesh.T.rows(); ++t) keep[t] = w(t) > 0.5;
-  const int rescued = rescue_handle_tets(plc, r, w, keep);
+  Eigen::MatrixXd S(plc.samples.size(), 3);
+  for (size_t i = 0; i < plc.samples.size(); ++i) S.row(i) = plc.samples[i].x.transpose();
+  const Eigen::VectorXd point_w = insideness_at(ws, rig, S);
+  const int rescued = rescue_handle_tets(plc, r, w, samples_near_surface(ws, plc, 0.01 * bbox_diagonal(ws.V)), point_w, keep);
   int nk = 0;
   for (char k : keep) nk += k;
   RawVolume raw;
