@@ -149,6 +149,7 @@ class Editor {
   void draw_error_popup();
   // editor_timeline.cpp
   void draw_timeline();
+  void draw_timeline_toolbar();
   // actions
   void start_bind();
   bool save_scene_as(const std::string& path);  // false: failed, reported in the UI

@@ -12,16 +12,8 @@
 
 namespace dfm::editor {
 
-void Editor::draw_timeline() {
-  const auto& keys = doc_.keys();
-  // Range: the keys' span padded, at least [0, 1].
-  double t0 = 0, t1 = 1;
-  if (!keys.empty()) {
-    t0 = std::min(0.0, keys.front().time);
-    t1 = std::max(1.0, keys.back().time);
-  }
-  t1 = std::max(t1, doc_.time());
-
+// Transport, keys, the in-between of the current interval, time and speed, and the sweep axis.
+void Editor::draw_timeline_toolbar() {
   if (ImGui::Button(playing_ ? "Pause" : "Play", ImVec2(60, 0))) playing_ = !playing_;
   ImGui::SameLine();
   ImGui::Checkbox("Loop", &loop_);
@@ -67,7 +59,20 @@ void Editor::draw_timeline() {
     if (ImGui::SliderFloat("##sweep", &sv, 0.0f, 1.0f, "%.2f")) sweep_value_ = sv;
   }
   ImGui::SameLine();
-  ImGui::TextDisabled("%d key(s)", int(keys.size()));
+  ImGui::TextDisabled("%d key(s)", int(doc_.keys().size()));
+}
+
+void Editor::draw_timeline() {
+  const auto& keys = doc_.keys();
+  // Range: the keys' span padded, at least [0, 1].
+  double t0 = 0, t1 = 1;
+  if (!keys.empty()) {
+    t0 = std::min(0.0, keys.front().time);
+    t1 = std::max(1.0, keys.back().time);
+  }
+  t1 = std::max(t1, doc_.time());
+
+  draw_timeline_toolbar();
 
   // Ruler.
   ImDrawList* dl = ImGui::GetWindowDrawList();
