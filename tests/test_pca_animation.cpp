@@ -120,7 +120,7 @@ TEST_CASE("pca: every k from 0 to min(frames, 3V) is allowed, others and bad inp
   badF(0, 0) = 11;
   CHECK_THROWS_WITH(pca_animation(d, 2, badF, frame_times(5, 24)), Contains("outside"));
   std::vector<Eigen::MatrixXd> uneven = frames;
-  uneven[3] = uneven[3].topRows(10);
+  uneven[3] = Eigen::MatrixXd(uneven[3].topRows(10));  // a copy: resizing from its own block would read freed memory
   CHECK_THROWS_WITH(decompose_frames(uneven), Contains("frame 3 has 10 vertices"));
   uneven = frames;
   uneven[2](1, 1) = std::nan("");
