@@ -267,9 +267,10 @@ TEST_CASE("transition: icosphere of 642 vertices to one of 10242", "[transition]
 }
 
 TEST_CASE("transition: bunny to 3holes", "[transition]") {
-  // The bunny's surface cannot be made fully conforming (edge splits cascade near its sharp parts)
-  // and its tetrahedralization has slivers the fill cannot reach, so its key slice is not exact
-  // yet (see issue 15); the in-between slices are held to the acceptance.
+  // The bunny's surface cannot be made fully conforming: TetGen's constrained tetrahedralization
+  // leaves 16 of its triangles non-Delaunay, and further splits cascade near its sharp parts. So its
+  // key slice is not exact yet (about 1% of its volume; see issue 15); the in-between slices are held
+  // to the acceptance.
   DFM_DATA_OR_SKIP(bunny, "bunny.off");
   DFM_DATA_OR_SKIP(holes, "3holes.off");
   const TriMesh a = dfm::test::into_unit_box(read_surface(bunny));

@@ -10,6 +10,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include "core/anim/conforming_surface.h"
+#include "core/anim/conforming_tetgen.h"
 #include "core/anim/delaunay_4d.h"
 #include "core/anim/iso_manifold.h"
 #include "core/anim/key_distance.h"
@@ -141,10 +142,22 @@ struct KeyLayer {
   int chords = 0;
 };
 
+// The key made conforming from TetGen's constrained tetrahedralization when TetGen takes it, else
+// from the key itself.
+ConformingSurface conforming_key(const TriMesh& key, int max_rounds) {
+  try {
+    ConformingSurface s = tetgen_conforming_start(key.V, key.F);
+    make_conforming(s, max_rounds);
+    return s;
+  } catch (const Error&) {
+    return conforming_delaunay_surface(key.V, key.F, max_rounds);
+  }
+}
+
 KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, double h_key, double h_mid,
                    int max_rounds, int layer) {
   KeyLayer k;
-  k.surface = conforming_delaunay_surface(key.V, key.F, max_rounds);
+  k.surface = conforming_key(key, max_rounds);
   // Near the surface the key's own spacing; away from it the middle layers' (the far field).
   const auto near = band_points(box, h_key, 0.5 * h_key, 1.5 * h_key, HUGE_VAL, layer, d);
   const auto far = band_points(box, h_mid, 0, 0, 1.5 * h_key + h_mid, layer + 100, d);

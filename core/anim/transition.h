@@ -2,7 +2,8 @@
 // Transitions between keys of different topology and density (Southern 2008, ch. 5 and 8).
 //
 // Each key surface is made conforming Delaunay (5.1.3: surface Steiner points until every triangle is
-// a face of the Delaunay tetrahedralization of the key's points) and filled with points inside and
+// a face of the Delaunay tetrahedralization of the key's points; starting from TetGen's constrained
+// tetrahedralization, conforming_tetgen.h) and filled with points inside and
 // outside; the keys are embedded in 4D at their times, with layers of grid points in between, and
 // joined by one Delaunay triangulation (Theorem 5.2.1: each key's tetrahedra survive as facets).
 //
