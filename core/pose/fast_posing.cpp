@@ -85,7 +85,7 @@ FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, cons
     if (states[h] == HandleConstraint::Fixed) pose.transforms[h] = given.transforms[h];
   solver_->set_targets(given, fast_targets(constraints, given));
   const auto t0 = std::chrono::steady_clock::now();
-  for (int i = 0; i < iterations; ++i) solver_->iterate(pose, false);
+  solver_->iterate(pose, iterations);
   report.iterate_seconds = seconds_since(t0);
   report.iterations = iterations;
   report.clusters = model_->clusters;

@@ -34,12 +34,18 @@ class FastSolver {
   // term), which never increases from one iteration to the next for fixed targets; NaN when
   // with_energy is false (the energy costs as much as the iteration).
   double iterate(Pose& pose, bool with_energy = true) const;
+  // `count` iterations as one call, for the same result as `count` calls of iterate (to rounding):
+  // where it is cheaper, the iterations in between stay in rotation space,
+  //   S = (Kt_u Gamma) R^T + (Kt_u Phi + Kt_f T_f),
+  // one 3r x 3r product instead of two 3r x 4u ones, and T is formed once at the end.
+  void iterate(Pose& pose, int count) const;
 
   const std::vector<FastConstraint>& constraints() const { return constraints_; }
   double switch_seconds() const { return switch_seconds_; }
 
  private:
   void read_unknown_blocks(const Pose& pose) const;
+  void local_step() const;  // Rt_ from S_
   void write_unknown_blocks(Pose& pose) const;
 
   const FastModel* model_;
@@ -52,6 +58,9 @@ class FastSolver {
   Eigen::MatrixXd phi_;             // 4u x 3 for the current targets
   Eigen::MatrixXd s_fixed_;         // 3r x 3: Kt_f T_f for the current fixed transforms
   Eigen::MatrixXd T_fixed_;         // 4f x 3
+  bool rotation_space_ = false;     // whether iterate(pose, count) stays in rotation space
+  Eigen::MatrixXd kt_gamma_;        // 3r x 3r: Kt_u Gamma (when rotation_space_)
+  Eigen::MatrixXd s_const_;         // 3r x 3: Kt_u Phi + s_fixed for the current targets
   double switch_seconds_ = 0;
   // Per-iteration scratch, sized once: an iteration allocates nothing.
   mutable Eigen::MatrixXd X_, S_, Rt_;
