@@ -124,18 +124,28 @@ TEST_CASE("rig edits after a bind clear the weights; undo restores them") {
   CHECK_FALSE(d.has_weights());
   CHECK(d.weights_note() == "not bound yet");
   const Eigen::MatrixXd W = uniform_weights(d);
+  std::uint64_t sw = d.surface_weights_revision();
   d.set_weights(W, BindStats{1.5, 10, 20, {"ok"}});
   CHECK(d.has_weights());
   CHECK(d.weights_note().empty());
-  // Posing and renaming keep the weights.
+  CHECK(d.surface_weights_revision() != sw);
+  sw = d.surface_weights_revision();
+  // Posing and renaming keep the weights (and their revision).
   d.translate_handle(0, {0.1, 0, 0});
   d.rename_handle(1, "nose");
   d.add_pseudo_edge(0, 1);
   CHECK(d.has_weights());
+  CHECK(d.surface_weights_revision() == sw);
+  // The same weights again: a new revision all the same (a re-bind into the same storage).
+  d.set_weights(W, BindStats{1.5, 10, 20, {"ok"}});
+  CHECK(d.surface_weights_revision() != sw);
+  d.undo();
   d.move_point(1, {0.1, 0.1, 0.25});
   CHECK_FALSE(d.has_weights());
   CHECK(d.weights_note().find("weights cleared") != std::string::npos);
+  sw = d.surface_weights_revision();
   d.undo();
+  CHECK(d.surface_weights_revision() != sw);
   REQUIRE(d.has_weights());
   CHECK(d.weights() == W);
   CHECK(d.bind_stats() == BindStats{1.5, 10, 20, {"ok"}});

@@ -51,9 +51,9 @@ std::uint64_t manifold_signature(const Document& doc) {
     const int m = static_cast<int>(doc.method()), k = doc.bind_settings().max_influences;
     h = fnv1a(h, &m, sizeof m);
     h = fnv1a(h, &k, sizeof k);
-    // By value: a re-bind assigns same-size weights into the same storage.
-    h = mix_matrix(h, doc.weights());
-    h = mix_matrix(h, doc.surface().V);
+    // Not the data's address: a re-bind assigns same-size weights into the same storage.
+    const std::uint64_t sw = doc.surface_weights_revision();
+    h = fnv1a(h, &sw, sizeof sw);
   }
   return h == 0 ? 1 : h;
 }

@@ -131,7 +131,7 @@ void Document::execute(const std::string& name, unsigned parts, const std::strin
     gesture_merge_ok_ = gesture_open_;
   }
   redo_.clear();
-  after_change();
+  after_change(parts);
 }
 
 void Document::rig_edit(const std::string& name, const std::string& merge_target,
@@ -148,8 +148,9 @@ void Document::rig_edit(const std::string& name, const std::string& merge_target
   });
 }
 
-void Document::after_change() {
+void Document::after_change(unsigned parts) {
   ++revision_;
+  if (parts & (kSurface | kWeights)) ++surface_weights_revision_;
   // Selection is view state: keep it valid whatever changed underneath.
   const int n = num_handles();
   auto& h = s_.selection.handles;
@@ -173,7 +174,7 @@ void Document::replay_step(std::vector<std::unique_ptr<Step>>& from, std::vector
   std::swap(weights_note_, step->weights_note);
   to.push_back(std::move(step));
   gesture_merge_ok_ = false;
-  after_change();
+  after_change(to.back()->parts);
 }
 
 void Document::undo() { replay_step(undo_, redo_); }

@@ -276,6 +276,8 @@ class Document {
 
   // Bumped on every change of scene content (edits, undo, redo, load): lets the UI re-upload buffers.
   std::uint64_t revision() const { return revision_; }
+  // Bumped only when the surface or the weights change (caches keyed on them need not hash them).
+  std::uint64_t surface_weights_revision() const { return surface_weights_revision_; }
 
  private:
   struct Step;
@@ -284,7 +286,7 @@ class Document {
                const std::function<void(SceneData&)>& edit);
   void rig_edit(const std::string& name, const std::string& merge_target,
                 const std::function<void(SceneData&)>& edit);
-  void after_change();
+  void after_change(unsigned parts = ~0u);
   // open_mesh / set_surface: the new surface (and tets) with weights, mask and regions cleared.
   void replace_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet);
   void store_weights(const std::string& name, Eigen::MatrixXd W);  // weights_*: one step, none if unchanged
@@ -297,7 +299,7 @@ class Document {
   std::string weights_note_ = "not bound yet";
   std::vector<std::unique_ptr<Step>> undo_, redo_;
   void replay_step(std::vector<std::unique_ptr<Step>>& from, std::vector<std::unique_ptr<Step>>& to);
-  std::uint64_t next_serial_ = 1, saved_serial_ = 0, revision_ = 0;
+  std::uint64_t next_serial_ = 1, saved_serial_ = 0, revision_ = 0, surface_weights_revision_ = 0;
   std::unique_ptr<FastPosing> fast_;  // caches only: not part of the scene or of undo
   FastSolveReport last_fast_;
   bool gesture_open_ = false;
