@@ -346,7 +346,7 @@ TEST_CASE("many disconnected pieces: handle-less pieces follow their nearest han
     BindVolume v = build_bind_volume(all, rig, opts);
     INFO(all_notes(v));
     check_volume(v, rig, all.num_vertices());
-    REQUIRE(note_contains(v, "6 of 8 separate parts"));
+    REQUIRE(note_contains(v, "6 of 8 pieces of the volume have no handle"));
     // Every vertex of a piece without a handle is constrained (so no weight is undetermined).
     Eigen::VectorXi comp;
     REQUIRE(tet_vertex_components(v.tets, comp) == 8);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/bind/rigid_pieces.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -36,6 +37,7 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
     throw Error("shape mask has " + std::to_string(opts.bbw.shape_mask.size()) + " values for " +
                 std::to_string(volume.tets.num_tets()) + " tets of the bind volume");
   res.tet_weights = bbw_weights(volume.tets.V, volume.tets.T, volume.b, volume.bc, bo, &res.report.bbw);
+  apply_rigid_pieces(volume, res.tet_weights);
   if (opts.progress) opts.progress("mapping", 0.97);
   if (volume.to_user.cols() != res.tet_weights.rows())
     throw Error("bind volume: the map to the user's vertices has " + std::to_string(volume.to_user.cols()) +

@@ -8,6 +8,8 @@
 
 #include "core/bind/closest_surface_point.h"
 #include "core/bind/handle_geometry.h"
+#include "core/bind/outside_handles.h"
+#include "core/bind/rigid_pieces.h"
 #include "core/bind/robust_volume.h"
 #include "core/bind/tetrahedralize.h"
 #include "core/bind/winding_bvh.h"
@@ -76,49 +78,6 @@ void constrain(const Rig& rig, const HandlePlc& plc, const Eigen::VectorXi& plc_
   add_cage_surface_rows(vol.tets.V, plc.cages, tol, rows);
   rows.finish(nh, vol.b, vol.bc);
 }
-
-// Parts of the volume that no handle touches would have undetermined weights: attach each rigidly to the
-// nearest constrained vertex (its bc row), the way a separate eyeball follows the head.
-void attach_free_parts(BindVolume& vol) {
-  if (vol.b.size() == 0) return;
-  Eigen::VectorXi comp;
-  const int nc = tet_vertex_components(vol.tets, comp);
-  if (nc <= 1) return;
-  std::vector<char> has(nc, 0);
-  for (int i = 0; i < vol.b.size(); ++i) has[comp(vol.b(i))] = 1;
-  std::vector<int> extra_v;
-  std::vector<Eigen::RowVectorXd> extra_w;
-  int attached = 0;
-  for (int c = 0; c < nc; ++c) {
-    if (has[c]) continue;
-    Eigen::RowVector3d center = Eigen::RowVector3d::Zero();
-    int n = 0;
-    for (int v = 0; v < comp.size(); ++v)
-      if (comp(v) == c) center += vol.tets.V.row(v), ++n;
-    center /= n;
-    int best = 0;
-    double bd = 1e300;
-    for (int i = 0; i < vol.b.size(); ++i) {
-      const double d = (vol.tets.V.row(vol.b(i)) - center).squaredNorm();
-      if (d < bd) bd = d, best = i;
-    }
-    for (int v = 0; v < comp.size(); ++v)
-      if (comp(v) == c) extra_v.push_back(v), extra_w.push_back(vol.bc.row(best));
-    ++attached;
-  }
-  if (!attached) return;
-  // Merge into (b, bc), keeping b sorted.
-  std::vector<std::pair<int, Eigen::RowVectorXd>> all;
-  for (int i = 0; i < vol.b.size(); ++i) all.push_back({vol.b(i), vol.bc.row(i)});
-  for (size_t i = 0; i < extra_v.size(); ++i) all.push_back({extra_v[i], extra_w[i]});
-  std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  vol.b.resize(all.size());
-  vol.bc.resize(all.size(), vol.bc.cols());
-  for (size_t i = 0; i < all.size(); ++i) vol.b(i) = all[i].first, vol.bc.row(i) = all[i].second;
-  vol.notes.push_back(std::to_string(attached) + " of " + std::to_string(nc) +
-                      " separate parts of the volume touch no handle: each follows its nearest handle rigidly");
-}
-
 
 void check_surface(const TriMesh& surface) {
   const int nu = surface.num_vertices();
@@ -217,24 +176,59 @@ std::vector<char> samples_near_surface(const WeldedSurface& ws, const HandlePlc&
   return near;
 }
 
-// Required handle points must be in the volume: a point on (or near) the surface may have lost every
-// incident tet to the threshold (open boundaries, non-manifold seams); give it back its most-inside tet.
+// Handle points (and bone samples) TetGen dropped although they lie within `reach` of the closed surface
+// (issue 19: always accepted) are glued to the volume, one tet each (outside_handles.h). False when one
+// faces no facet (then the robust volume takes over).
+bool glue_near_handles(const WeldedSurface& ws, const HandlePlc& plc, const Eigen::MatrixXd& P, double reach,
+                       RawVolume& raw, std::vector<std::string>& notes) {
+  bool dropped = false;
+  for (size_t s = 0; s < plc.samples.size(); ++s) dropped = dropped || raw.input_to_raw(plc.sample_point[s]) < 0;
+  if (!dropped) return true;  // the usual case: no locator to build
+  const std::vector<char> near = samples_near_surface(ws, plc, reach);
+  std::vector<int> points;  // distinct dropped PLC points near the surface
+  for (size_t s = 0; s < plc.samples.size(); ++s)
+    if (near[s] && raw.input_to_raw(plc.sample_point[s]) < 0) points.push_back(plc.sample_point[s]);
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.empty()) return true;
+  Eigen::MatrixXd X(points.size(), 3);
+  for (size_t i = 0; i < points.size(); ++i) X.row(i) = P.row(points[i]);
+  const std::vector<int> glued =
+      glue_outside_points(ws.V, ws.F, raw.input_to_raw.head(ws.V.rows()), X, reach, raw.mesh);
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (glued[i] < 0) return false;
+    raw.input_to_raw(points[i]) = glued[i];
+  }
+  notes.push_back(std::to_string(points.size()) + " handle points just outside the surface (within 1% of the diagonal): "
+                  "one tet each on the nearest facet");
+  return true;
+}
+
+// Handle points (and bone samples) must be in the volume: a point on (or near) the surface may have lost
+// every incident tet to the threshold (open boundaries, non-manifold seams, a handle just outside); give
+// it back one incident tet.
 // A point farther from the surface gets one only when it is inside by winding number; otherwise it stays
 // out and constrain() refuses it by name. Returns how many tets came back.
 int rescue_handle_tets(const HandlePlc& plc, const TetgenResult& r, const Eigen::VectorXd& w,
                        const std::vector<char>& near, const Eigen::VectorXd& point_w, std::vector<char>& keep) {
   std::vector<std::vector<int>> incident(r.mesh.V.rows());
+  std::vector<char> kept_vertex(r.mesh.V.rows(), 0);
   for (int t = 0; t < r.mesh.T.rows(); ++t)
-    for (int k = 0; k < 4; ++k) incident[r.mesh.T(t, k)].push_back(t);
+    for (int k = 0; k < 4; ++k) incident[r.mesh.T(t, k)].push_back(t), kept_vertex[r.mesh.T(t, k)] |= keep[t];
+  // Among them, the tet with most vertices on the kept volume first (standing on it, not reaching across
+  // the box: a handle just outside would otherwise pull a large tet in), then the most inside.
+  auto on_volume = [&](int t) {
+    return kept_vertex[r.mesh.T(t, 0)] + kept_vertex[r.mesh.T(t, 1)] + kept_vertex[r.mesh.T(t, 2)] + kept_vertex[r.mesh.T(t, 3)];
+  };
   int rescued = 0;
   for (size_t s = 0; s < plc.samples.size(); ++s) {
     const int v = r.input_to_tet(plc.sample_point[s]);
-    if (v < 0 || !plc.samples[s].required) continue;
+    if (v < 0) continue;
     if (!near[s] && !(point_w(s) > 0.5)) continue;
     int best = -1;
     for (int t : incident[v]) {
       if (keep[t]) { best = -2; break; }
-      if (best < 0 || w(t) > w(best)) best = t;
+      if (best < 0 || on_volume(t) > on_volume(best) || (on_volume(t) == on_volume(best) && w(t) > w(best))) best = t;
     }
     if (best >= 0) keep[best] = 1, ++rescued;
   }
@@ -328,6 +322,10 @@ BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const Volum
   }
   RawVolume raw;
   if (!robust) robust = !tetrahedralize_surface(ws, plc, P, opts, raw, vol.notes);
+  if (!robust && !glue_near_handles(ws, plc, P, 0.01 * bbox_diagonal(ws.V), raw, vol.notes)) {
+    robust = true;
+    vol.notes.push_back("a handle just outside the surface faces no facet: robust (winding number) volume");
+  }
   if (robust) raw = robust_volume(ws, rig, plc, P, diag, opts, vol.notes);
 
   // Compact (drop vertices no kept tet uses); order is preserved, so the surface's vertices stay first.
@@ -341,7 +339,7 @@ BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const Volum
 
   // The welded surface vertices are the first PLC points: user_to_welded maps user vertices to PLC points.
   constrain(rig, plc, plc_to_tet, ws.user_to_welded, tol, vol);
-  attach_free_parts(vol);
+  attach_free_pieces(vol);
   vol.meshing_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return vol;
 }
@@ -422,7 +420,7 @@ BindVolume bind_volume_from_tets(const TetMesh& input, const Rig& rig) {
   rows.finish(nh, vol.b, vol.bc);
   vol.to_user.resize(nv, nv);
   vol.to_user.setIdentity();
-  attach_free_parts(vol);
+  attach_free_pieces(vol);
   vol.notes.push_back("tet mesh used as given: " + std::to_string(nv) + " vertices, " + std::to_string(input.num_tets()) + " tets");
   vol.meshing_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return vol;

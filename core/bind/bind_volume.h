@@ -19,6 +19,15 @@ struct VolumeOptions {
   enum class Robust { Auto, Never, Always } robust = Robust::Auto;
 };
 
+// A piece of the volume (connected component of its tets, numbered in order of first vertex) that no
+// handle touches: it moves rigidly, every vertex taking the weights of `anchor` (rigid_pieces.h).
+struct RigidPiece {
+  int piece = -1;
+  int vertices = 0;               // the user's mesh vertices in it
+  int anchor = -1;                // tet vertex of the nearest handled piece
+  std::vector<int> tet_vertices;  // the piece's tet vertices
+};
+
 struct BindVolume {
   TetMesh tets;            // positively oriented tets
   Eigen::VectorXi b;       // constrained tet-vertex indices
@@ -26,6 +35,7 @@ struct BindVolume {
   // Maps weights on tet vertices to the user's mesh vertices (#user V x #tet V). When the user's
   // vertices are the first tet vertices this is [I 0].
   Eigen::SparseMatrix<double> to_user;
+  std::vector<RigidPiece> rigid_pieces;  // pieces without a handle (their rows in b, bc are placeholders)
   std::vector<std::string> notes;  // what happened (e.g. "surface has 12 boundary edges: robust volume")
   double meshing_seconds = 0;
 };
