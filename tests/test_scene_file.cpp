@@ -85,6 +85,7 @@ void fill(Document& d) {
   bs.volume.tetgen_switches = "pq1.2Y";
   bs.volume.robust = VolumeOptions::Robust::Always;
   bs.max_influences = 4;
+  bs.monotone = true;
   d.set_bind_settings(bs);
   Eigen::MatrixXd W = Eigen::MatrixXd::Random(d.surface().num_vertices(), d.num_handles()).cwiseAbs();
   d.set_weights(W, BindStats{2.5, 100, 300, {"robust volume", "ok"}});
@@ -380,6 +381,18 @@ TEST_CASE("a mesh key round-trips; version 1 files (pose keys only) still load")
   f.load_scene(old_path);
   require_equal(d.data(), f.data());
   CHECK_FALSE(f.has_mesh_keys());
+
+  // Scenes from before monotone weights (no bind_settings.monotone) bind without them.
+  REQUIRE(d.bind_settings().monotone);
+  o["bind_settings"].erase("monotone");
+  spit(old_path, o.dump(1));
+  Document g;
+  g.load_scene(old_path);
+  CHECK_FALSE(g.bind_settings().monotone);
+  o["bind_settings"]["monotone"] = "yes";
+  spit(old_path, o.dump(1));
+  Document h;
+  CHECK_THROWS_WITH(h.load_scene(old_path), Catch::Contains("bind_settings.monotone"));
 }
 
 TEST_CASE("a missing scene file is an error naming it") {

@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "core/mesh/io.h"
+#include "core/scene/bind_document.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
 
@@ -130,6 +131,19 @@ TEST_CASE("script commands edit the document like the UI") {
             Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()))) < 1e-12);
   CHECK(d.pose_params().point_translation[0].isZero());  // reset-pose
   CHECK(d.time() == 2);
+}
+
+TEST_CASE("bind-monotone sets the bind setting, one undo step; bind_options carries it") {
+  Document d;
+  d.set_surface(tetra(), "tetra");
+  run_script(d, parse_script("bind-monotone on\n", "m.txt"), "m.txt", ScriptHost{});
+  CHECK(d.bind_settings().monotone);
+  CHECK(bind_options(d).bbw.monotone);
+  run_script(d, parse_script("undo\n", "m.txt"), "m.txt", ScriptHost{});
+  CHECK(!d.bind_settings().monotone);
+  CHECK(!bind_options(d).bbw.monotone);
+  CHECK_THROWS_WITH(run_script(d, parse_script("bind-monotone yes\n", "m.txt"), "m.txt", ScriptHost{}),
+                    Catch::Contains("expected on or off"));
 }
 
 TEST_CASE("script run errors name the script line and the command") {

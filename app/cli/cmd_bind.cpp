@@ -1,9 +1,12 @@
 // `deform bind`: bounded biharmonic weights of a surface or tet mesh for its handles.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
 #include "app/cli/command.h"
 #include "core/bind/bind.h"
+#include "core/bind/bind_extrema.h"
+#include "core/mesh/mesh_info.h"
 #include "core/mesh/io.h"
 #include "core/rig/rig_io.h"
 #include "core/util/error.h"
@@ -12,7 +15,7 @@ namespace {
 
 const char* kUsage =
     "usage: deform bind INPUT [--skeleton S.tgf] [--points P.txt] [--cage C.obj ...] [--tetgen SWITCHES]\n"
-    "                   [--exact-pou] [--threads N] -o W.dmat [--tets OUT.mesh]\n"
+    "                   [--exact-pou | --monotone] [--threads N] -o W.dmat [--tets OUT.mesh]\n"
     "  INPUT              surface (.obj .off .ply .stl: tetrahedralized with TetGen) or tet mesh\n"
     "                     (.mesh .node/.ele: used as it is; it must contain every handle's geometry)\n"
     "  --skeleton S.tgf   bones (TGF edge order) and point handles (joints on no bone)\n"
@@ -20,6 +23,7 @@ const char* kUsage =
     "  --cage C.obj ...   cages (closed, open or partial); each cage vertex is a handle\n"
     "  --tetgen SWITCHES  TetGen switches (default pq1.414Y)\n"
     "  --exact-pou        enforce the partition of unity inside the optimization (all handles jointly)\n"
+    "  --monotone         no local maxima or minima away from the handles (Jacobson 2013, ch. 5)\n"
     "  -o W.dmat          #input vertices x #handles; columns: points (P.txt, then TGF joints on no bone),\n"
     "                     bones, cage vertices\n"
     "  --tets OUT.mesh    also save the tet mesh the weights were solved on";
@@ -28,7 +32,7 @@ int run(const dfm::cli::Args& args) {
   using dfm::cli::UsageError;
   std::string input, skeleton, points, tetgen, out, tets_out;
   std::vector<std::string> cages;
-  bool exact = false;
+  bool exact = false, monotone = false;
   int threads = 2;
   dfm::cli::ArgReader r(args);
   while (!r.done()) {
@@ -41,6 +45,7 @@ int run(const dfm::cli::Args& args) {
       if (cages.empty()) throw UsageError("--cage needs a file");
     } else if (a == "--tetgen") tetgen = r.value(a);
     else if (a == "--exact-pou") exact = true;
+    else if (a == "--monotone") monotone = true;
     else if (a == "--threads") threads = r.integer(a);
     else if (a == "-o" || a == "--output") out = r.value(a);
     else if (a == "--tets") tets_out = r.value(a);
@@ -51,6 +56,7 @@ int run(const dfm::cli::Args& args) {
   if (input.empty()) throw UsageError("no input mesh");
   if (out.empty()) throw UsageError("no output: give -o W.dmat");
   if (threads < 1) throw UsageError("--threads must be >= 1");
+  if (exact && monotone) throw UsageError("--monotone and --exact-pou do not combine (monotone weights are solved per handle)");
 
   dfm::Rig rig;
   if (!points.empty()) dfm::add_points_file_to_rig(rig, points);
@@ -65,6 +71,7 @@ int run(const dfm::cli::Args& args) {
 
   dfm::BindOptions opts;
   opts.bbw.exact_partition_of_unity = exact;
+  opts.bbw.monotone = monotone;
   opts.bbw.threads = threads;
   if (!tetgen.empty()) opts.volume.tetgen_switches = tetgen;
   const bool tet_input = dfm::is_tet_mesh_path(input);
@@ -87,6 +94,17 @@ int run(const dfm::cli::Args& args) {
   std::printf("solver: %s, %d free-set solves (worst handle %d, fallback %d), KKT residual %.3g (weight units)\n",
               exact ? "exact partition of unity" : "per handle + row normalization", rep.bbw.iterations_total,
               rep.bbw.iterations_max, rep.bbw.fallback_iterations, rep.bbw.kkt_residual);
+  if (rep.bbw.monotone)
+    std::printf("monotone: %.3f s (%.3f s per handle; representative functions %.3f s), %d reduced solves (worst handle %d), "
+                "%s (released multiplier %.3g), %d vertex sides bounded by the box\n",
+                rep.bbw.monotone_seconds, rep.bbw.monotone_seconds / std::max(1, rep.handles),
+                rep.bbw.monotone_representative_seconds, rep.bbw.monotone_iterations_total,
+                rep.bbw.monotone_iterations_max, rep.bbw.monotone_optimal ? "optimal" : "feasible, not optimal",
+                rep.bbw.monotone_dual_residual, rep.bbw.monotone_sides_without_neighbour);
+  const dfm::BindExtrema ext =
+      dfm::bind_local_extrema(res, tet_input ? dfm::tet_boundary_faces(tets.T) : surface.F);
+  std::printf("local extrema away from the handles: tet graph %d maxima, %d minima; surface %d maxima, %d minima\n",
+              ext.tet.maxima, ext.tet.minima, ext.surface.maxima, ext.surface.minima);
   std::printf("weights: min %.6g, max %.6g, max |row sum - 1| %.3g, exact zeros %.1f%%\n", rep.min_weight,
               rep.max_weight, rep.max_row_sum_error, 100.0 * rep.zero_fraction);
   dfm::write_dmat(out, res.weights);

@@ -341,6 +341,14 @@ void Editor::draw_bind_section() {
     if (ImGui::Button(bind_.cancel_requested() ? "Cancelling..." : "Cancel", ImVec2(-1, 0))) bind_.cancel();
     return;
   }
+  bool monotone = doc_.bind_settings().monotone;
+  if (ImGui::Checkbox("Monotone weights", &monotone)) {
+    BindSettings b = doc_.bind_settings();
+    b.monotone = monotone;
+    doc_.set_bind_settings(b);  // one undo step; takes effect at the next bind
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("No local maxima or minima away from the handles (Jacobson 2013, ch. 5); slower bind");
   const bool can = doc_.surface().num_vertices() > 0 && doc_.num_handles() > 0;
   if (!can) ImGui::BeginDisabled();
   if (ImGui::Button(doc_.has_weights() ? "Rebind" : "Bind", ImVec2(-1, 28))) start_bind();

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/bind/bbw_exact.h"
+#include "core/bind/bbw_monotone.h"
 #include "core/bind/bbw_schedule.h"
 #include "core/bind/bbw_system.h"
 #include "core/bind/cholmod_memory.h"
@@ -93,6 +94,8 @@ int normalize_rows(Eigen::MatrixXd& W, const Eigen::VectorXi& vertex, const Eige
 Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
                               const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
   validate(V, b, bc);
+  if (opts.monotone && opts.exact_partition_of_unity)
+    throw Error("bind: monotone weights are solved per handle; they do not combine with the exact partition of unity");
   const CholmodBlockCacheScope release_cache;
   auto progress = [&](const char* stage, double f) {
     if (opts.qp.cancel && opts.qp.cancel->load()) throw Error("cancelled");
@@ -100,7 +103,13 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
   };
   const bool multilevel = !opts.exact_partition_of_unity && opts.multilevel_min_vertices > 0 &&
                           V.rows() >= opts.multilevel_min_vertices;
-  BoundedSolves bounded(V, T, b, bc, opts, multilevel);  // a coarse level starts now, on its own thread
+  // With monotone weights the bounded solves take the progress to 0.65 and the monotone ones the rest.
+  BbwOptions bounded_opts = opts;
+  if (opts.monotone && opts.progress)
+    bounded_opts.progress = [&opts](const std::string& s, double f) {
+      opts.progress(s, f <= 0.3 ? f : 0.3 + 0.35 * (f - 0.3) / 0.7);
+    };
+  BoundedSolves bounded(V, T, b, bc, bounded_opts, multilevel);  // a coarse level starts now, on its own thread
   BbwStats stats;
 
   progress("assembly", 0.0);
@@ -130,10 +139,11 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
   } else {
     X = bounded.run(sys, std::move(X0), start, stats);
   }
-  stats.solve_seconds = seconds_since(t0);
   if (!stats.converged)
     throw Error("bind: the weight solver did not converge (relative KKT residual " +
                 std::to_string(stats.kkt_residual) + ")");
+  if (opts.monotone) solve_monotone(V, T, b, bc, sys, opts, X, stats);
+  stats.solve_seconds = seconds_since(t0);
 
   Eigen::MatrixXd W(V.rows(), bc.cols());
   for (int k = 0; k < sys.vertex.size(); ++k) W.row(sys.vertex(k)) = X.row(k);

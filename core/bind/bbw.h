@@ -30,6 +30,9 @@ struct BbwOptions {
   // throws dfm::Error("cancelled") when set; the sweeps of each bounded solve.
   BoxQPOptions qp = bbw_qp_defaults();
   bool exact_partition_of_unity = false;
+  // Ch. 5: no local extrema away from the handles (bbw_monotone.h); default mode only (not with
+  // exact_partition_of_unity).
+  bool monotone = false;
   bool normalize_rows = true;  // default mode; false returns each handle's own minimizer (analysis, tests)
   // Per-tet rho >= 0, or empty. Scaled so that rho = 1 weighs like the biharmonic term (the mask term is
   // multiplied by mean diag(Q) / mean diag(K), making rho unitless); painted regions use rho >> 1.
@@ -66,6 +69,15 @@ struct BbwStats {
   int multilevel_handles = 0;           // how many
   double multilevel_seconds = 0;        // building and solving the coarse level (on its own thread,
                                         // alongside assembly and ordering)
+  // Monotone weights (opts.monotone): seconds in all (within solve_seconds), of which the representative
+  // functions; reduced solves; the worst released multiplier (weight units); every handle optimal;
+  // vertex sides where u had no strictly lower/higher neighbour (the box held there instead).
+  bool monotone = false;
+  double monotone_seconds = 0, monotone_representative_seconds = 0;
+  int monotone_iterations_total = 0, monotone_iterations_max = 0;
+  double monotone_dual_residual = 0;
+  bool monotone_optimal = false;
+  int monotone_sides_without_neighbour = 0;
 };
 
 // V, T: positively oriented tets. b: constrained vertex indices (distinct). bc: #b x #handles.

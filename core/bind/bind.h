@@ -24,7 +24,7 @@ struct BindOptions {
   // empty: mapped onto the volume once it is built (tet_mask_from_user_vertices).
   Eigen::VectorXd vertex_mask;
   // (stage, fraction of the whole bind in [0, 1]); stages: "meshing", "assembly", "factorization",
-  // "solve", "mapping", "done". May be empty.
+  // "solve", "monotone" (BbwOptions::monotone), "mapping", "done". May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
   const std::atomic<bool>* cancel = nullptr;  // throws dfm::Error("cancelled") soon after it is set
 };

@@ -7,6 +7,7 @@ namespace dfm {
 BindOptions bind_options(const Document& doc) {
   BindOptions o;
   o.volume = doc.bind_settings().volume;
+  o.bbw.monotone = doc.bind_settings().monotone;
   const Eigen::VectorXd& mask = doc.mask();
   if (mask.size() != doc.surface().num_vertices() || mask.size() == 0 || mask.maxCoeff() <= 0) return o;
   // The bind maps a per-user-vertex mask onto its volume (tet_mask_from_user_vertices). A tet input's

@@ -15,7 +15,7 @@ bool Camera::operator==(const Camera& o) const {
 }
 bool BindSettings::operator==(const BindSettings& o) const {
   return volume.tetgen_switches == o.volume.tetgen_switches && volume.robust == o.volume.robust &&
-         max_influences == o.max_influences;
+         max_influences == o.max_influences && monotone == o.monotone;
 }
 bool BindStats::operator==(const BindStats& o) const {
   return seconds == o.seconds && tet_vertices == o.tet_vertices && tets == o.tets && notes == o.notes;

@@ -47,6 +47,7 @@ struct Camera {
 struct BindSettings {
   VolumeOptions volume;
   int max_influences = 0;  // 0 = keep all; else keep the k largest weights per vertex (skin pruning)
+  bool monotone = false;   // monotone weights: no local extrema away from the handles (BbwOptions::monotone)
   bool operator==(const BindSettings& o) const;
 };
 

@@ -292,6 +292,8 @@ void read_bind_settings(const SceneReader& R, const json& j, BindSettings& out) 
   else R.fail("'bind_settings.robust' must be auto, never or always");
   out.max_influences =
       static_cast<int>(R.integer(R.field(bs, "max_influences", "bind_settings"), "bind_settings.max_influences", 0, 1 << 20));
+  // Optional: scenes from before monotone weights bind without them.
+  out.monotone = bs.contains("monotone") && R.boolean(bs["monotone"], "bind_settings.monotone");
 }
 
 // The bind's weights (empty, or #surface vertices x #handles) and statistics.
@@ -396,7 +398,8 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   }
   j["bind_settings"] = {{"tetgen_switches", s.bind_settings.volume.tetgen_switches},
                         {"robust", robust_name(s.bind_settings.volume.robust)},
-                        {"max_influences", s.bind_settings.max_influences}};
+                        {"max_influences", s.bind_settings.max_influences},
+                        {"monotone", s.bind_settings.monotone}};
   j["weights"] = blob.add(s.weights);
   j["bind_stats"] = {{"seconds", s.bind_stats.seconds},
                      {"tet_vertices", s.bind_stats.tet_vertices},

@@ -49,6 +49,7 @@ const std::map<std::string, Spec>& specs() {
       {"drag", {4, 4, -1, "drag HANDLE DX DY DZ"}},
       {"handle-state", {2, 2, 0, "handle-state HANDLE pinned|position|free"}},
       {"fast", {1, 2, 0, "fast on|off [ITERATIONS]"}},
+      {"bind-monotone", {1, 1, 0, "bind-monotone on|off"}},
       {"ik-chain", {1, 1, -1, "ik-chain BONE_HANDLE"}},
       {"set-method", {1, 1, 0, "set-method lbs|dqs|stbs"}},
       {"set-key", {0, 1, -1, "set-key [TIME]"}},
@@ -293,6 +294,12 @@ bool run_pose_command(Document& doc, const ScriptLine& l) {
     p.fast = true;
     p.states = ik_chain_states(doc.rig(), doc.handle_states(), integer_arg(l, 1));
     doc.set_posing(p);
+  } else if (cmd == "bind-monotone") {
+    if (l.words[1] != "on" && l.words[1] != "off")
+      throw Error("bind-monotone: expected on or off, got '" + l.words[1] + "'");
+    BindSettings b = doc.bind_settings();
+    b.monotone = l.words[1] == "on";
+    doc.set_bind_settings(b);
   } else if (cmd == "fast") {
     if (l.words[1] != "on" && l.words[1] != "off") throw Error("fast: expected on or off, got '" + l.words[1] + "'");
     PosingSettings p = doc.posing();
