@@ -8,8 +8,10 @@
 // equal; they are merged into one unknown (fixed when the group reaches a fixed value), and the reduced
 // system P^T H P is solved exactly (CHOLMOD). The multipliers of the active constraints follow from the
 // gradient on a spanning tree of each group (flows from its leaves); negative ones are released, violated
-// constraints added. On a repeated active set it only adds (the active set grows, so it ends), which
-// keeps the answer feasible: every constraint holds exactly at return, optimal or not.
+// constraints added. After max_iterations such steps, or on a repeated active set, it only adds (the
+// active set grows, so it ends): every constraint holds exactly at return, optimal or not. On the hand and
+// the arm the objective has settled to 1e-8 relative well within 10 steps while the active set still
+// churns on multipliers of ~1e-4 weight units, hence the small default cap.
 #include <atomic>
 #include <vector>
 
