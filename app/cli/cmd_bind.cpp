@@ -15,13 +15,15 @@ namespace {
 
 const char* kUsage =
     "usage: deform bind INPUT [--skeleton S.tgf] [--points P.txt] [--cage C.obj ...] [--tetgen SWITCHES]\n"
-    "                   [--exact-pou | --monotone] [--threads N] -o W.dmat [--tets OUT.mesh]\n"
+    "                   [--segmentation cut|threshold] [--exact-pou | --monotone] [--threads N] -o W.dmat [--tets OUT.mesh]\n"
     "  INPUT              surface (.obj .off .ply .stl: tetrahedralized with TetGen) or tet mesh\n"
     "                     (.mesh .node/.ele: used as it is; it must contain every handle's geometry)\n"
     "  --skeleton S.tgf   bones (TGF edge order) and point handles (joints on no bone)\n"
     "  --points P.txt     point handles, one 'x y z' a line\n"
     "  --cage C.obj ...   cages (closed, open or partial); each cage vertex is a handle\n"
     "  --tetgen SWITCHES  TetGen switches (default pq1.414Y)\n"
+    "  --segmentation M   robust volume (open or messy surfaces): 'cut' (default) keeps the tets a graph cut\n"
+    "                     of the winding numbers chooses, 'threshold' those with winding number > 0.5\n"
     "  --exact-pou        enforce the partition of unity inside the optimization (all handles jointly)\n"
     "  --monotone         no local maxima or minima away from the handles (Jacobson 2013, ch. 5)\n"
     "  -o W.dmat          #input vertices x #handles; columns: points (P.txt, then TGF joints on no bone),\n"
@@ -30,7 +32,7 @@ const char* kUsage =
 
 int run(const dfm::cli::Args& args) {
   using dfm::cli::UsageError;
-  std::string input, skeleton, points, tetgen, out, tets_out;
+  std::string input, skeleton, points, tetgen, segmentation, out, tets_out;
   std::vector<std::string> cages;
   bool exact = false, monotone = false;
   int threads = 2;
@@ -44,6 +46,7 @@ int run(const dfm::cli::Args& args) {
       while (!r.done() && !r.peek().empty() && r.peek()[0] != '-') cages.push_back(r.next());
       if (cages.empty()) throw UsageError("--cage needs a file");
     } else if (a == "--tetgen") tetgen = r.value(a);
+    else if (a == "--segmentation") segmentation = r.value(a);
     else if (a == "--exact-pou") exact = true;
     else if (a == "--monotone") monotone = true;
     else if (a == "--threads") threads = r.integer(a);
@@ -57,6 +60,8 @@ int run(const dfm::cli::Args& args) {
   if (out.empty()) throw UsageError("no output: give -o W.dmat");
   if (threads < 1) throw UsageError("--threads must be >= 1");
   if (exact && monotone) throw UsageError("--monotone and --exact-pou do not combine (monotone weights are solved per handle)");
+  if (!segmentation.empty() && segmentation != "cut" && segmentation != "threshold")
+    throw UsageError("--segmentation must be cut or threshold, not " + segmentation);
 
   dfm::Rig rig;
   if (!points.empty()) dfm::add_points_file_to_rig(rig, points);
@@ -74,6 +79,7 @@ int run(const dfm::cli::Args& args) {
   opts.bbw.monotone = monotone;
   opts.bbw.threads = threads;
   if (!tetgen.empty()) opts.volume.tetgen_switches = tetgen;
+  if (segmentation == "threshold") opts.volume.segmentation = dfm::VolumeOptions::Segmentation::Threshold;
   const bool tet_input = dfm::is_tet_mesh_path(input);
   dfm::TriMesh surface;
   dfm::TetMesh tets;

@@ -7,10 +7,12 @@
 #include <memory>
 
 #include "core/bind/closest_surface_point.h"
+#include "core/bind/fem.h"
 #include "core/bind/handle_geometry.h"
 #include "core/bind/outside_handles.h"
 #include "core/bind/rigid_pieces.h"
 #include "core/bind/robust_volume.h"
+#include "core/bind/tet_face_adjacency.h"
 #include "core/bind/tetrahedralize.h"
 #include "core/bind/winding_bvh.h"
 #include "core/util/error.h"
@@ -235,8 +237,23 @@ int rescue_handle_tets(const HandlePlc& plc, const TetgenResult& r, const Eigen:
   return rescued;
 }
 
+// Which tets of the padded box's tetrahedralization are inside (Jacobson 2013, 8.5.1): the graph cut
+// over shared faces (data weighted by tet volume), the surface's and the cages' facets marked where
+// they are tet faces; or Eq. 8.7.
+std::vector<char> segment_tets(const WeldedSurface& ws, const HandlePlc& plc, const TetgenResult& r,
+                               const Eigen::VectorXd& w, const VolumeOptions& opts) {
+  if (opts.segmentation == VolumeOptions::Segmentation::Threshold) return threshold_segmentation(w);
+  const TetFaceAdjacency adj = tet_face_adjacency(r.mesh);
+  // The welded surface's vertices are the first PLC points, so ws.F and cage_F index PLC points.
+  Eigen::MatrixXi facets(ws.F.rows() + plc.cage_F.rows(), 3);
+  facets << ws.F, plc.cage_F;
+  for (int f = 0; f < facets.rows(); ++f)
+    for (int k = 0; k < 3; ++k) facets(f, k) = r.input_to_tet(facets(f, k));
+  return graph_cut_segmentation(w, tet_volumes(r.mesh.V, r.mesh.T).cwiseAbs(), adj.tets, adj.area, shared_faces_on_surface(adj, facets), opts.cut);
+}
+
 // The robust volume (Jacobson 2013, section 8.3): a Delaunay tetrahedralization of the points in a
-// padded box, carved to the tets whose winding number is above 1/2 (or inside a closed cage).
+// padded box, carved to the tets inside by winding number (or inside a closed cage): graph cut or threshold.
 RawVolume robust_volume(const WeldedSurface& ws, const Rig& rig, const HandlePlc& plc, const Eigen::MatrixXd& P,
                         double diag, const VolumeOptions& opts, std::vector<std::string>& notes) {
   std::string sw = opts.tetgen_switches;
@@ -244,8 +261,10 @@ RawVolume robust_volume(const WeldedSurface& ws, const Rig& rig, const HandlePlc
   TetgenResult r = tetrahedralize(padded_box_plc(P, diag, plc), sw);
   const auto tw = Clock::now();
   const Eigen::VectorXd w = insideness_at(ws, rig, tet_centroids(r.mesh));
-  std::vector<char> keep(r.mesh.T.rows(), 0);
-  for (int t = 0; t < r.mesh.T.rows(); ++t) keep[t] = w(t) > 0.5;
+  const double w_seconds = std::chrono::duration<double>(Clock::now() - tw).count();
+  const auto tc = Clock::now();
+  std::vector<char> keep = segment_tets(ws, plc, r, w, opts);
+  const double cut_seconds = std::chrono::duration<double>(Clock::now() - tc).count();
   Eigen::MatrixXd S(plc.samples.size(), 3);
   for (size_t i = 0; i < plc.samples.size(); ++i) S.row(i) = plc.samples[i].x.transpose();
   const Eigen::VectorXd point_w = insideness_at(ws, rig, S);
@@ -258,10 +277,11 @@ RawVolume robust_volume(const WeldedSurface& ws, const Rig& rig, const HandlePlc
   for (int t = 0, j = 0; t < r.mesh.T.rows(); ++t)
     if (keep[t]) raw.mesh.T.row(j++) = r.mesh.T.row(t);
   raw.input_to_raw = r.input_to_tet.head(P.rows());
+  const bool cut = opts.segmentation == VolumeOptions::Segmentation::Cut;
   notes.push_back("robust volume: TetGen -" + sw + " on " + std::to_string(P.rows()) + " points + box: " +
-                  std::to_string(r.mesh.T.rows()) + " tets in " + std::to_string(r.seconds) + " s; kept " +
-                  std::to_string(nk) + " with winding number > 0.5 (" +
-                  std::to_string(std::chrono::duration<double>(Clock::now() - tw).count()) + " s)" +
+                  std::to_string(r.mesh.T.rows()) + " tets in " + std::to_string(r.seconds) + " s; winding numbers in " +
+                  std::to_string(w_seconds) + " s; kept " + std::to_string(nk) +
+                  (cut ? " by graph cut (" : " with winding number > 0.5 (") + std::to_string(cut_seconds) + " s)" +
                   (rescued ? "; " + std::to_string(rescued) + " handle tets added back" : ""));
   if (nk == 0) throw Error("bind: the surface encloses no volume (every winding number <= 0.5)");
   return raw;

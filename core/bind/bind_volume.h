@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 
+#include "core/bind/graph_cut_segmentation.h"
 #include "core/mesh/mesh.h"
 #include "core/rig/rig.h"
 
@@ -17,6 +18,10 @@ struct VolumeOptions {
   // Robust (generalized winding number) volume: Auto = when the surface is not closed/manifold/clean
   // or TetGen fails on it.
   enum class Robust { Auto, Never, Always } robust = Robust::Auto;
+  // Which tets the robust volume keeps: Cut minimizes Jacobson 2013's energy (8.5.1) with a graph cut,
+  // Threshold keeps those with winding number > 1/2 (Eq. 8.7).
+  enum class Segmentation { Cut, Threshold } segmentation = Segmentation::Cut;
+  GraphCutOptions cut;
 };
 
 // A piece of the volume (connected component of its tets, numbered in order of first vertex) that no
