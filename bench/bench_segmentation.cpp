@@ -4,7 +4,7 @@
 // messy copy (random patches punched out, flipped, duplicated) and counts tets each method labels
 // differently from the closed mesh's own winding number, for several (gamma, sigma, surface factor).
 // The defaults are GraphCutOptions{} (core/bind/graph_cut_segmentation.h).
-//   bench_segmentation [mesh ...]
+//   bench_segmentation [--constrained] [mesh ...]
 #include <chrono>
 #include <cstdio>
 #include <random>
@@ -34,7 +34,8 @@ struct Volume {
   double adj_s = 0;
 };
 
-Volume tetrahedralize_box(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+// constrained: the surface's facets are TetGen constraints too (section 8.5's CDT), else points only.
+Volume tetrahedralize_box(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bool constrained) {
   const Eigen::RowVector3d lo = V.colwise().minCoeff(), hi = V.colwise().maxCoeff();
   const double pad = 0.05 * (hi - lo).norm();
   dfm::Plc plc;
@@ -45,9 +46,10 @@ Volume tetrahedralize_box(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
     for (int k = 0; k < 3; ++k) plc.V(o + c, k) = ((c >> k) & 1) ? hi(k) + pad : lo(k) - pad;
   static const int box[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                                  {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  plc.F.resize(12, 3);
+  plc.F.resize(12 + (constrained ? F.rows() : 0), 3);
   for (int f = 0; f < 12; ++f)
     for (int k = 0; k < 3; ++k) plc.F(f, k) = o + box[f][k];
+  if (constrained) plc.F.bottomRows(F.rows()) = F;
   Volume v;
   v.r = dfm::tetrahedralize(plc, "pq1.414Y");
   v.C = dfm::tet_centroids(v.r.mesh);
@@ -105,13 +107,19 @@ int disagree(const std::vector<char>& x, const Eigen::VectorXd& ref) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> paths;
-  for (int i = 1; i < argc; ++i) paths.push_back(argv[i]);
+  bool constrained = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--constrained") constrained = true;
+    else paths.push_back(argv[i]);
+  }
   if (paths.empty())
     for (const char* n : {"beetle.off", "camelhead.off", "decimated-knight.off", "cow.off"}) paths.push_back(std::string(DFM_DATA_DIR) + "/" + n);
   for (const std::string& path : paths) {
     const dfm::TriMesh raw = dfm::read_surface(path);
     const dfm::WeldedSurface ws = dfm::weld_surface(raw.V, raw.F);
-    Volume v = tetrahedralize_box(ws.V, ws.F);
+    Volume v = tetrahedralize_box(ws.V, ws.F, constrained);
+    int on_count = 0;
+    for (char c : v.on) on_count += c;
     const Eigen::VectorXd& VW = v.vol;
     const int nt = static_cast<int>(v.r.mesh.T.rows());
     auto t = Clock::now();
@@ -125,10 +133,23 @@ int main(int argc, char** argv) {
     const double cut_s = since(t);
     int kt = 0, kc = 0, diff = 0;
     for (int i = 0; i < nt; ++i) kt += th[i], kc += cut[i], diff += th[i] != cut[i];
-    std::printf("%s: %d faces (%s)\n  %d tets (TetGen %.3f s), winding numbers %.3f s, adjacency+facets %.3f s\n",
-                path.c_str(), static_cast<int>(ws.F.rows()), ws.report.describe().c_str(), nt, v.r.seconds, w_s, v.adj_s);
+    std::printf("%s: %d faces (%s)\n  %d tets (TetGen %.3f s%s), winding numbers %.3f s, adjacency+facets %.3f s; "
+                "%d input facets are shared tet faces\n",
+                path.c_str(), static_cast<int>(ws.F.rows()), ws.report.describe().c_str(), nt, v.r.seconds,
+                constrained ? ", facets constrained" : "", w_s, v.adj_s, on_count);
     std::printf("  threshold: %.4f s, kept %d tets, volume %.6g\n  cut:       %.3f s, kept %d tets, volume %.6g; %d tets labelled differently\n",
                 th_s, kt, kept_volume(v.vol, th), cut_s, kc, kept_volume(v.vol, cut), diff);
+    // Where the two disagree: winding numbers of the tets the cut relabels, by bin.
+    const double edges[] = {-1e300, 0.25, 0.45, 0.55, 0.75, 1e300};
+    std::printf("  relabelled tets by winding number (count, volume):");
+    for (int b = 0; b < 5; ++b) {
+      int n = 0;
+      double vol = 0;
+      for (int i = 0; i < nt; ++i)
+        if (th[i] != cut[i] && w(i) >= edges[b] && w(i) < edges[b + 1]) ++n, vol += v.vol(i);
+      std::printf(" [%.2f,%.2f) %d %.3g;", std::max(edges[b], -9.0), std::min(edges[b + 1], 9.0), n, vol);
+    }
+    std::printf("\n");
     std::printf("  divergence-theorem volume of the surface (exact only when closed): %.6g\n", dfm::signed_volume(ws.V, ws.F));
     for (double g : {0.5, 1.0, 4.0}) {
       const std::vector<char> x = dfm::graph_cut_segmentation(w, VW, v.adj.tets, v.adj.area, v.on, dfm::GraphCutOptions{g, 0.4, 0});

@@ -391,6 +391,8 @@ TEST_CASE("deform rejects hostile flags and files with exit 1 or 2 and a message
       {{"bind", knight, "--points", P, "-o", s / "o.dmat", "--threads", "99999999999"}, "--threads"},
       {{"bind", knight, "--points", P, "-o", s / "o.dmat", "--threads"}, "--threads"},
       {{"bind", knight, "--points", P, "-o", s / "o.dmat", "--tetgen", "pq1.4a-1"}, "pq1.4a-1"},
+      {{"bind", knight, "--points", P, "-o", s / "o.dmat", "--segmentation", "magic"}, "--segmentation"},
+      {{"bind", knight, "--points", P, "-o", s / "o.dmat", "--segmentation"}, "--segmentation"},
       {{"bind", knight, "-o", s / "o.dmat"}, "handles"},
       {{"bind", knight, knight, "--points", P, "-o", s / "o.dmat"}, "more than one"},
       {{"bind", s / "nosuch.off", "--points", P, "-o", s / "o.dmat"}, "nosuch.off"},
