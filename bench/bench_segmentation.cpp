@@ -19,6 +19,7 @@
 #include "core/bind/winding_bvh.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
+#include "core/util/error.h"
 
 using Clock = std::chrono::steady_clock;
 static double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -32,6 +33,7 @@ struct Volume {
   Eigen::VectorXd vol;
   std::vector<char> on;
   double adj_s = 0;
+  bool constrained = false;  // TetGen accepted the surface's facets
 };
 
 // constrained: the surface's facets are TetGen constraints too (section 8.5's CDT), else points only.
@@ -51,7 +53,18 @@ Volume tetrahedralize_box(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, bo
     for (int k = 0; k < 3; ++k) plc.F(f, k) = o + box[f][k];
   if (constrained) plc.F.bottomRows(F.rows()) = F;
   Volume v;
-  v.r = dfm::tetrahedralize(plc, "pq1.414Y");
+  if (constrained) {
+    const auto t = Clock::now();
+    try {
+      v.r = dfm::tetrahedralize(plc, "pq1.414Y");
+    } catch (const dfm::Error& e) {
+      std::printf("  TetGen refused the facets after %.3f s (%.120s...): points only\n", since(t), e.what());
+      plc.F.conservativeResize(12, 3);
+      constrained = false;
+    }
+  }
+  if (!constrained) v.r = dfm::tetrahedralize(plc, "pq1.414Y");
+  v.constrained = constrained;
   v.C = dfm::tet_centroids(v.r.mesh);
   v.vol = dfm::tet_volumes(v.r.mesh.V, v.r.mesh.T).cwiseAbs();
   const auto t = Clock::now();
@@ -136,7 +149,7 @@ int main(int argc, char** argv) {
     std::printf("%s: %d faces (%s)\n  %d tets (TetGen %.3f s%s), winding numbers %.3f s, adjacency+facets %.3f s; "
                 "%d input facets are shared tet faces\n",
                 path.c_str(), static_cast<int>(ws.F.rows()), ws.report.describe().c_str(), nt, v.r.seconds,
-                constrained ? ", facets constrained" : "", w_s, v.adj_s, on_count);
+                v.constrained ? ", facets constrained" : "", w_s, v.adj_s, on_count);
     std::printf("  threshold: %.4f s, kept %d tets, volume %.6g\n  cut:       %.3f s, kept %d tets, volume %.6g; %d tets labelled differently\n",
                 th_s, kt, kept_volume(v.vol, th), cut_s, kc, kept_volume(v.vol, cut), diff);
     // Where the two disagree: winding numbers of the tets the cut relabels, by bin.

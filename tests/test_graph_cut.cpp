@@ -20,6 +20,7 @@
 #include "core/bind/winding_bvh.h"
 #include "core/mesh/mesh_info.h"
 #include "core/util/error.h"
+#include "tests/volume_test_meshes.h"
 #include "tests/voxel_test_meshes.h"
 
 using namespace dfm;
@@ -278,8 +279,31 @@ TEST_CASE("the robust bind volume segments by graph cut unless told to threshold
     INFO(notes);
     const bool cut = seg == VolumeOptions::Segmentation::Cut;
     REQUIRE(notes.find(cut ? "by graph cut" : "with winding number > 0.5") != std::string::npos);
+    // No self-intersections once the duplicated triangles are dropped: TetGen accepts the facets (8.5).
+    REQUIRE(notes.find("the surface's facets are constrained") != std::string::npos);
     error[cut ? 0 : 1] = std::abs(tet_volumes(v.tets.V, v.tets.T).sum() - static_cast<double>(s.shape.voxels.size()));
   }
   std::printf("bind volume: |volume - exact| cut %.3f, threshold %.3f\n", error[0], error[1]);
   CHECK(error[0] < error[1]);
+}
+
+TEST_CASE("robust volume: self-intersecting facets fall back to the points alone", "[graphcut][volume]") {
+  // Two overlapping closed spheres as one soup: their facets intersect, TetGen refuses them as constraints.
+  const TriMesh a = dfm::test::icosphere({0, 0, 0}, 1, 2), b = dfm::test::icosphere({1, 0, 0}, 1, 2);
+  const TriMesh both = dfm::test::concat(a, b);
+  Rig rig;
+  rig.points.push_back({Eigen::Vector3d(-0.5, 0, 0), "a"});
+  rig.points.push_back({Eigen::Vector3d(1.5, 0, 0), "b"});
+  VolumeOptions opts;
+  opts.robust = VolumeOptions::Robust::Always;
+  const BindVolume v = build_bind_volume(both, rig, opts);
+  std::string notes;
+  for (const std::string& n : v.notes) notes += n + "\n";
+  INFO(notes);
+  REQUIRE(notes.find("TetGen refused the surface's facets") != std::string::npos);
+  // The union (winding number 2 in the overlap is inside): two balls minus the lens pi (4r + d)(2r - d)^2 / 12,
+  // scaled by how much of the ball the icosphere encloses.
+  const double ball = 4 * M_PI / 3, lens = M_PI * 5 / 12;
+  const double union_volume = (2 * ball - lens) * dfm::test::enclosed_volume(a.V, a.F) / ball;
+  REQUIRE(tet_volumes(v.tets.V, v.tets.T).sum() == Approx(union_volume).epsilon(0.03));
 }

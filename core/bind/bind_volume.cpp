@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -237,6 +238,45 @@ int rescue_handle_tets(const HandlePlc& plc, const TetgenResult& r, const Eigen:
   return rescued;
 }
 
+// Section 8.5: a constrained tetrahedralization of the input facets in the padded box, where TetGen
+// accepts them (no self-intersections; they then bound tets and the cut can follow them), else the
+// points alone. The facets are not tried when TetGen already failed on the surface.
+TetgenResult robust_tetrahedralization(const WeldedSurface& ws, const Plc& box, const std::string& sw, bool try_facets,
+                                       std::vector<std::string>& notes) {
+  if (try_facets) {
+    // Duplicate facets (either orientation) are removed first, as 8.5 does: TetGen refuses them.
+    std::vector<std::array<int, 3>> keys;
+    std::vector<int> unique_faces;
+    for (int f = 0; f < ws.F.rows(); ++f) {
+      std::array<int, 3> k{ws.F(f, 0), ws.F(f, 1), ws.F(f, 2)};
+      std::sort(k.begin(), k.end());
+      keys.push_back(k);
+    }
+    std::vector<int> order(keys.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return keys[a] < keys[b]; });
+    for (size_t i = 0; i < order.size(); ++i)
+      if (i == 0 || keys[order[i]] != keys[order[i - 1]]) unique_faces.push_back(order[i]);
+    Plc in = box;
+    in.F.resize(box.F.rows() + unique_faces.size(), 3);
+    in.F.topRows(box.F.rows()) = box.F;
+    for (size_t i = 0; i < unique_faces.size(); ++i) in.F.row(box.F.rows() + i) = ws.F.row(unique_faces[i]);
+    const auto t = Clock::now();
+    try {
+      TetgenResult r = tetrahedralize(in, sw);
+      notes.push_back("robust volume: the surface's facets are constrained");
+      return r;
+    } catch (const Error& e) {
+      std::string why = e.what();
+      if (why.size() > 160) why = "..." + why.substr(why.size() - 160);  // TetGen's last words say why
+      notes.push_back("robust volume: TetGen refused the surface's facets in " +
+                      std::to_string(std::chrono::duration<double>(Clock::now() - t).count()) + " s (" + why +
+                      "): points only");
+    }
+  }
+  return tetrahedralize(box, sw);
+}
+
 // Which tets of the padded box's tetrahedralization are inside (Jacobson 2013, 8.5.1): the graph cut
 // over shared faces (data weighted by tet volume), the surface's and the cages' facets marked where
 // they are tet faces; or Eq. 8.7.
@@ -252,13 +292,14 @@ std::vector<char> segment_tets(const WeldedSurface& ws, const HandlePlc& plc, co
   return graph_cut_segmentation(w, tet_volumes(r.mesh.V, r.mesh.T).cwiseAbs(), adj.tets, adj.area, shared_faces_on_surface(adj, facets), opts.cut);
 }
 
-// The robust volume (Jacobson 2013, section 8.3): a Delaunay tetrahedralization of the points in a
-// padded box, carved to the tets inside by winding number (or inside a closed cage): graph cut or threshold.
+// The robust volume (Jacobson 2013, section 8.3): a (constrained) Delaunay tetrahedralization of the points
+// in a padded box, carved to the tets inside by winding number (or inside a closed cage): graph cut or
+// threshold.
 RawVolume robust_volume(const WeldedSurface& ws, const Rig& rig, const HandlePlc& plc, const Eigen::MatrixXd& P,
-                        double diag, const VolumeOptions& opts, std::vector<std::string>& notes) {
+                        double diag, const VolumeOptions& opts, bool try_facets, std::vector<std::string>& notes) {
   std::string sw = opts.tetgen_switches;
   if (sw.find('p') == std::string::npos) sw = "p" + sw;
-  TetgenResult r = tetrahedralize(padded_box_plc(P, diag, plc), sw);
+  TetgenResult r = robust_tetrahedralization(ws, padded_box_plc(P, diag, plc), sw, try_facets, notes);
   const auto tw = Clock::now();
   const Eigen::VectorXd w = insideness_at(ws, rig, tet_centroids(r.mesh));
   const double w_seconds = std::chrono::duration<double>(Clock::now() - tw).count();
@@ -341,12 +382,13 @@ BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const Volum
     vol.notes.push_back("surface is not a closed manifold: robust (winding number) volume");
   }
   RawVolume raw;
-  if (!robust) robust = !tetrahedralize_surface(ws, plc, P, opts, raw, vol.notes);
+  bool tetgen_failed = false;
+  if (!robust) robust = tetgen_failed = !tetrahedralize_surface(ws, plc, P, opts, raw, vol.notes);
   if (!robust && !glue_near_handles(ws, plc, P, 0.01 * bbox_diagonal(ws.V), raw, vol.notes)) {
     robust = true;
     vol.notes.push_back("a handle just outside the surface faces no facet: robust (winding number) volume");
   }
-  if (robust) raw = robust_volume(ws, rig, plc, P, diag, opts, vol.notes);
+  if (robust) raw = robust_volume(ws, rig, plc, P, diag, opts, !tetgen_failed, vol.notes);
 
   // Compact (drop vertices no kept tet uses); order is preserved, so the surface's vertices stay first.
   Eigen::VectorXi raw_to_tet;
