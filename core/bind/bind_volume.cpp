@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <set>
 
 #include "core/bind/closest_surface_point.h"
 #include "core/bind/fem.h"
@@ -238,29 +239,31 @@ int rescue_handle_tets(const HandlePlc& plc, const TetgenResult& r, const Eigen:
   return rescued;
 }
 
+// F without repeated facets (the same three vertices in either orientation; the first one stays).
+Eigen::MatrixXi unique_facets(const Eigen::MatrixXi& F) {
+  std::set<std::array<int, 3>> seen;
+  std::vector<int> rows;
+  for (int f = 0; f < F.rows(); ++f) {
+    std::array<int, 3> k{F(f, 0), F(f, 1), F(f, 2)};
+    std::sort(k.begin(), k.end());
+    if (seen.insert(k).second) rows.push_back(f);
+  }
+  Eigen::MatrixXi out(rows.size(), 3);
+  for (size_t i = 0; i < rows.size(); ++i) out.row(i) = F.row(rows[i]);
+  return out;
+}
+
 // Section 8.5: a constrained tetrahedralization of the input facets in the padded box, where TetGen
 // accepts them (no self-intersections; they then bound tets and the cut can follow them), else the
-// points alone. The facets are not tried when TetGen already failed on the surface.
+// points alone. Duplicate facets are dropped first, as 8.5 does (TetGen refuses them). The facets are not
+// tried when TetGen already failed on the surface.
 TetgenResult robust_tetrahedralization(const WeldedSurface& ws, const Plc& box, const std::string& sw, bool try_facets,
                                        std::vector<std::string>& notes) {
   if (try_facets) {
-    // Duplicate facets (either orientation) are removed first, as 8.5 does: TetGen refuses them.
-    std::vector<std::array<int, 3>> keys;
-    std::vector<int> unique_faces;
-    for (int f = 0; f < ws.F.rows(); ++f) {
-      std::array<int, 3> k{ws.F(f, 0), ws.F(f, 1), ws.F(f, 2)};
-      std::sort(k.begin(), k.end());
-      keys.push_back(k);
-    }
-    std::vector<int> order(keys.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return keys[a] < keys[b]; });
-    for (size_t i = 0; i < order.size(); ++i)
-      if (i == 0 || keys[order[i]] != keys[order[i - 1]]) unique_faces.push_back(order[i]);
+    const Eigen::MatrixXi F = unique_facets(ws.F);
     Plc in = box;
-    in.F.resize(box.F.rows() + unique_faces.size(), 3);
-    in.F.topRows(box.F.rows()) = box.F;
-    for (size_t i = 0; i < unique_faces.size(); ++i) in.F.row(box.F.rows() + i) = ws.F.row(unique_faces[i]);
+    in.F.resize(box.F.rows() + F.rows(), 3);
+    in.F << box.F, F;
     const auto t = Clock::now();
     try {
       TetgenResult r = tetrahedralize(in, sw);
@@ -289,7 +292,8 @@ std::vector<char> segment_tets(const WeldedSurface& ws, const HandlePlc& plc, co
   facets << ws.F, plc.cage_F;
   for (int f = 0; f < facets.rows(); ++f)
     for (int k = 0; k < 3; ++k) facets(f, k) = r.input_to_tet(facets(f, k));
-  return graph_cut_segmentation(w, tet_volumes(r.mesh.V, r.mesh.T).cwiseAbs(), adj.tets, adj.area, shared_faces_on_surface(adj, facets), opts.cut);
+  return graph_cut_segmentation(w, tet_volumes(r.mesh.V, r.mesh.T).cwiseAbs(), adj.tets, adj.area,
+                                shared_faces_on_surface(adj, facets), opts.cut);
 }
 
 // The robust volume (Jacobson 2013, section 8.3): a (constrained) Delaunay tetrahedralization of the points
@@ -324,7 +328,7 @@ RawVolume robust_volume(const WeldedSurface& ws, const Rig& rig, const HandlePlc
                   std::to_string(w_seconds) + " s; kept " + std::to_string(nk) +
                   (cut ? " by graph cut (" : " with winding number > 0.5 (") + std::to_string(cut_seconds) + " s)" +
                   (rescued ? "; " + std::to_string(rescued) + " handle tets added back" : ""));
-  if (nk == 0) throw Error("bind: the surface encloses no volume (every winding number <= 0.5)");
+  if (nk == 0) throw Error("bind: the surface encloses no volume (no tet is inside by winding number)");
   return raw;
 }
 
