@@ -5,6 +5,7 @@
 // maxima/minima on the tet edge graph and on the surface.
 //   bench_monotone [hand|arm|all] [--threads N] [--unnormalized]
 //     --unnormalized: count extrema on each handle's own minimizer, before the rows are normalized
+// Monotone runs twice: rows divided by their sums (mono/div) and solved jointly with exact sums (mono/sums).
 #include <sys/resource.h>
 
 #include <cstdio>
@@ -31,10 +32,12 @@ void run(const char* name, const dfm::TetMesh* tets, const dfm::TriMesh* surface
   std::printf("%s: %d surface triangles, %d handles, %d threads\n", name, static_cast<int>(F.rows()),
               dfm::num_handles(rig), threads);
   double bbw_per_function = 0;
-  for (bool monotone : {false, true}) {
+  for (int mode = 0; mode < 3; ++mode) {  // default, monotone divided by row sums, monotone with exact sums
+    const bool monotone = mode > 0;
     dfm::BindOptions o;
     o.bbw.threads = threads;
     o.bbw.monotone = monotone;
+    o.bbw.monotone_exact_sums = mode == 2;
     o.bbw.normalize_rows = !unnormalized;
     const double cpu0 = cpu_seconds();
     const dfm::BindResult r = tets ? dfm::bind_tet_mesh(*tets, rig, o) : dfm::bind_surface(*surface, rig, o);
@@ -44,14 +47,20 @@ void run(const char* name, const dfm::TetMesh* tets, const dfm::TriMesh* surface
     const double solve = p.assembly_seconds + p.factorization_seconds + p.solve_seconds;
     const double per_function = solve / p.handles;
     if (!monotone) bbw_per_function = per_function;
-    std::printf("  %-9s %d tets %d tet vertices: weights %.3f s = %.3f s per function", monotone ? "monotone" : "default",
-                p.tets, p.tet_vertices, solve, per_function);
+    const char* label = mode == 0 ? "default" : mode == 1 ? "mono/div" : "mono/sums";
+    std::printf("  %-9s %d tets %d tet vertices: weights %.3f s = %.3f s per function", label, p.tets, p.tet_vertices,
+                solve, per_function);
     if (monotone)
       std::printf(" (x%.2f; monotone stage %.3f s per function, %d reduced solves, worst handle %d, %s, released "
                   "multiplier %.3g)",
                   per_function / bbw_per_function, p.bbw.monotone_seconds / p.handles, p.bbw.monotone_iterations_total,
                   p.bbw.monotone_iterations_max, p.bbw.monotone_optimal ? "optimal" : "feasible",
                   p.bbw.monotone_dual_residual);
+    if (mode == 2)
+      std::printf("\n            joint solve %.3f s = %.3f s per function, %d reduced solves, %s, max |row sum - 1| %.2g",
+                  p.bbw.monotone_joint_seconds, p.bbw.monotone_joint_seconds / p.handles,
+                  p.bbw.monotone_joint_iterations, p.bbw.monotone_joint ? "feasible" : "INFEASIBLE (rows divided)",
+                  p.bbw.monotone_sum_residual);
     std::printf("\n            whole bind %.3f s wall, %.3f s CPU (meshing included)", p.total_seconds, cpu);
     std::printf("\n            local maxima/minima away from handles: tet graph %d/%d, surface %d/%d; exact zeros %.1f%%\n",
                 e.tet.maxima, e.tet.minima, e.surface.maxima, e.surface.minima, 100 * p.zero_fraction);

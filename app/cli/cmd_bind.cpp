@@ -59,7 +59,8 @@ int run(const dfm::cli::Args& args) {
   if (input.empty()) throw UsageError("no input mesh");
   if (out.empty()) throw UsageError("no output: give -o W.dmat");
   if (threads < 1) throw UsageError("--threads must be >= 1");
-  if (exact && monotone) throw UsageError("--monotone and --exact-pou do not combine (monotone weights are solved per handle)");
+  if (exact && monotone)
+    throw UsageError("--monotone and --exact-pou do not combine (--monotone already sums to 1 exactly)");
   if (!segmentation.empty() && segmentation != "cut" && segmentation != "threshold")
     throw UsageError("--segmentation must be cut or threshold, not " + segmentation);
 
@@ -107,6 +108,10 @@ int run(const dfm::cli::Args& args) {
                 rep.bbw.monotone_representative_seconds, rep.bbw.monotone_iterations_total,
                 rep.bbw.monotone_iterations_max, rep.bbw.monotone_optimal ? "optimal" : "feasible, not optimal",
                 rep.bbw.monotone_dual_residual, rep.bbw.monotone_sides_without_neighbour);
+  if (rep.bbw.monotone && rep.bbw.monotone_joint_iterations)
+    std::printf("monotone row sums: %s (%.3f s, %d joint solves, max |row sum - 1| %.3g)\n",
+                rep.bbw.monotone_joint ? "solved jointly, exact" : "joint solve infeasible, rows divided",
+                rep.bbw.monotone_joint_seconds, rep.bbw.monotone_joint_iterations, rep.bbw.monotone_sum_residual);
   const dfm::BindExtrema ext =
       dfm::bind_local_extrema(res, tet_input ? dfm::tet_boundary_faces(tets.T) : surface.F);
   std::printf("local extrema away from the handles: tet graph %d maxima, %d minima; surface %d maxima, %d minima\n",

@@ -95,7 +95,8 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
                               const Eigen::MatrixXd& bc, const BbwOptions& opts, BbwStats* stats_out) {
   validate(V, b, bc);
   if (opts.monotone && opts.exact_partition_of_unity)
-    throw Error("bind: monotone weights are solved per handle; they do not combine with the exact partition of unity");
+    throw Error("bind: monotone weights sum to 1 exactly on their own; they do not combine with "
+                "exact_partition_of_unity");
   const CholmodBlockCacheScope release_cache;
   auto progress = [&](const char* stage, double f) {
     if (opts.qp.cancel && opts.qp.cancel->load()) throw Error("cancelled");
@@ -148,7 +149,7 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
   Eigen::MatrixXd W(V.rows(), bc.cols());
   for (int k = 0; k < sys.vertex.size(); ++k) W.row(sys.vertex(k)) = X.row(k);
   for (int k = 0; k < b.size(); ++k) W.row(b(k)) = bc.row(k);
-  if (!opts.exact_partition_of_unity && opts.normalize_rows)
+  if (!opts.exact_partition_of_unity && opts.normalize_rows && !stats.monotone_joint)
     stats.rows_renormalized_from_zero = normalize_rows(W, sys.vertex, start);
   if (stats_out) *stats_out = stats;
   progress("done", 1.0);

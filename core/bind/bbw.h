@@ -33,6 +33,9 @@ struct BbwOptions {
   // Ch. 5: no local extrema away from the handles (bbw_monotone.h); default mode only (not with
   // exact_partition_of_unity).
   bool monotone = false;
+  // Monotone with normalize_rows: solve all handles jointly with exact row sums (monotone_joint.h), so the
+  // final weights keep every ordering; false divides the per-handle solutions by their row sums (5.3.4).
+  bool monotone_exact_sums = true;
   bool normalize_rows = true;  // default mode; false returns each handle's own minimizer (analysis, tests)
   // Per-tet rho >= 0, or empty. Scaled so that rho = 1 weighs like the biharmonic term (the mask term is
   // multiplied by mean diag(Q) / mean diag(K), making rho unitless); painted regions use rho >> 1.
@@ -70,7 +73,8 @@ struct BbwStats {
   double multilevel_seconds = 0;        // building and solving the coarse level (on its own thread,
                                         // alongside assembly and ordering)
   // Monotone weights (opts.monotone): seconds in all (within solve_seconds), of which the representative
-  // functions; reduced solves; the worst released multiplier (weight units); every handle optimal;
+  // functions; per-handle reduced solves; the worst released multiplier (weight units) and optimality, of
+  // the joint solve when it ran, else of the per-handle ones;
   // vertex sides where u had no strictly lower/higher neighbour (the box held there instead).
   bool monotone = false;
   double monotone_seconds = 0, monotone_representative_seconds = 0;
@@ -78,6 +82,12 @@ struct BbwStats {
   double monotone_dual_residual = 0;
   bool monotone_optimal = false;
   int monotone_sides_without_neighbour = 0;
+  // With normalize_rows: the joint solve with exact row sums (monotone_joint.h) that replaces the division
+  // by the row sums; its seconds (within monotone_seconds), reduced solves, max |row sum - 1|, and whether
+  // it met every constraint (false: the rows were divided as before).
+  bool monotone_joint = false;
+  double monotone_joint_seconds = 0, monotone_sum_residual = 0;
+  int monotone_joint_iterations = 0;
 };
 
 // V, T: positively oriented tets. b: constrained vertex indices (distinct). bc: #b x #handles.

@@ -2,6 +2,8 @@
 // Monotone bounded biharmonic weights (Jacobson 2013, ch. 5): each handle's bounded weights re-solved
 // under the monotonicity constraints of 5.3.2 (no local extrema away from the handles), from the
 // bounded solution as the first active set. Runs after the bounded solves, handles spread over threads.
+// With normalize_rows and monotone_exact_sums, then all handles jointly with exact row sums (5.3.4,
+// monotone_joint.h) from those active sets, so the rows need no division that could break an ordering.
 #include <Eigen/Core>
 
 #include "core/bind/bbw.h"

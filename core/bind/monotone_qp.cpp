@@ -6,65 +6,14 @@
 #include <string>
 
 #include "core/bind/cholesky.h"
+#include "core/bind/monotone_groups.h"
 #include "core/util/error.h"
 
 namespace dfm {
 namespace {
 
-int find_root(std::vector<int>& parent, int v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
-// The groups an active set makes: free variables joined by active constraints share one unknown, or
-// the fixed value their group reaches. tree[c]: c joined two groups (a spanning forest of the active set).
-struct Groups {
-  std::vector<int> root;     // per node (free and fixed): its group's union-find root
-  std::vector<int> unknown;  // per free variable: reduced index, or -1 when fixed
-  std::vector<double> value; // per free variable with unknown -1: its fixed value
-  std::vector<char> tree;
-  int count = 0;
-  int conflicts = 0;  // active constraints that would join two different fixed values (left out)
-};
-
-Groups make_groups(int nf, const MonotoneProblem& p, const std::vector<char>& active) {
-  const int nodes = nf + static_cast<int>(p.fixed_values.size());
-  std::vector<int> parent(nodes), fixed(nodes, -1);
-  for (int v = 0; v < nodes; ++v) parent[v] = v;
-  for (int v = nf; v < nodes; ++v) fixed[v] = v - nf;
-  Groups g;
-  g.tree.assign(p.constraints.size(), 0);
-  for (size_t c = 0; c < p.constraints.size(); ++c) {
-    if (!active[c]) continue;
-    const int ra = find_root(parent, p.constraints[c].upper), rb = find_root(parent, p.constraints[c].lower);
-    if (ra == rb) continue;
-    if (fixed[ra] >= 0 && fixed[rb] >= 0) {
-      ++g.conflicts;
-      continue;
-    }
-    parent[rb] = ra;
-    fixed[ra] = std::max(fixed[ra], fixed[rb]);
-    g.tree[c] = 1;
-  }
-  g.root.resize(nodes);
-  for (int v = 0; v < nodes; ++v) g.root[v] = find_root(parent, v);
-  std::vector<int> id(nodes, -1);
-  g.unknown.assign(nf, -1);
-  g.value.assign(nf, 0.0);
-  for (int v = 0; v < nf; ++v) {
-    const int r = g.root[v];
-    if (fixed[r] >= 0) {
-      g.value[v] = p.fixed_values[fixed[r]];
-    } else {
-      if (id[r] < 0) id[r] = g.count++;
-      g.unknown[v] = id[r];
-    }
-  }
-  return g;
-}
-
 // min over x = P z (+ fixed values) of 1/2 x^T H x + g^T x: the reduced system P^T H P z = rhs.
-Eigen::VectorXd solve_reduced(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Groups& gr) {
+Eigen::VectorXd solve_reduced(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const MonotoneGroups& gr) {
   const int nf = static_cast<int>(H.rows());
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(gr.count);
   std::vector<Eigen::Triplet<double>> trip;
@@ -93,49 +42,6 @@ Eigen::VectorXd solve_reduced(const Eigen::SparseMatrix<double>& H, const Eigen:
     for (int v = 0; v < nf; ++v) x[v] = gr.value[v];
   }
   return x;
-}
-
-// Multipliers of the spanning-forest constraints from the gradient r = H x + g (stationarity
-// r_i = sum_{c: upper = i} lambda_c - sum_{c: lower = i} lambda_c), leaves first; a fixed node, where no
-// stationarity holds, is its group's root. Other constraints get 0.
-std::vector<double> multipliers(const MonotoneProblem& p, const Groups& gr, const Eigen::VectorXd& r) {
-  const int nf = static_cast<int>(r.size()), nodes = static_cast<int>(gr.root.size());
-  std::vector<std::vector<int>> edges(nodes);
-  for (size_t c = 0; c < p.constraints.size(); ++c)
-    if (gr.tree[c]) {
-      edges[p.constraints[c].upper].push_back(static_cast<int>(c));
-      edges[p.constraints[c].lower].push_back(static_cast<int>(c));
-    }
-  std::vector<int> order, parent_edge(nodes, -1);
-  std::vector<char> seen(nodes, 0);
-  order.reserve(nodes);
-  auto visit_from = [&](int s) {  // breadth first over the forest
-    seen[s] = 1;
-    size_t q = order.size();
-    order.push_back(s);
-    for (; q < order.size(); ++q) {
-      const int v = order[q];
-      for (int c : edges[v]) {
-        const int w = p.constraints[c].upper == v ? p.constraints[c].lower : p.constraints[c].upper;
-        if (seen[w]) continue;
-        seen[w] = 1, parent_edge[w] = c, order.push_back(w);
-      }
-    }
-  };
-  for (int v = nf; v < nodes; ++v) visit_from(v);  // fixed roots first
-  for (int v = 0; v < nf; ++v)
-    if (!seen[v]) visit_from(v);
-  std::vector<double> S(nodes, 0.0), lambda(p.constraints.size(), 0.0);
-  for (int v = 0; v < nf; ++v) S[v] = r[v];
-  for (size_t q = order.size(); q-- > 0;) {
-    const int v = order[q], c = parent_edge[v];
-    if (c < 0) continue;
-    const MonotoneConstraint& e = p.constraints[c];
-    const int parent = e.upper == v ? e.lower : e.upper;
-    lambda[c] = e.upper == v ? S[v] : -S[v];
-    S[parent] -= e.upper == parent ? lambda[c] : -lambda[c];
-  }
-  return lambda;
 }
 
 std::uint64_t hash_of(const std::vector<char>& active) {
@@ -171,12 +77,12 @@ MonotoneQPResult solve_monotone_qp(const Eigen::SparseMatrix<double>& H, const E
   bool add_only = false;
   for (;;) {
     if (cancel && cancel->load()) throw Error("cancelled");
-    const Groups gr = make_groups(nf, p, active);
+    const MonotoneGroups gr = make_monotone_groups(nf, p, active);
     res.x = solve_reduced(H, g, gr);
     ++res.iterations;
     if (add_only) ++res.add_only_iterations;
     const Eigen::VectorXd r = H * res.x + g;
-    const std::vector<double> lambda = multipliers(p, gr, r);
+    const std::vector<double> lambda = monotone_multipliers(p, gr, r);
     std::vector<char> next = active;
     bool changed = false;
     double worst = 0;
