@@ -122,7 +122,9 @@ PcaAnimation pca_animation(const PcaDecomposition& d, int k, const Eigen::Matrix
 
 Eigen::MatrixXd pca_aligned_frame(const PcaAnimation& a, int i) {
   check_frame_index(a, i);
-  const Eigen::VectorXd x = a.bases * a.coefficients.row(i).transpose();
+  // k = 0: no bases, and row() of a matrix without columns would offset its null data pointer (UB).
+  const Eigen::VectorXd x = a.coefficients.cols() == 0 ? Eigen::VectorXd::Zero(a.bases.rows())
+                                                       : Eigen::VectorXd(a.bases * a.coefficients.row(i).transpose());
   Eigen::MatrixXd V = a.mean;
   for (int v = 0; v < V.rows(); ++v)
     for (int c = 0; c < 3; ++c) V(v, c) += x(3 * v + c);
