@@ -25,7 +25,10 @@ case "$mode" in
     # with clang) fuzzed with a fixed seed and time budget. Leaks inside the X11/GL/Mesa/LLVM libraries
     # are suppressed by tests/sanitizer/lsan.supp (third-party libraries only, never our code).
     # -O1 -g1: the usual sanitizer trade-off (line numbers in reports, a lighter build than -O2 -g).
-    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
+    # clang, as for the fuzzers: it builds this tree about twice as fast as gcc with the sanitizers on
+    # (e.g. core/anim/pca_animation.cpp 48 s against 93 s), and its ASan/UBSan are the reference ones.
+    cmake -S . -B build-asan -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+          -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
           -DDFM_SANITIZE=ON -DDFM_FUZZ=ON -DDFM_BUILD_BENCH=OFF >/dev/null
     cmake --build build-asan -j"$jobs"
     export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
