@@ -163,7 +163,7 @@ Header read_header(const std::string& path, const std::string& data) {
       h.fmt = parse_format(path, lr.line(), line, t);
       have_format = true;
     } else if (t[0] == "element") {
-      long long n;
+      long long n = 0;  // (fail throws; clang cannot see that through the lambda)
       if (t.size() != 3 || !parse_int(t[2], n)) fail("bad element line " + quote(line));
       if (n < 0 || n > INT_MAX) fail("element " + quote(t[1]) + " count " + std::string(t[2]) + " out of range");
       h.elements.push_back({std::string(t[1]), n, lr.line(), {}});
