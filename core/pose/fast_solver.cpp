@@ -119,9 +119,7 @@ double FastSolver::iterate(Pose& pose, bool with_energy) const {
   S_.noalias() = Kt_u_ * X_;
   S_ += s_fixed_;
   local_step();
-  X_.noalias() = gamma_ * Rt_;
-  X_ += phi_;
-  write_unknown_blocks(pose);
+  global_step(pose);
   return with_energy ? energy_of(*model_, pose_matrix(pose), Rt_) : std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -140,6 +138,10 @@ void FastSolver::iterate(Pose& pose, int count) const {
     S_ += s_const_;
   }
   local_step();
+  global_step(pose);
+}
+
+void FastSolver::global_step(Pose& pose) const {
   X_.noalias() = gamma_ * Rt_;
   X_ += phi_;
   write_unknown_blocks(pose);

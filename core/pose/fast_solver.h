@@ -45,7 +45,8 @@ class FastSolver {
 
  private:
   void read_unknown_blocks(const Pose& pose) const;
-  void local_step() const;  // Rt_ from S_
+  void local_step() const;                // Rt_ from S_
+  void global_step(Pose& pose) const;     // T_u = Gamma R^T + Phi into pose
   void write_unknown_blocks(Pose& pose) const;
 
   const FastModel* model_;
