@@ -12,6 +12,7 @@
 #include "core/bind/monotone_constraints.h"
 #include "core/bind/monotone_joint.h"
 #include "core/bind/monotone_qp.h"
+#include "core/mesh/mesh_info.h"
 
 namespace dfm {
 
@@ -22,7 +23,7 @@ void solve_monotone(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Ei
   const int m = static_cast<int>(bc.cols());
   // One representative function per handle (5.15-5.17), one factorization for all of them.
   const Eigen::MatrixXd U = monotone_representatives(cotangent_stiffness(V, T), b, bc);
-  const std::vector<std::vector<int>> neighbours = tet_vertex_neighbours(T, static_cast<int>(V.rows()));
+  const std::vector<std::vector<int>> neighbours = vertex_neighbours(T, static_cast<int>(V.rows()));
   stats.monotone_representative_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

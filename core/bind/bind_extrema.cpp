@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "core/bind/monotone_constraints.h"
+#include "core/mesh/mesh_info.h"
 
 namespace dfm {
 
@@ -16,8 +16,8 @@ BindExtrema bind_local_extrema(const BindResult& res, const Eigen::MatrixXi& F) 
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it)
       if (on_handle[c] && it.value() >= 1 - 1e-9) user_on_handle[it.row()] = 1;
   BindExtrema e;
-  e.tet = count_local_extrema(tet_vertex_neighbours(vol.tets.T, nt), res.tet_weights, on_handle);
-  e.surface = count_local_extrema(triangle_vertex_neighbours(F, nu), res.weights, user_on_handle);
+  e.tet = count_local_extrema(vertex_neighbours(vol.tets.T, nt), res.tet_weights, on_handle);
+  e.surface = count_local_extrema(vertex_neighbours(F, nu), res.weights, user_on_handle);
   return e;
 }
 

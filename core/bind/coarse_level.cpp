@@ -14,18 +14,12 @@
 namespace dfm {
 namespace {
 
-// Vertex neighbours in the tet graph, compressed rows, sorted and without duplicates.
+// Vertex neighbours in the tet graph as compressed rows (sorted, without duplicates).
 void tet_graph(int n, const Eigen::MatrixXi& T, std::vector<int>& ptr, std::vector<int>& adj) {
-  std::vector<std::vector<int>> nb(n);
-  for (int t = 0; t < T.rows(); ++t)
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 4; ++c)
-        if (a != c) nb[T(t, a)].push_back(T(t, c));
+  const std::vector<std::vector<int>> nb = vertex_neighbours(T, n);
   ptr.assign(n + 1, 0);
   adj.clear();
   for (int v = 0; v < n; ++v) {
-    std::sort(nb[v].begin(), nb[v].end());
-    nb[v].erase(std::unique(nb[v].begin(), nb[v].end()), nb[v].end());
     adj.insert(adj.end(), nb[v].begin(), nb[v].end());
     ptr[v + 1] = static_cast<int>(adj.size());
   }

@@ -49,18 +49,4 @@ LocalExtrema count_local_extrema(const std::vector<std::vector<int>>& nb, const 
   return out;
 }
 
-std::vector<std::vector<int>> triangle_vertex_neighbours(const Eigen::MatrixXi& F, int num_vertices) {
-  std::vector<std::vector<int>> nb(num_vertices);
-  for (int f = 0; f < F.rows(); ++f)
-    for (int a = 0; a < 3; ++a) {
-      nb[F(f, a)].push_back(F(f, (a + 1) % 3));
-      nb[F(f, (a + 1) % 3)].push_back(F(f, a));
-    }
-  for (auto& n : nb) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
-  return nb;
-}
-
 }  // namespace dfm

@@ -18,7 +18,4 @@ struct LocalExtrema {
 LocalExtrema count_local_extrema(const std::vector<std::vector<int>>& neighbours, const Eigen::MatrixXd& W,
                                  const std::vector<char>& fixed);
 
-// Triangle edges of F as a symmetric adjacency list over num_vertices (sorted, no duplicates).
-std::vector<std::vector<int>> triangle_vertex_neighbours(const Eigen::MatrixXi& F, int num_vertices);
-
 }  // namespace dfm

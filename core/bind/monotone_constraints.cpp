@@ -10,19 +10,6 @@
 
 namespace dfm {
 
-std::vector<std::vector<int>> tet_vertex_neighbours(const Eigen::MatrixXi& T, int num_vertices) {
-  std::vector<std::vector<int>> nb(num_vertices);
-  for (int t = 0; t < T.rows(); ++t)
-    for (int a = 0; a < 4; ++a)
-      for (int c = 0; c < 4; ++c)
-        if (a != c) nb[T(t, a)].push_back(T(t, c));
-  for (auto& n : nb) {
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-  }
-  return nb;
-}
-
 Eigen::MatrixXd monotone_representatives(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXi& b,
                                          const Eigen::MatrixXd& bc) {
   // Edge weights max(cot, 0) + a hundredth of the mean positive weight: positive on every tet edge, so

@@ -26,9 +26,6 @@ struct MonotoneProblem {
   int free_without_neighbour = 0;    // sides where u had no strictly lower/higher neighbour (the box instead)
 };
 
-// Tet edges of T as a symmetric adjacency list over #V vertices (sorted, no duplicates).
-std::vector<std::vector<int>> tet_vertex_neighbours(const Eigen::MatrixXi& T, int num_vertices);
-
 // The representative functions u (#V x #handles): harmonic with u(b) = bc under the positive-weight
 // Laplacian of K (K: cotangent stiffness, fem.h). Throws dfm::Error if a part of the volume has no b.
 Eigen::MatrixXd monotone_representatives(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXi& b,

@@ -59,6 +59,19 @@ BoundingBox bounding_box(const Eigen::MatrixXd& V) {
   return b;
 }
 
+std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixXi& elements, int num_vertices) {
+  std::vector<std::vector<int>> nb(num_vertices);
+  for (Eigen::Index e = 0; e < elements.rows(); ++e)
+    for (Eigen::Index a = 0; a < elements.cols(); ++a)
+      for (Eigen::Index c = 0; c < elements.cols(); ++c)
+        if (a != c) nb[elements(e, a)].push_back(elements(e, c));
+  for (auto& n : nb) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return nb;
+}
+
 Eigen::VectorXi face_components(const Eigen::MatrixXi& F) {
   const int nv = F.size() ? F.maxCoeff() + 1 : 0;
   std::vector<int> parent(nv);

@@ -1,6 +1,8 @@
 #pragma once
 // Mesh checks: free functions on plain matrices (V: #V x 3, F: #F x 3, T: #T x 4; 0-based).
 // Used by `deform info` and by the robust bind to tell clean closed manifolds from messy meshes.
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "core/mesh/mesh.h"
@@ -38,6 +40,10 @@ int degenerate_face_count(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, do
 // Enclosed volume by the divergence theorem: positive for a closed, outward (counter-clockwise)
 // oriented surface, negative when it is inside out. Meaningful only when is_closed(F).
 double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+
+// Vertices joined by an edge of any element (triangles or tets: every pair within a row), as a symmetric
+// adjacency list over num_vertices, each list sorted without duplicates.
+std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixXi& elements, int num_vertices);
 
 // Tet meshes: triangles on exactly one tet, oriented outward for positively oriented tets.
 Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T);
