@@ -124,7 +124,13 @@ void SurfacePass::draw(const view::Camera& cam, const SurfaceStyle& style) {
     glVertexAttrib4f(2, 0.f, 0.f, 0.f, 1.f);
   }
   glEnable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);  // open meshes show their back faces
+  if (style.cull_back_faces) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+  } else {
+    glDisable(GL_CULL_FACE);  // open meshes show their back faces
+  }
   if (indexed_)
     glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
   else

@@ -13,6 +13,9 @@ struct SurfaceStyle {
   Eigen::Vector3f wire_color{0.08f, 0.08f, 0.09f};
   bool wireframe = false;
   bool flat = false;
+  // Skip back faces: only for a closed surface oriented outward (is_closed_outward), whose back faces
+  // the front ones hide; software GL (llvmpipe) then rasterizes about half the triangles.
+  bool cull_back_faces = false;
   SurfaceColorMode mode = SurfaceColorMode::Shaded;
   float isolines = 10.0f;  // intervals over [0,1] for the scalar map; 0 = none
 };

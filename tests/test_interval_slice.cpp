@@ -66,6 +66,7 @@ TEST_CASE("an interval's topology gives the CPU slice at every time inside it (p
     const IntervalSlice s = build_interval_slice(M, N4, times[i], times[i + 1]);
     REQUIRE(s.num_faces() > 0);
     for (int v = 0; v < s.num_vertices(); ++v) REQUIRE(M.V(s.edges[v][0], 3) > M.V(s.edges[v][1], 3));
+    REQUIRE(s.closed_outward);  // the slice of a closed sphere's manifold: the viewport may cull back faces
     for (double t : times_inside(times[i], times[i + 1])) require_equal_to_cpu_slice(s, M, N4, t);
     // Not at the ends (a vertex time has its own topology) nor beyond.
     REQUIRE_THROWS_AS(evaluate_interval_slice(s, M, N4, times[i]), Error);
@@ -78,6 +79,13 @@ TEST_CASE("an interval's topology gives the CPU slice at every time inside it (p
   // An interval with a vertex time inside is refused.
   REQUIRE_THROWS_AS(build_interval_slice(M, N4, times[0], times[2]), Error);
   REQUIRE_THROWS_AS(build_interval_slice(M, N4, 1.0, 1.0), Error);
+  // An open surface's manifold (the sphere less one triangle) slices open: never culled.
+  const TriMesh sphere = test::icosphere(Eigen::Vector3d::Zero(), 1.0, 1);
+  const Eigen::MatrixXi open_F = sphere.F.topRows(sphere.F.rows() - 1);
+  const AnimationManifold open = build_manifold({sphere.V, 1.1 * sphere.V}, open_F, {0.0, 1.0});
+  const IntervalSlice o = build_interval_slice(open, manifold_vertex_normals(open), 0.0, 1.0);
+  REQUIRE(o.num_faces() > 0);
+  REQUIRE_FALSE(o.closed_outward);
 }
 
 TEST_CASE("intervals of a transition (many vertex times) give its CPU slices", "[manifold][interval][transition]") {

@@ -53,6 +53,9 @@ TEST_CASE("closed cube: volume 1, no boundary, one component", "[mesh_info]") {
   f.F.col(1).swap(f.F.col(2));
   REQUIRE(signed_volume(f.V, f.F) == Approx(-1.0));
   REQUIRE(is_closed(f.F));
+  // Back faces may be culled only when closed and outward.
+  REQUIRE(is_closed_outward(c.V, c.F));
+  REQUIRE_FALSE(is_closed_outward(f.V, f.F));
 }
 
 TEST_CASE("open, multi-piece, non-manifold and inconsistent meshes", "[mesh_info]") {
@@ -60,6 +63,8 @@ TEST_CASE("open, multi-piece, non-manifold and inconsistent meshes", "[mesh_info
   open.F.conservativeResize(10, 3);  // drop the x = 1 side: a square hole
   REQUIRE(boundary_edge_count(open.F) == 4);
   REQUIRE_FALSE(is_closed(open.F));
+  REQUIRE(signed_volume(open.V, open.F) > 0);  // the open box still reads as positive...
+  REQUIRE_FALSE(is_closed_outward(open.V, open.F));  // ...but its inside shows through the hole
 
   TriMesh two = join(cube(), cube(Eigen::Vector3d(3, 0, 0)));
   REQUIRE(connected_component_count(two.F) == 2);

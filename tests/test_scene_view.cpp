@@ -271,6 +271,40 @@ TEST_CASE("scene view: the manifold's slice with two keys, the pose after a pose
   REQUIRE(same(gpu.geometry, gpu.skins.back()->output));
 }
 
+TEST_CASE("scene view: back faces are culled only on a closed, outward surface", "[editor][scene_view]") {
+  auto culled = [](Document& doc, double time) {
+    doc.set_time(time);
+    MockRenderBackend gpu;
+    SceneView scene(gpu);
+    ViewSettings s;
+    scene.sync(doc, s);
+    scene.draw(doc, view::Camera{}, s);
+    REQUIRE(gpu.surface_draws.size() == 1);
+    return gpu.surface_draws.back().style.cull_back_faces;
+  };
+  Document doc;
+  make_bound(doc);
+  CHECK(culled(doc, 0.0));  // the posed octahedron
+  doc.set_key(0.0);
+  doc.translate_handle(0, Vector3d(0.2, 0.3, 0));
+  doc.set_key(1.0);
+  CHECK(culled(doc, 0.5));  // a cached interval's welded slice, checked closed when it was built
+  CHECK_FALSE(culled(doc, 1.0));  // the general pass's triangle soup on a key: not checked, not culled
+
+  Document open;
+  TriMesh m = test::octahedron();
+  m.F.conservativeResize(m.F.rows() - 1, 3);  // a triangular hole: the inside shows through it
+  open.set_surface(m, "open octahedron");
+  CHECK_FALSE(culled(open, 0.0));
+  Document inside_out;
+  TriMesh f = test::octahedron();
+  f.F.col(1).swap(f.F.col(2));  // closed, but its front faces point inward
+  inside_out.set_surface(f, "inside-out octahedron");
+  CHECK_FALSE(culled(inside_out, 0.0));
+  inside_out.set_surface(test::octahedron(), "octahedron");  // the same document made right
+  CHECK(culled(inside_out, 0.0));
+}
+
 TEST_CASE("scene view: weight colours follow the Weights panel and the selection", "[editor][scene_view]") {
   Document doc;
   make_bound(doc);

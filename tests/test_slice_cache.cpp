@@ -1,12 +1,18 @@
 // app/editor/slice_cache: when the editor draws a time slice from a cached interval, builds one, or
-// runs the general per-tetrahedron pass (no GL).
+// runs the general per-tetrahedron pass (no GL); app/editor/interval_prefetch: the next interval's
+// topology built on a worker equals the one built in place.
 #include <cmath>
+#include <memory>
 
 #include <catch2/catch.hpp>
 
+#include "app/editor/interval_prefetch.h"
 #include "app/editor/slice_cache.h"
+#include "core/anim/manifold_normals.h"
+#include "tests/interval_slice_test_manifolds.h"
 
 using dfm::editor::IntervalCachePolicy;
+using dfm::editor::IntervalPrefetch;
 using dfm::editor::SliceDecision;
 using dfm::editor::SliceRoute;
 
@@ -98,4 +104,53 @@ TEST_CASE("slice cache: an interval shorter than the frame step is not worth bui
   p.reset(times);
   REQUIRE(p.builds() == 0);
   REQUIRE(p.choose(true, 1.5, kStep).route == SliceRoute::Build);
+}
+
+TEST_CASE("slice cache: the interval playback reaches next, and which are cached", "[editor][interval]") {
+  IntervalCachePolicy p(2);
+  p.reset({0.0, 0.2, 0.4, 1.0});  // intervals 0, 1, 2
+  REQUIRE(p.next_interval(0, kStep) == 1);
+  REQUIRE(p.next_interval(0, 0.0) == 1);    // a still frame looks forward
+  REQUIRE(p.next_interval(2, kStep) == 0);  // a looping timeline wraps to the start
+  REQUIRE(p.next_interval(0, -kStep) == 2);  // and backwards to the end
+  REQUIRE(p.next_interval(1, -kStep) == 0);
+  REQUIRE(p.worth_building(2, kStep));
+  REQUIRE_FALSE(p.worth_building(0, 0.25));  // 0.2 long, left within one step of 0.25
+  REQUIRE_FALSE(p.worth_building(3, kStep));  // no such interval
+  REQUIRE_FALSE(p.cached(1));
+  REQUIRE(p.choose(true, 0.3, kStep).route == SliceRoute::Build);
+  REQUIRE(p.cached(1));
+  REQUIRE_FALSE(p.cached(-1));
+  p.reset({});
+  REQUIRE(p.next_interval(0, kStep) == -1);
+}
+
+TEST_CASE("interval prefetch: the worker's topology is the one built in place", "[editor][interval]") {
+  auto m = std::make_shared<const dfm::AnimationManifold>(dfm::test::deforming_sphere_manifold());
+  auto n4 = std::make_shared<const Eigen::MatrixXd>(dfm::manifold_vertex_normals(*m));
+  const std::vector<double> times = dfm::manifold_vertex_times(*m);
+  REQUIRE(times.size() >= 3);
+  IntervalPrefetch pf;
+  REQUIRE_FALSE(pf.take(0));  // nothing asked for yet
+  pf.reset(m, n4, times);
+  pf.request(1);
+  REQUIRE(pf.interval() == 1);
+  REQUIRE_FALSE(pf.take(0));  // not the interval built
+  std::optional<dfm::IntervalSlice> got = pf.take(1);  // waits for the worker
+  REQUIRE(got);
+  const dfm::IntervalSlice ref = dfm::build_interval_slice(*m, *n4, times[1], times[2]);
+  REQUIRE(got->edges == ref.edges);
+  REQUIRE(got->F == ref.F);
+  REQUIRE(got->closed_outward == ref.closed_outward);
+  REQUIRE(pf.interval() == -1);  // taken
+  REQUIRE_FALSE(pf.take(1));
+  // A newer manifold drops the build (the old manifold stays alive for the worker meanwhile).
+  pf.request(0);
+  pf.reset(m, n4, times);
+  REQUIRE_FALSE(pf.take(0));
+  // A build that fails (a vertex time inside the interval) gives nothing; the caller's own build says why.
+  pf.reset(m, n4, {times[0], times[2]});
+  pf.request(0);
+  REQUIRE_FALSE(pf.take(0));
+  REQUIRE_THROWS(dfm::build_interval_slice(*m, *n4, times[0], times[2]));
 }

@@ -9,34 +9,12 @@
 #include "render/gl_context.h"
 #include "render/screenshot.h"
 #include "render/surface_pass.h"
+#include "tests/gl_offscreen_target.h"
+#include "tests/volume_test_meshes.h"
 
 using namespace dfm;
 
 namespace {
-
-// An offscreen colour + depth target of size n x n, bound for drawing and reading.
-struct Target {
-  GLuint fbo = 0, color = 0, depth = 0;
-  explicit Target(int n) {
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glGenRenderbuffers(1, &color);
-    glBindRenderbuffer(GL_RENDERBUFFER, color);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, n, n);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
-    glGenRenderbuffers(1, &depth);
-    glBindRenderbuffer(GL_RENDERBUFFER, depth);
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, n, n);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    glViewport(0, 0, n, n);
-  }
-  ~Target() {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteRenderbuffers(1, &color);
-    glDeleteRenderbuffers(1, &depth);
-    glDeleteFramebuffers(1, &fbo);
-  }
-};
 
 // Whether the program in use has a geometry shader: GL_GEOMETRY_VERTICES_OUT is an error without one.
 bool current_program_has_geometry_shader() {
@@ -50,11 +28,13 @@ bool current_program_has_geometry_shader() {
   return has && out == 3;
 }
 
-gl::Image draw(gl::SurfacePass& pass, const view::Camera& cam, bool wireframe, bool* used_geometry) {
+gl::Image draw(gl::SurfacePass& pass, const view::Camera& cam, bool wireframe, bool* used_geometry,
+               bool cull = false) {
   glClearColor(0, 0, 0, 1);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl::SurfaceStyle style;
   style.wireframe = wireframe;
+  style.cull_back_faces = cull;
   pass.draw(cam, style);
   *used_geometry = current_program_has_geometry_shader();
   glFinish();
@@ -66,7 +46,7 @@ gl::Image draw(gl::SurfacePass& pass, const view::Camera& cam, bool wireframe, b
 TEST_CASE("the surface pass skips the wireframe geometry shader when the wireframe is off", "[gl][render]") {
   gl::Context ctx;
   const int n = 160;
-  Target target(n);
+  test::OffscreenTarget target(n);
   REQUIRE(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
   // A unit square facing the camera, split along its diagonal into two triangles.
   TriMesh m;
@@ -113,4 +93,36 @@ TEST_CASE("the surface pass skips the wireframe geometry shader when the wirefra
   CHECK(lit > 800);
   // The outer edges of the square are wireframe too: allow a border band of differing pixels.
   CHECK(same >= 0.8 * lit);
+}
+
+TEST_CASE("culling back faces leaves a closed surface's picture unchanged and hides a back face", "[gl][render]") {
+  gl::Context ctx;
+  const int n = 160;
+  test::OffscreenTarget target(n);
+  REQUIRE(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+  view::Camera cam;
+  cam.width = cam.height = n;
+  gl::SurfacePass pass;
+  bool gs = false;
+  auto lit_pixels = [&](const gl::Image& im) {
+    int lit = 0;
+    for (size_t i = 0; i < im.rgba.size(); i += 4) lit += im.rgba[i] + im.rgba[i + 1] + im.rgba[i + 2] > 0;
+    return lit;
+  };
+  // A closed sphere seen from outside: its back faces lie behind its front faces, so culling them
+  // changes no pixel.
+  TriMesh sphere = test::icosphere(Eigen::Vector3d::Zero(), 0.6, 3);
+  pass.upload_mesh(sphere);
+  const gl::Image all = draw(pass, cam, false, &gs, false), culled = draw(pass, cam, false, &gs, true);
+  REQUIRE(lit_pixels(all) > n * n / 8);
+  CHECK(all.rgba == culled.rgba);
+  // One triangle turned away from the camera (clockwise on screen): shown in the back colour, or culled.
+  TriMesh back;
+  back.V.resize(3, 3);
+  back.V << -0.5, -0.5, 0, 0.5, 0.5, 0, 0.5, -0.5, 0;
+  back.F.resize(1, 3);
+  back.F << 0, 1, 2;
+  pass.upload_mesh(back);
+  CHECK(lit_pixels(draw(pass, cam, false, &gs, false)) > n * n / 16);
+  CHECK(lit_pixels(draw(pass, cam, false, &gs, true)) == 0);
 }

@@ -56,30 +56,37 @@ void Editor::play_benchmark(int frames) {
               cached, int(ms.size()), view_->intervals_built() - built0, view_->interval_build_ms() - build_ms0,
               view_->vertex_time_count());
   if (empty) std::printf("play-frames: %d frames showed no vertices (first at t=%.6g)\n", empty, first_empty_t);
-  // The baseline in the same process: as many frames of the current pose, skinned, not playing.
+  // The baseline in the same process: as many frames of the current pose, not playing. Posing skins
+  // the pose again every frame (what an edit or a drag costs); a still frame only redraws it.
   view_->show_pose();
-  std::vector<double> posed;
-  FrameStages posed_st;
-  profile_stages_ = true;
-  for (int i = 0; i < frames + 3; ++i) {
-    const double t0 = glfwGetTime();
-    render_frame();
-    glFinish();
-    present_frame();
-    glfwPollEvents();
-    if (i >= 3) {
-      posed.push_back(1000.0 * (glfwGetTime() - t0));
-      posed_st.ui += stages_.ui, posed_st.sync += stages_.sync, posed_st.scene += stages_.scene,
-          posed_st.imgui += stages_.imgui;
+  auto posed_frames = [&](bool reskin, FrameStages* st) {
+    std::vector<double> t;
+    profile_stages_ = true;
+    for (int i = 0; i < frames + 3; ++i) {
+      const double t0 = glfwGetTime();
+      if (reskin) view_->show_pose();
+      render_frame();
+      glFinish();
+      present_frame();
+      glfwPollEvents();
+      if (i >= 3) {
+        t.push_back(1000.0 * (glfwGetTime() - t0));
+        st->ui += stages_.ui, st->sync += stages_.sync, st->scene += stages_.scene, st->imgui += stages_.imgui;
+      }
     }
-  }
-  profile_stages_ = false;
-  if (!view_->showing_slice() && !posed.empty()) {
-    double psum = 0;
-    for (double m : posed) psum += m;
-    const double pn = double(posed.size()), pmean = psum / pn;
+    profile_stages_ = false;
+    double sum = 0;
+    for (double m : t) sum += m;
+    return t.empty() ? 0.0 : sum / double(t.size());
+  };
+  FrameStages posed_st, still_st;
+  const double pmean = posed_frames(true, &posed_st), still = posed_frames(false, &still_st);
+  if (!view_->showing_slice() && pmean > 0) {
+    const double pn = frames;
     std::printf("play-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
                 posed_st.ui / pn, posed_st.sync / pn, posed_st.scene / pn, posed_st.imgui / pn);
+    std::printf("play-frames: still posed frame (not skinned again) mean %.2f ms (deform %.2f ms, scene draw %.2f ms)\n",
+                still, still_st.sync / pn, still_st.scene / pn);
     std::printf("play-frames: playback mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, sum / n / pmean);
   } else {
     std::printf("play-frames: no posed baseline (the scene has no skinned pose to show)\n");

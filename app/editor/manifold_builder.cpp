@@ -90,7 +90,7 @@ void ManifoldBuilder::collect() {
   if (j->sig != wanted_sig_ || (!j->ok && j->cancel.load())) return;
   built_sig_ = j->sig;
   if (j->ok) {
-    manifold_ = std::move(j->result);
+    manifold_ = std::make_shared<const AnimationManifold>(std::move(j->result));
     track_ = std::move(j->track);
     has_ = true;
     error_.clear();
@@ -114,7 +114,7 @@ void ManifoldBuilder::start(const Document& doc) {
   if (!needs_transition(keys)) {
     // The prism build only: milliseconds, as before mesh keys existed.
     try {
-      manifold_ = build_manifold_sequence(keys);
+      manifold_ = std::make_shared<const AnimationManifold>(build_manifold_sequence(keys));
       track_ = std::move(track);
       has_ = true;
       error_.clear();

@@ -31,7 +31,9 @@ class ManifoldBuilder {
   bool update(const Document& doc);
   // The manifold matches the document's keys (false while a build runs or after one failed).
   bool has_manifold() const { return has_; }
-  const AnimationManifold& manifold() const { return manifold_; }
+  const AnimationManifold& manifold() const { return *manifold_; }
+  // The same, shared: a worker may keep reading it after a newer manifold replaces it.
+  std::shared_ptr<const AnimationManifold> shared_manifold() const { return manifold_; }
   // The pose keys the manifold was built from when every key is a pose key (the handles follow the
   // animation); empty with mesh keys.
   const KeyTrack& track() const { return track_; }
@@ -48,7 +50,7 @@ class ManifoldBuilder {
   void start(const Document& doc);
 
   std::shared_ptr<Job> job_;
-  AnimationManifold manifold_;
+  std::shared_ptr<const AnimationManifold> manifold_ = std::make_shared<const AnimationManifold>();
   KeyTrack track_;
   bool has_ = false;
   std::string error_;

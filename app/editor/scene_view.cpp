@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "app/editor/manifold_builder.h"
+#include "app/editor/interval_prefetch.h"
 #include "app/editor/slice_cache.h"
 #include "core/anim/interpolate.h"
 #include "core/anim/interval_slice.h"
@@ -14,6 +15,7 @@
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
+#include "core/mesh/mesh_info.h"
 #include "core/skin/skin.h"
 #include "core/skin/stbs.h"
 
@@ -75,9 +77,11 @@ struct SceneView::Deformer {
   // The animation manifold (its signature covers key times, poses and meshes, weights, method).
   ManifoldBuilder builder;
   std::unique_ptr<gl::ManifoldSlicer> slice;
-  Eigen::MatrixXd normals4;  // the manifold's unit 4D vertex normals
+  std::shared_ptr<const Eigen::MatrixXd> normals4;  // the manifold's unit 4D vertex normals
   IntervalCachePolicy interval_policy{4};
   std::vector<std::unique_ptr<gl::IntervalSlicer>> interval_slots;  // one per policy slot
+  std::vector<bool> slot_closed;  // per slot: its topology's closed_outward
+  IntervalPrefetch prefetch;  // the interval playback reaches next, built on a worker
   int shown_slot = -1;  // the interval slot on display, -1 for the general pass
   bool have_slice_time = false;  // the last frame was a time slice at slice_time
   double slice_time = 0;
@@ -154,7 +158,17 @@ const Eigen::MatrixXi& SceneView::display_faces() {
   return display_F_;
 }
 
-void SceneView::show_rest(const TriMesh& rest) {
+bool SceneView::surface_closed(const Document& doc) {
+  const TriMesh& s = doc.surface();
+  ClosedCache& c = surface_closed_;
+  if (c.revision != doc.surface_weights_revision() || c.faces != s.F.data() || c.rows != s.F.rows()) {
+    c = {doc.surface_weights_revision(), s.F.data(), s.F.rows(), is_closed_outward(s.V, s.F)};
+  }
+  return c.closed;
+}
+
+void SceneView::show_rest(const TriMesh& rest, bool closed) {
+  display_closed_ = closed;
   display_V_ = rest.V;
   display_F_ = rest.F;
   display_is_rest_ = true;
@@ -178,11 +192,13 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     if (d.builder.update(doc)) {
       if (!d.slice) d.slice = gpu_.make_slicer();
       const AnimationManifold& m = d.builder.manifold();
-      d.normals4 = manifold_vertex_normals(m);
-      d.slice->upload(m, d.normals4);
+      d.normals4 = std::make_shared<const Eigen::MatrixXd>(manifold_vertex_normals(m));
+      d.slice->upload(m, *d.normals4);
       d.interval_policy.reset(manifold_vertex_times(m));
+      d.prefetch.reset(d.builder.shared_manifold(), d.normals4, d.interval_policy.times());
       d.interval_slots.clear();
       d.interval_slots.resize(d.interval_policy.capacity());
+      d.slot_closed.assign(d.interval_policy.capacity(), false);
       d.shown_slot = -1;
       d.have_slice_time = false;
       d.interval_build_ms = 0;
@@ -203,6 +219,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       d.skin->run(doc.method());
       const gl::GeometryRef g = d.skin->output();
       gpu_.show_geometry(g);
+      display_closed_ = surface_closed(doc);  // a pose keeps the rest's triangles
       display_count_ = g.vertex_count;
       display_faces_ = g.index_count / 3;
       showing_slice_ = false;
@@ -210,7 +227,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       d.have_slice_time = false;
       display_F_ = rest.F;
     } else {
-      show_rest(rest);
+      show_rest(rest, surface_closed(doc));
       colors_valid_ = false;
       return;
     }
@@ -218,7 +235,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     d.gpu_output_stale = true;
   } catch (const std::exception& e) {
     error_ = e.what();
-    show_rest(rest);
+    show_rest(rest, surface_closed(doc));
   }
   colors_valid_ = false;
 }
@@ -242,11 +259,12 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
     const auto b0 = std::chrono::steady_clock::now();
     try {
       const auto& times = d.interval_policy.times();
-      const IntervalSlice topology =
-          build_interval_slice(m, d.normals4, times[route.interval], times[route.interval + 1]);
+      std::optional<IntervalSlice> topology = d.prefetch.take(route.interval);
+      if (!topology) topology = build_interval_slice(m, *d.normals4, times[route.interval], times[route.interval + 1]);
       auto& slot = d.interval_slots[route.slot];
       if (!slot) slot = gpu_.make_interval_slicer();
-      slot->upload(topology, m, d.normals4);
+      slot->upload(*topology, m, *d.normals4);
+      d.slot_closed[route.slot] = topology->closed_outward;
     } catch (const std::exception&) {  // not a clean interval: the general pass draws it
       d.interval_policy.forget(route.slot);
       route = SliceDecision{};
@@ -258,12 +276,14 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
     slot.evaluate(value);
     const gl::GeometryRef g = slot.output();
     gpu_.show_geometry(g);
+    display_closed_ = d.slot_closed[route.slot];
     display_count_ = g.vertex_count;
     display_faces_ = static_cast<int>(slot.faces().rows());
     d.shown_slot = route.slot;
   } else {
     const int tris = d.slice->slice(axis, value);
     gpu_.show_geometry(d.slice->output());
+    display_closed_ = false;  // a triangle soup: no edges to check
     display_count_ = 3 * tris;
     display_faces_ = tris;
     d.shown_slot = -1;
@@ -271,6 +291,12 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
   d.have_slice_time = time_axis;
   d.slice_time = value;
   showing_slice_ = true;
+  // Playing on: the interval after this one builds meanwhile, unless it is cached or too short.
+  const int here = time_axis ? open_interval_of(d.interval_policy.times(), value) : -1;
+  if (here >= 0) {
+    const int next = d.interval_policy.next_interval(here, step);
+    if (!d.interval_policy.cached(next) && d.interval_policy.worth_building(next, step)) d.prefetch.request(next);
+  }
 }
 
 // The GPU skin pass of the bound weights; none without weights (the rest surface shows then).
@@ -378,6 +404,7 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
                : s.weight_view == WeightView::Off ? gl::SurfaceColorMode::Shaded
                                     : gl::SurfaceColorMode::Scalar;
   style.isolines = s.weight_view == WeightView::Selected ? 10.0f : 0.0f;
+  style.cull_back_faces = display_closed_;
   if (s.grid && !bounds_.isEmpty()) {
     const double diag = bounds_.diagonal().norm();
     const double spacing = gl::nice_spacing(2.5 * diag, 24);
@@ -472,7 +499,7 @@ void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, cons
 }
 
 void SceneView::show_preview(const TriMesh& mesh) {
-  show_rest(mesh);
+  show_rest(mesh, is_closed_outward(mesh.V, mesh.F));
   display_is_rest_ = false;  // not the rest surface: rest-only edits stay off
   deformer_->gpu_output_stale = false;  // display_V_ is the preview itself
   showing_preview_ = true;

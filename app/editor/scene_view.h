@@ -81,8 +81,9 @@ class SceneView {
   void update_surface(const Document& doc, const ViewSettings& s);
   void show_slice(const Document& doc, const ViewSettings& s);
   void update_skin(const Document& doc);
-  void show_rest(const TriMesh& rest);
   void update_colors(const Document& doc, const ViewSettings& s);
+  bool surface_closed(const Document& doc);
+  void show_rest(const TriMesh& rest, bool closed);
   void update_handles(const Document& doc, const ViewSettings& s);
   void draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s);
 
@@ -94,7 +95,15 @@ class SceneView {
   bool display_is_rest_ = true;
   bool showing_slice_ = false;
   bool showing_preview_ = false;
+  bool display_closed_ = false;  // the displayed surface is closed and outward: cull its back faces
   int display_count_ = 0, display_faces_ = 0;
+  // is_closed_outward of the document's surface, for the rest and posed display (cached: it sorts edges).
+  struct ClosedCache {
+    std::uint64_t revision = ~0ull;
+    const void* faces = nullptr;
+    Eigen::Index rows = -1;
+    bool closed = false;
+  } surface_closed_;
   Eigen::AlignedBox3d bounds_;
   Eigen::MatrixXd handle_pos_, joint_pos_;
   std::vector<gl::OverlayVertex> extra_lines_, extra_points_;

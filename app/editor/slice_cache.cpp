@@ -27,7 +27,7 @@ SliceDecision IntervalCachePolicy::choose(bool time_axis, double t, double frame
       slots_[s].used = clock_;
       return {SliceRoute::Cached, i, s};
     }
-  if (times_[i + 1] - times_[i] < std::abs(frame_step)) return d;  // gone before a cache pays back
+  if (!worth_building(i, frame_step)) return d;  // gone before a cache pays back
   int victim = -1;  // the first empty slot, else the least recently used
   for (int s = 0; s < capacity() && victim < 0; ++s)
     if (slots_[s].interval < 0) victim = s;
@@ -39,6 +39,24 @@ SliceDecision IntervalCachePolicy::choose(bool time_axis, double t, double frame
   slots_[victim] = Slot{i, clock_};
   ++builds_;
   return {SliceRoute::Build, i, victim};
+}
+
+bool IntervalCachePolicy::cached(int interval) const {
+  for (const Slot& s : slots_)
+    if (s.interval == interval && interval >= 0) return true;
+  return false;
+}
+
+bool IntervalCachePolicy::worth_building(int interval, double frame_step) const {
+  if (interval < 0 || interval + 1 >= static_cast<int>(times_.size())) return false;
+  return times_[interval + 1] - times_[interval] >= std::abs(frame_step);
+}
+
+int IntervalCachePolicy::next_interval(int interval, double frame_step) const {
+  const int n = static_cast<int>(times_.size()) - 1;
+  if (n <= 0) return -1;
+  const int next = frame_step < 0 ? interval - 1 : interval + 1;
+  return next < 0 ? n - 1 : next >= n ? 0 : next;
 }
 
 void IntervalCachePolicy::forget(int slot) {

@@ -33,6 +33,13 @@ class IntervalCachePolicy {
   SliceDecision choose(bool time_axis, double t, double frame_step);
   // The caller could not build the slot (an error): forget it.
   void forget(int slot);
+  // Interval i is in a slot.
+  bool cached(int interval) const;
+  // Interval i lasts at least one frame step: a topology built for it pays back.
+  bool worth_building(int interval, double frame_step) const;
+  // The interval playback reaches after interval i when moving by frame_step (forward when 0),
+  // wrapping around as a looping timeline does; -1 without intervals.
+  int next_interval(int interval, double frame_step) const;
 
   int capacity() const { return static_cast<int>(slots_.size()); }
   int slot_interval(int slot) const { return slots_[slot].interval; }  // -1 when empty

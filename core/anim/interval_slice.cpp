@@ -5,6 +5,7 @@
 
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
+#include "core/mesh/mesh_info.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -33,6 +34,7 @@ IntervalSlice build_interval_slice(const AnimationManifold& m, const Eigen::Matr
   IntervalSlice out;
   out.t_lo = t_lo;
   out.t_hi = t_hi;
+  out.closed_outward = is_closed_outward(s.mesh.V, s.mesh.F);
   out.F = std::move(s.mesh.F);
   out.edges.resize(s.edges.size());
   for (size_t v = 0; v < s.edges.size(); ++v) {

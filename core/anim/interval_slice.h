@@ -34,6 +34,9 @@ struct IntervalSlice {
   // Per slice vertex: the manifold vertices (up, down) of its edge, t(up) > t(down).
   std::vector<std::array<int, 2>> edges;
   Eigen::MatrixXi F;  // welded triangles, oriented outward (slice_manifold's)
+  // The slice is closed with positive volume (is_closed_outward at the interval's midpoint; a case
+  // that holds over the whole interval, since its topology and orientation do not change inside it).
+  bool closed_outward = false;
 
   int num_vertices() const { return static_cast<int>(edges.size()); }
   int num_faces() const { return static_cast<int>(F.rows()); }

@@ -187,6 +187,10 @@ double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
   return vol / 6.0;
 }
 
+bool is_closed_outward(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  return is_closed(F) && signed_volume(V, F) > 0;
+}
+
 Eigen::MatrixXi tet_boundary_faces(const Eigen::MatrixXi& T) {
   // Faces of a positively oriented tet (0,1,2,3), each counter-clockwise seen from outside.
   static const int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};

@@ -40,6 +40,8 @@ int degenerate_face_count(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, do
 // Enclosed volume by the divergence theorem: positive for a closed, outward (counter-clockwise)
 // oriented surface, negative when it is inside out. Meaningful only when is_closed(F).
 double signed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
+// is_closed(F) with positive signed volume: seen from outside, only front faces are ever visible.
+bool is_closed_outward(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
 // Vertices joined by an edge of any element (triangles or tets: every pair within a row), as a symmetric
 // adjacency list over num_vertices, each list sorted without duplicates.
