@@ -24,11 +24,14 @@ namespace dfm::gl {
 
 // Vertices a deformer wrote on the GPU, as the surface draws them: a PosNormal buffer and optional
 // uint32 triangle indices (index_buffer 0: a triangle soup). Buffer names belong to the backend.
+// With interval set, vertex_buffer holds IntervalVertex records drawn at time t_lo + interval_dt.
 struct GeometryRef {
   unsigned vertex_buffer = 0;
   int vertex_count = 0;
   unsigned index_buffer = 0;
   int index_count = 0;
+  bool interval = false;
+  float interval_dt = 0;
 };
 
 // The posed surface of one skin binding (render/skin_pass.h).
@@ -57,8 +60,8 @@ class IntervalSlicer {
   virtual ~IntervalSlicer() = default;
   virtual void upload(const IntervalSlice& interval, const AnimationManifold& m,
                       const Eigen::MatrixXd& vertex_normals4) = 0;
-  virtual void evaluate(double t) = 0;
-  virtual GeometryRef output() const = 0;  // welded, indexed by faces()
+  virtual void evaluate(double t) = 0;     // the time output() is drawn at
+  virtual GeometryRef output() const = 0;  // welded interval records, indexed by faces()
   virtual const Eigen::MatrixXi& faces() const = 0;
   virtual std::vector<PosNormal> read_back() const = 0;
 };

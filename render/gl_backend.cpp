@@ -54,7 +54,7 @@ class GlIntervalSlicer final : public IntervalSlicer {
   }
   void evaluate(double t) override { pass_.evaluate(t); }
   GeometryRef output() const override {
-    return {pass_.output_buffer(), pass_.num_vertices(), pass_.index_buffer(), pass_.index_count()};
+    return {pass_.record_buffer(), pass_.num_vertices(), pass_.index_buffer(), pass_.index_count(), true, pass_.dt()};
   }
   const Eigen::MatrixXi& faces() const override { return pass_.faces(); }
   std::vector<PosNormal> read_back() const override { return pass_.read_back(); }
@@ -74,7 +74,10 @@ std::unique_ptr<ManifoldSlicer> GlBackend::make_slicer() { return std::make_uniq
 std::unique_ptr<IntervalSlicer> GlBackend::make_interval_slicer() { return std::make_unique<GlIntervalSlicer>(); }
 
 void GlBackend::show_geometry(const GeometryRef& g) {
-  surface_.set_geometry(g.vertex_buffer, g.vertex_count, g.index_buffer, g.index_count);
+  if (g.interval)
+    surface_.set_interval_geometry(g.vertex_buffer, g.vertex_count, g.index_buffer, g.index_count, g.interval_dt);
+  else
+    surface_.set_geometry(g.vertex_buffer, g.vertex_count, g.index_buffer, g.index_count);
 }
 
 }  // namespace dfm::gl

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "render/gl.h"
+#include "render/vertex_format.h"
 
 namespace dfm::gl {
 
@@ -92,6 +93,21 @@ inline void capture_points(const VertexArray& vao, const Buffer& out, int count)
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   glDisable(GL_RASTERIZER_DISCARD);
   glBindVertexArray(0);
+}
+
+// Points the bound VAO's attributes at the bound GL_ARRAY_BUFFER of IntervalVertex records, at the
+// locations shaders/surface.vert.glsl (INTERVAL) reads; location 2 (per-vertex data) is left alone.
+inline void interval_vertex_attributes() {
+  const GLsizei stride = sizeof(IntervalVertex);
+  auto attrib = [&](GLuint loc, GLint size, size_t offset) {
+    glEnableVertexAttribArray(loc);
+    glVertexAttribPointer(loc, size, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+  };
+  attrib(0, 3, offsetof(IntervalVertex, up));
+  attrib(1, 3, offsetof(IntervalVertex, n_up));
+  attrib(3, 3, offsetof(IntervalVertex, down));
+  attrib(4, 3, offsetof(IntervalVertex, n_down));
+  attrib(5, 2, offsetof(IntervalVertex, mu));
 }
 
 class Texture {

@@ -10,17 +10,8 @@
 
 namespace dfm::gl {
 
-namespace {
-// One slice vertex as the vertex shader reads it: up and down endpoints (x y z), their 3D normals,
-// and mu = A + B (t - t_lo) as (A, B) (see shaders/interval_slice.vert.glsl).
-struct Record {
-  float up[3], down[3], n_up[3], n_down[3], mu[2];
-};
-static_assert(sizeof(Record) == 56, "Record must be tightly packed");
-}  // namespace
-
 IntervalSlicePass::IntervalSlicePass()
-    : program_(ProgramDesc{"interval_slice.vert.glsl", "", "", {}, {"out_position", "out_normal"}}) {
+    : capture_(ProgramDesc{"surface.vert.glsl", "", "", {"INTERVAL", "CAPTURE"}, {"out_position", "out_normal"}}) {
   check_error("interval slice pass setup");
 }
 
@@ -29,7 +20,7 @@ void IntervalSlicePass::upload(const IntervalSlice& s, const AnimationManifold& 
   if (vertex_normals4.rows() != m.num_vertices() || vertex_normals4.cols() != 4)
     throw Error("interval slice pass: vertex normals must be " + std::to_string(m.num_vertices()) + " x 4");
   const int nv = s.num_vertices();
-  std::vector<Record> rec(nv);
+  std::vector<IntervalVertex> rec(nv);
   for (int v = 0; v < nv; ++v) {
     const int up = s.edges[v][0], dn = s.edges[v][1];
     if (up < 0 || dn < 0 || up >= m.num_vertices() || dn >= m.num_vertices())
@@ -55,25 +46,16 @@ void IntervalSlicePass::upload(const IntervalSlice& s, const AnimationManifold& 
     }
   vao_.bind();
   records_.upload(GL_ARRAY_BUFFER, rec);
-  const GLsizei stride = sizeof(Record);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(Record, up)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(Record, down)));
-  glEnableVertexAttribArray(2);
-  glVertexAttribPointer(2, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(Record, n_up)));
-  glEnableVertexAttribArray(3);
-  glVertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(Record, n_down)));
-  glEnableVertexAttribArray(4);
-  glVertexAttribPointer(4, 2, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offsetof(Record, mu)));
+  interval_vertex_attributes();
   glBindVertexArray(0);
+  // GL_ARRAY_BUFFER: binding GL_ELEMENT_ARRAY_BUFFER would change whatever VAO is bound.
   indices_.upload(GL_ARRAY_BUFFER, idx);
-  out_.upload(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, static_cast<size_t>(nv) * sizeof(PosNormal), GL_DYNAMIC_COPY);
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
   F_ = s.F;
   num_vertices_ = nv;
   t_lo_ = s.t_lo;
   t_hi_ = s.t_hi;
+  dt_ = 0;
   check_error("interval slice pass upload");
 }
 
@@ -81,14 +63,18 @@ void IntervalSlicePass::evaluate(double t) {
   if (!contains(t))
     throw Error("interval slice pass: t = " + std::to_string(t) + " is outside (" + std::to_string(t_lo_) + ", " +
                 std::to_string(t_hi_) + ")");
-  if (num_vertices_ == 0) return;
-  program_.use();
-  glUniform1f(program_.uniform("u_dt"), static_cast<float>(t - t_lo_));
-  capture_points(vao_, out_, num_vertices_);
-  check_error("interval slice pass draw");
+  dt_ = static_cast<float>(t - t_lo_);
 }
 
 std::vector<PosNormal> IntervalSlicePass::read_back() const {
+  if (num_vertices_ == 0) return {};
+  out_.upload(GL_TRANSFORM_FEEDBACK_BUFFER, nullptr, static_cast<size_t>(num_vertices_) * sizeof(PosNormal),
+              GL_DYNAMIC_COPY);
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+  capture_.use();
+  glUniform1f(capture_.uniform("u_dt"), dt_);
+  capture_points(vao_, out_, num_vertices_);
+  check_error("interval slice pass read-back");
   return out_.read<PosNormal>(static_cast<size_t>(num_vertices_));
 }
 

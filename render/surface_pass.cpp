@@ -53,10 +53,28 @@ std::vector<std::string> with_turbo(std::vector<std::string> defines) {
 
 SurfacePass::SurfacePass()
     : shaded_(ProgramDesc{"surface.vert.glsl", "", "surface.frag.glsl", with_turbo({}), {}}),
-      wireframe_(ProgramDesc{"surface.vert.glsl", "surface.geom.glsl", "surface.frag.glsl", with_turbo({"WIREFRAME"}), {}}) {}
+      wireframe_(ProgramDesc{"surface.vert.glsl", "surface.geom.glsl", "surface.frag.glsl", with_turbo({"WIREFRAME"}), {}}),
+      interval_shaded_(ProgramDesc{"surface.vert.glsl", "", "surface.frag.glsl", with_turbo({"INTERVAL"}), {}}),
+      interval_wireframe_(ProgramDesc{"surface.vert.glsl", "surface.geom.glsl", "surface.frag.glsl",
+                                      with_turbo({"WIREFRAME", "INTERVAL"}), {}}) {}
+
+void SurfacePass::set_interval_geometry(GLuint records, int vertex_count, GLuint ibo, int index_count, float dt) {
+  vao_.bind();
+  glBindBuffer(GL_ARRAY_BUFFER, records);
+  interval_vertex_attributes();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ibo);  // recorded in the VAO
+  glBindVertexArray(0);
+  vertex_count_ = vertex_count;
+  index_count_ = ibo ? index_count : 0;
+  indexed_ = ibo != 0;
+  interval_ = true;
+  dt_ = dt;
+}
 
 void SurfacePass::set_geometry(GLuint vbo, int vertex_count, GLuint ibo, int index_count) {
   vao_.bind();
+  for (GLuint loc : {3u, 4u, 5u}) glDisableVertexAttribArray(loc);  // interval records' extra attributes
+  interval_ = false;
   glBindBuffer(GL_ARRAY_BUFFER, vbo);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(PosNormal),
@@ -99,8 +117,10 @@ void SurfacePass::upload_mesh(const TriMesh& mesh) {
 void SurfacePass::draw(const view::Camera& cam, const SurfaceStyle& style) {
   const int count = indexed_ ? index_count_ : vertex_count_;
   if (count <= 0) return;
-  const Program& prog = style.wireframe ? wireframe_ : shaded_;
+  const Program& prog = interval_ ? (style.wireframe ? interval_wireframe_ : interval_shaded_)
+                                  : (style.wireframe ? wireframe_ : shaded_);
   prog.use();
+  if (interval_) glUniform1f(prog.uniform("u_dt"), dt_);
   float m[16];
   to_gl(view::view_matrix(cam), m);
   glUniformMatrix4fv(prog.uniform("u_view"), 1, GL_FALSE, m);

@@ -28,6 +28,9 @@ class SurfacePass {
   // Where the vertices come from: a PosNormal buffer (owned elsewhere: skin or slice output, or
   // upload_mesh below) and an optional index buffer of uint32 triangles (0 -> draw as a soup).
   void set_geometry(GLuint pos_normal_buffer, int vertex_count, GLuint index_buffer, int index_count);
+  // Or IntervalVertex records of a cached manifold interval (render/interval_slice_pass.h), drawn at
+  // dt = t - t_lo: the vertex shader interpolates them (INTERVAL).
+  void set_interval_geometry(GLuint records, int vertex_count, GLuint index_buffer, int index_count, float dt);
   // Per-vertex data for the colour modes (one vec4 per vertex, same order as the geometry). An empty
   // vector clears it.
   void set_vertex_data(const std::vector<Eigen::Vector4f>& data);
@@ -41,11 +44,14 @@ class SurfacePass {
  private:
   // Shaded only (vertex + fragment) and shaded with the single-pass wireframe (+ geometry shader):
   // the geometry stage costs a lot on software GL, so it runs only when the wireframe is on.
-  Program shaded_, wireframe_;
+  // Each also for interval records (INTERVAL).
+  Program shaded_, wireframe_, interval_shaded_, interval_wireframe_;
   VertexArray vao_;
   Buffer own_vertices_, own_indices_, data_;
   int vertex_count_ = 0, index_count_ = 0, data_count_ = 0;
   bool indexed_ = false;
+  bool interval_ = false;
+  float dt_ = 0;
 };
 
 // Column-major float copy for glUniformMatrix4fv.

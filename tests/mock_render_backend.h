@@ -189,6 +189,7 @@ class Interval final : public gl::IntervalSlicer {
   }
   void evaluate(double t) override {
     log_->evaluations.push_back(t);
+    log_->output.interval_dt = static_cast<float>(t - log_->topology.t_lo);
     slice_ = evaluate_interval_slice(log_->topology, m_, normals4_, t);
   }
   gl::GeometryRef output() const override { return log_->output; }
@@ -225,6 +226,7 @@ inline std::unique_ptr<gl::IntervalSlicer> MockRenderBackend::make_interval_slic
   auto log = std::make_unique<IntervalLog>();
   log->output.vertex_buffer = new_buffer();
   log->output.index_buffer = new_buffer();
+  log->output.interval = true;
   intervals.push_back(std::move(log));
   return std::make_unique<mock_detail::Interval>(intervals.back().get());
 }

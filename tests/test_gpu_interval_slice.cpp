@@ -1,6 +1,6 @@
-// Playback from a cached interval (render/interval_slice_pass, shaders/interval_slice.vert.glsl)
-// against the CPU slicer, and the editor's cache-or-general-pass loop (app/editor/slice_cache) on a
-// real GL context.
+// Playback from a cached interval (render/interval_slice_pass, shaders/surface.vert.glsl with
+// INTERVAL) against the CPU slicer; the surface pass drawing the records equals drawing their read-back;
+// and the editor's cache-or-general-pass loop (app/editor/slice_cache) on a real GL context.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -14,7 +14,10 @@
 #include "core/anim/slice.h"
 #include "render/gl_context.h"
 #include "render/interval_slice_pass.h"
+#include "render/screenshot.h"
 #include "render/slice_pass.h"
+#include "render/surface_pass.h"
+#include "tests/gl_offscreen_target.h"
 #include "tests/interval_slice_test_manifolds.h"
 
 using namespace dfm;
@@ -106,6 +109,48 @@ TEST_CASE("the interval pass equals the CPU slice at times inside each interval"
       REQUIRE_THROWS(pass.evaluate(times[i + 1]));
     }
   }
+}
+
+// The surface pass draws an interval's records (interpolated in its vertex shader) as the same picture
+// as the PosNormal vertices read back from that shader: the records' attributes reach the shader.
+TEST_CASE("drawing an interval's records equals drawing its read-back vertices", "[gl][manifold][interval]") {
+  gl::Context ctx;
+  const int n = 200;
+  test::OffscreenTarget target(n);
+  REQUIRE(glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE);
+  const AnimationManifold M = test::deforming_sphere_manifold();
+  const Eigen::MatrixXd N4 = manifold_vertex_normals(M);
+  const std::vector<double> times = manifold_vertex_times(M);
+  gl::IntervalSlicePass pass;
+  pass.upload(build_interval_slice(M, N4, times[0], times[1]), M, N4);
+  pass.evaluate(times[0] + 0.4 * (times[1] - times[0]));
+  view::Camera cam;
+  cam.width = cam.height = n;
+  gl::SurfacePass surface;
+  auto draw = [&]() {
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    surface.draw(cam, gl::SurfaceStyle{});
+    glFinish();
+    return gl::read_framebuffer(n, n);
+  };
+  surface.set_interval_geometry(pass.record_buffer(), pass.num_vertices(), pass.index_buffer(), pass.index_count(),
+                                pass.dt());
+  const gl::Image from_records = draw();
+  const std::vector<gl::PosNormal> v = pass.read_back();
+  gl::Buffer vertices;
+  vertices.upload(GL_ARRAY_BUFFER, v);
+  surface.set_geometry(vertices.id(), static_cast<int>(v.size()), pass.index_buffer(), pass.index_count());
+  const gl::Image from_read_back = draw();
+  int lit = 0;
+  for (size_t i = 0; i < from_records.rgba.size(); i += 4) lit += from_records.rgba[i] > 0;
+  REQUIRE(lit > n * n / 10);
+  CHECK(from_records.rgba == from_read_back.rgba);
+  // A later time moves the drawing (the time reaches the shader).
+  pass.evaluate(times[0] + 0.9 * (times[1] - times[0]));
+  surface.set_interval_geometry(pass.record_buffer(), pass.num_vertices(), pass.index_buffer(), pass.index_count(),
+                                pass.dt());
+  CHECK(draw().rgba != from_records.rgba);
 }
 
 // The editor's loop (scene_view.cpp) in miniature: the policy picks a route, a Build fills the slot's

@@ -86,6 +86,22 @@ TEST_CASE("open, multi-piece, non-manifold and inconsistent meshes", "[mesh_info
   REQUIRE(inconsistent_edge_count(bad.F) == 3);
   REQUIRE_FALSE(is_closed(bad.F));
   REQUIRE(is_closed(Eigen::MatrixXi()) == false);
+
+  // Every face doubled (two sheets on one surface): each edge has four faces.
+  Eigen::MatrixXi doubled(24, 3);
+  doubled << cube().F, cube().F;
+  REQUIRE(non_manifold_edge_count(doubled) == 18);
+  REQUIRE_FALSE(is_closed(doubled));
+  // A closed cube plus a face with a repeated vertex, and the two sides of one triangle (a closed,
+  // flat pair): is_closed agrees with the edge counts.
+  TriMesh degenerate = cube();
+  degenerate.F.conservativeResize(13, 3);
+  degenerate.F.row(12) << 0, 0, 1;
+  REQUIRE_FALSE(is_closed(degenerate.F));
+  Eigen::MatrixXi pair(2, 3);
+  pair << 0, 1, 2, 0, 2, 1;
+  REQUIRE(is_closed(pair));
+  REQUIRE(boundary_edge_count(pair) + non_manifold_edge_count(pair) + inconsistent_edge_count(pair) == 0);
 }
 
 TEST_CASE("duplicate vertices, degenerate faces, unreferenced vertices", "[mesh_info]") {

@@ -115,12 +115,27 @@ int inconsistent_edge_count(const Eigen::MatrixXi& F) {
   return n;
 }
 
+// Linear time (half-edges bucketed by their first vertex, instead of sorted): the viewport checks
+// every playback interval's slice with it.
 bool is_closed(const Eigen::MatrixXi& F) {
-  if (F.rows() == 0) return false;
-  auto h = sorted_half_edges(F);
-  bool ok = true;
-  for_each_edge(h, [&](size_t i, size_t k) { ok = ok && k == 2 && h[i].forward != h[i + 1].forward; });
-  return ok;
+  if (F.rows() == 0 || F.minCoeff() < 0) return false;
+  const int nv = F.maxCoeff() + 1;
+  std::vector<int> start(nv + 1, 0);
+  for (Eigen::Index i = 0; i < F.size(); ++i) ++start[F.data()[i] + 1];  // each vertex starts 1 half-edge per corner
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<int> to(start.back()), fill(start.begin(), start.end() - 1);
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      if (a == b) return false;  // a degenerate face: its edge (a, a) has no partner
+      to[fill[a]++] = b;
+    }
+  auto count = [&](int a, int b) { return std::count(to.begin() + start[a], to.begin() + start[a + 1], b); };
+  // Each half-edge a -> b is the only one from a to b, and exactly one goes back from b to a.
+  for (int a = 0; a < nv; ++a)
+    for (int i = start[a]; i < start[a + 1]; ++i)
+      if (count(a, to[i]) != 1 || count(to[i], a) != 1) return false;
+  return true;
 }
 
 int duplicate_vertex_count(const Eigen::MatrixXd& V, double tol) {
