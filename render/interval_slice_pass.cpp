@@ -60,9 +60,9 @@ void IntervalSlicePass::upload(const IntervalSlice& s, const AnimationManifold& 
 }
 
 void IntervalSlicePass::evaluate(double t) {
-  if (!contains(t))
-    throw Error("interval slice pass: t = " + std::to_string(t) + " is outside (" + std::to_string(t_lo_) + ", " +
-                std::to_string(t_hi_) + ")");
+  if (!reaches(t))
+    throw Error("interval slice pass: t = " + std::to_string(t) + " is outside [" + std::to_string(t_lo_) + ", " +
+                std::to_string(t_hi_) + "]");
   dt_ = static_cast<float>(t - t_lo_);
 }
 

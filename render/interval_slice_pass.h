@@ -27,10 +27,12 @@ class IntervalSlicePass {
 
   // Uploads the interval's vertex records (from m and its unit 4D vertex normals) and triangles.
   void upload(const IntervalSlice& interval, const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4);
-  // Sets the time the records are drawn at (t_lo < t < t_hi); throws dfm::Error outside.
+  // Sets the time the records are drawn at (t_lo < t < t_hi, or an end: the limit, see
+  // core/anim/interval_slice.h); throws dfm::Error outside.
   void evaluate(double t);
 
   bool contains(double t) const { return t_lo_ < t && t < t_hi_; }
+  bool reaches(double t) const { return t_lo_ <= t && t <= t_hi_; }
   double t_lo() const { return t_lo_; }
   double t_hi() const { return t_hi_; }
   GLuint record_buffer() const { return records_.id(); }  // num_vertices() IntervalVertex

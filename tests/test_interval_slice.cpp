@@ -8,6 +8,7 @@
 #include "core/anim/interval_slice.h"
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
+#include "core/mesh/mesh_info.h"
 #include "core/util/error.h"
 #include "tests/interval_slice_test_manifolds.h"
 
@@ -68,9 +69,9 @@ TEST_CASE("an interval's topology gives the CPU slice at every time inside it (p
     for (int v = 0; v < s.num_vertices(); ++v) REQUIRE(M.V(s.edges[v][0], 3) > M.V(s.edges[v][1], 3));
     REQUIRE(s.closed_outward);  // the slice of a closed sphere's manifold: the viewport may cull back faces
     for (double t : times_inside(times[i], times[i + 1])) require_equal_to_cpu_slice(s, M, N4, t);
-    // Not at the ends (a vertex time has its own topology) nor beyond.
-    REQUIRE_THROWS_AS(evaluate_interval_slice(s, M, N4, times[i]), Error);
-    REQUIRE_THROWS_AS(evaluate_interval_slice(s, M, N4, times[i + 1]), Error);
+    // Not beyond the ends.
+    REQUIRE_THROWS_AS(evaluate_interval_slice(s, M, N4, times[i] - 0.01), Error);
+    REQUIRE_THROWS_AS(evaluate_interval_slice(s, M, N4, times[i + 1] + 0.01), Error);
   }
   // Two intervals have different topologies: one does not stand for the other.
   const IntervalSlice a = build_interval_slice(M, N4, times[0], times[1]);
@@ -86,6 +87,44 @@ TEST_CASE("an interval's topology gives the CPU slice at every time inside it (p
   const IntervalSlice o = build_interval_slice(open, manifold_vertex_normals(open), 0.0, 1.0);
   REQUIRE(o.num_faces() > 0);
   REQUIRE_FALSE(o.closed_outward);
+}
+
+// At a vertex time slice_manifold has another topology; the neighbouring intervals' limits there are
+// the same surface: the same points (each limit vertex is a CPU vertex and back), the same area and
+// the same enclosed volume, the extra triangles collapsed to zero area.
+TEST_CASE("an interval's limit at its ends is the CPU slice's surface", "[manifold][interval]") {
+  const AnimationManifold M = test::deforming_sphere_manifold();
+  const Eigen::MatrixXd N4 = manifold_vertex_normals(M);
+  const std::vector<double> times = manifold_vertex_times(M);
+  auto area = [](const TriMesh& m) {
+    double a = 0;
+    for (int f = 0; f < m.F.rows(); ++f)
+      a += 0.5 * Eigen::RowVector3d(m.V.row(m.F(f, 1)) - m.V.row(m.F(f, 0)))
+                     .cross(Eigen::RowVector3d(m.V.row(m.F(f, 2)) - m.V.row(m.F(f, 0))))
+                     .norm();
+    return a;
+  };
+  auto nearest = [](const Eigen::MatrixXd& P, const Eigen::RowVector3d& q) {
+    return (P.rowwise() - q).rowwise().norm().minCoeff();
+  };
+  for (size_t k = 0; k < times.size(); ++k) {
+    const TriMesh cpu = slice_manifold(M, SliceAxis::T, times[k], &N4).mesh;
+    REQUIRE(cpu.num_faces() > 0);
+    for (int side : {-1, 0}) {  // interval k - 1 ends at times[k], interval k starts there
+      const int i = static_cast<int>(k) + side;
+      if (i < 0 || i + 1 >= static_cast<int>(times.size())) continue;
+      INFO("vertex time " << times[k] << ", interval " << i);
+      const IntervalSlice s = build_interval_slice(M, N4, times[i], times[i + 1]);
+      REQUIRE(s.reaches(times[k]));
+      REQUIRE_FALSE(s.contains(times[k]));
+      const TriMesh lim = evaluate_interval_slice(s, M, N4, times[k]);
+      for (int v = 0; v < lim.num_vertices(); ++v) REQUIRE(nearest(cpu.V, lim.V.row(v)) < 1e-12);
+      for (int v = 0; v < cpu.num_vertices(); ++v) REQUIRE(nearest(lim.V, cpu.V.row(v)) < 1e-12);
+      REQUIRE(area(lim) == Approx(area(cpu)).epsilon(1e-12));
+      REQUIRE(signed_volume(lim.V, lim.F) == Approx(signed_volume(cpu.V, cpu.F)).epsilon(1e-12));
+      REQUIRE(lim.num_faces() > cpu.num_faces());  // collapsed triangles remain in the limit
+    }
+  }
 }
 
 TEST_CASE("intervals of a transition (many vertex times) give its CPU slices", "[manifold][interval][transition]") {

@@ -62,13 +62,25 @@ TEST_CASE("slice cache: the general pass where the cache does not apply", "[edit
   p.reset({0.0, 0.2, 0.4, 1.0});
   // The x, y, z sweep.
   REQUIRE(p.choose(false, 0.1, 0.0).route == SliceRoute::General);
-  // On a vertex time (another topology), before the start and after the end.
+  // On a vertex time with no neighbouring interval cached, before the start and after the end.
   for (double t : {0.0, 0.2, 0.4, 1.0, -0.5, 1.5}) {
     const SliceDecision d = p.choose(true, t, kStep);
     REQUIRE(d.route == SliceRoute::General);
     REQUIRE(d.slot == -1);
   }
   REQUIRE(p.builds() == 0);
+  // A vertex time next to a cached interval draws from it (its limit there).
+  const SliceDecision built = p.choose(true, 0.3, kStep);  // interval 1, (0.2, 0.4)
+  REQUIRE(built.route == SliceRoute::Build);
+  for (double t : {0.2, 0.4}) {
+    const SliceDecision d = p.choose(true, t, kStep);
+    REQUIRE(d.route == SliceRoute::Cached);
+    REQUIRE(d.interval == 1);
+    REQUIRE(d.slot == built.slot);
+  }
+  REQUIRE(p.choose(true, 0.0, kStep).route == SliceRoute::General);  // interval 0 is not cached
+  REQUIRE(p.choose(true, 1.5, kStep).route == SliceRoute::General);
+  REQUIRE(p.builds() == 1);
   // No manifold (fewer than two vertex times).
   IntervalCachePolicy empty;
   REQUIRE(empty.choose(true, 0.5, 0.0).route == SliceRoute::General);

@@ -20,7 +20,7 @@ SliceDecision IntervalCachePolicy::choose(bool time_axis, double t, double frame
   SliceDecision d;
   if (!time_axis || times_.size() < 2) return d;
   const int i = open_interval_of(times_, t);
-  if (i < 0) return d;  // outside, or on a vertex time: another topology
+  if (i < 0) return on_vertex_time(t);
   ++clock_;
   for (int s = 0; s < capacity(); ++s)
     if (slots_[s].interval == i) {
@@ -39,6 +39,18 @@ SliceDecision IntervalCachePolicy::choose(bool time_axis, double t, double frame
   slots_[victim] = Slot{i, clock_};
   ++builds_;
   return {SliceRoute::Build, i, victim};
+}
+
+SliceDecision IntervalCachePolicy::on_vertex_time(double t) {
+  const auto it = std::lower_bound(times_.begin(), times_.end(), t);
+  if (it == times_.end() || *it != t) return {};  // outside the manifold
+  const int k = static_cast<int>(it - times_.begin());  // t = times[k]: interval k - 1 ends, k starts
+  for (int s = 0; s < capacity(); ++s)
+    if (slots_[s].interval >= 0 && (slots_[s].interval == k - 1 || slots_[s].interval == k)) {
+      slots_[s].used = ++clock_;
+      return {SliceRoute::Cached, slots_[s].interval, s};
+    }
+  return {};
 }
 
 bool IntervalCachePolicy::cached(int interval) const {

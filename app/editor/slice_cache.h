@@ -1,11 +1,13 @@
 #pragma once
 // Which way the editor slices the animation manifold this frame (no GL, so it is testable alone):
 //   - General: the per-tetrahedron GPU slice pass (render/slice_pass.h), for the x, y, z sweep, a time
-//     on a vertex time or outside the manifold, and an interval not cached yet that is shorter than
+//     outside the manifold or on a vertex time with neither neighbouring interval cached, and an
+//     interval not cached yet that is shorter than
 //     the frame step (playback would leave it before a cache could pay back: a transition between
 //     meshes of different connectivity has very many distinct vertex times);
 //   - Cached: the interval holding t is in one of the cache's slots: draw it by interpolation
-//     (render/interval_slice_pass.h);
+//     (render/interval_slice_pass.h); on a vertex time, a cached interval that ends or starts there
+//     (its slice's limit is the slice at that time: the same surface, some triangles collapsed);
 //   - Build: the interval is not cached yet and worth it: the caller builds its topology into `slot`
 //     (the least recently used one when all are taken), then draws as Cached.
 // Intervals are the open ones between consecutive distinct vertex times (core/anim/interval_slice.h).
@@ -47,6 +49,8 @@ class IntervalCachePolicy {
   int builds() const { return builds_; }  // intervals built since reset
 
  private:
+  SliceDecision on_vertex_time(double t);
+
   struct Slot {
     int interval = -1;
     std::uint64_t used = 0;

@@ -53,9 +53,9 @@ IntervalSlice build_interval_slice(const AnimationManifold& m, const Eigen::Matr
 
 TriMesh evaluate_interval_slice(const IntervalSlice& s, const AnimationManifold& m,
                                 const Eigen::MatrixXd& vertex_normals4, double t) {
-  if (!s.contains(t))
-    throw Error("interval slice: t = " + std::to_string(t) + " is outside (" + std::to_string(s.t_lo) + ", " +
-                std::to_string(s.t_hi) + ")");
+  if (!s.reaches(t))
+    throw Error("interval slice: t = " + std::to_string(t) + " is outside [" + std::to_string(s.t_lo) + ", " +
+                std::to_string(s.t_hi) + "]");
   TriMesh out;
   const int nv = s.num_vertices();
   out.V.resize(nv, 3);

@@ -10,8 +10,9 @@
 // rules of core/anim/slice.h: from the above endpoint (the one at the later time),
 //   mu = (t_up - c) / (t_up - t_down),   p = p_up + mu (p_down - p_up),
 //   n = normalize(n_up + mu (n_down - n_up)),  n_* = slice_normal3(4D vertex normal, t).
-// At a vertex time itself (c == tl or c == th) the slice has another topology (vertices on the plane,
-// collapsed triangles): the interval does not apply there.
+// At a vertex time itself (c == tl or c == th) slice_manifold gives another topology (vertices on the
+// plane); the interval's slice there, its limit, is the same surface with some triangles collapsed
+// (two of their vertices become the one manifold vertex on the plane), which is what display needs.
 #include <array>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct IntervalSlice {
   int num_vertices() const { return static_cast<int>(edges.size()); }
   int num_faces() const { return static_cast<int>(F.rows()); }
   bool contains(double t) const { return t_lo < t && t < t_hi; }
+  bool reaches(double t) const { return t_lo <= t && t <= t_hi; }  // contains, or an end
 };
 
 // The topology of the open interval (t_lo, t_hi), which must hold no vertex time inside (two
@@ -51,6 +53,7 @@ IntervalSlice build_interval_slice(const AnimationManifold& m, const Eigen::Matr
 
 // The slice at time t, t_lo < t < t_hi, from the topology (double precision; the GPU pass does the
 // same in float). The result's V, F, N are what slice_manifold(m, T, t) gives, vertex for vertex.
+// At t = t_lo or t_hi it is the limit: the slice_manifold surface there, with collapsed triangles.
 TriMesh evaluate_interval_slice(const IntervalSlice& s, const AnimationManifold& m,
                                 const Eigen::MatrixXd& vertex_normals4, double t);
 
