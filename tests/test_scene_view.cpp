@@ -271,6 +271,29 @@ TEST_CASE("scene view: the manifold's slice with two keys, the pose after a pose
   REQUIRE(same(gpu.geometry, gpu.skins.back()->output));
 }
 
+TEST_CASE("scene view: a looping playback builds every interval once", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  doc.set_key(0.0);
+  doc.translate_handle(0, Vector3d(0.2, 0.3, 0));
+  doc.set_key(1.0);
+  REQUIRE(doc.inbetweens() == 4);  // 5 intervals, more than the 4 slots the cache starts with
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  ViewSettings s;
+  const double step = 1.0 / 30.0;
+  for (int loop = 0; loop < 3; ++loop)
+    for (int f = 1; f < 30; ++f) {
+      doc.set_time(f * step);
+      scene.sync(doc, s);
+      REQUIRE(scene.showing_slice());
+    }
+  REQUIRE(scene.intervals_built() == 5);
+  int uploads = 0;
+  for (const auto& i : gpu.intervals) uploads += i->uploads;
+  REQUIRE(uploads == 5);
+}
+
 TEST_CASE("scene view: back faces are culled only on a closed, outward surface", "[editor][scene_view]") {
   auto culled = [](Document& doc, double time) {
     doc.set_time(time);

@@ -166,3 +166,20 @@ TEST_CASE("interval prefetch: the worker's topology is the one built in place", 
   REQUIRE_FALSE(pf.take(0));
   REQUIRE_THROWS(dfm::build_interval_slice(*m, *n4, times[0], times[2]));
 }
+
+TEST_CASE("slice cache: growing keeps the cached intervals", "[editor][interval]") {
+  IntervalCachePolicy p(2);
+  p.reset({0.0, 0.2, 0.4, 0.6, 1.0});
+  const SliceDecision a = p.choose(true, 0.1, kStep), b = p.choose(true, 0.3, kStep);
+  p.grow(1);  // never fewer
+  REQUIRE(p.capacity() == 2);
+  p.grow(4);
+  REQUIRE(p.capacity() == 4);
+  REQUIRE(p.slot_interval(a.slot) == 0);
+  REQUIRE(p.slot_interval(b.slot) == 1);
+  REQUIRE(p.choose(true, 0.5, kStep).route == SliceRoute::Build);  // into a new slot...
+  REQUIRE(p.choose(true, 0.8, kStep).route == SliceRoute::Build);
+  REQUIRE(p.choose(true, 0.15, kStep).route == SliceRoute::Cached);  // ...evicting nothing
+  REQUIRE(p.choose(true, 0.35, kStep).route == SliceRoute::Cached);
+  REQUIRE(p.builds() == 4);
+}

@@ -240,6 +240,23 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
   colors_valid_ = false;
 }
 
+namespace {
+// GPU memory the interval cache may hold: a looping playback of every interval then uploads each once.
+constexpr double kIntervalCacheBytes = 256.0 * (1 << 20);
+constexpr int kMaxIntervalSlots = 64;
+}  // namespace
+
+// Enough slots for every interval of the manifold, as far as kIntervalCacheBytes allows for intervals
+// the size of this one (at least the 4 it starts with).
+void SceneView::grow_interval_cache(Deformer& d, const IntervalSlice& built) {
+  const double bytes = built.num_vertices() * double(sizeof(gl::IntervalVertex)) + built.F.size() * 4.0;
+  const int intervals = static_cast<int>(d.interval_policy.times().size()) - 1;
+  const int fit = bytes > 0 ? static_cast<int>(std::min(kIntervalCacheBytes / bytes, double(kMaxIntervalSlots))) : 0;
+  d.interval_policy.grow(std::min(intervals, fit));
+  d.interval_slots.resize(d.interval_policy.capacity());
+  d.slot_closed.resize(d.interval_policy.capacity(), false);
+}
+
 // The manifold's slice on display: a time inside a cached (or worth caching) interval by
 // interpolation, anything else by the general pass (IntervalCachePolicy, slice_cache.h).
 void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
@@ -265,6 +282,7 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
       if (!slot) slot = gpu_.make_interval_slicer();
       slot->upload(*topology, m, *d.normals4);
       d.slot_closed[route.slot] = topology->closed_outward;
+      grow_interval_cache(d, *topology);
     } catch (const std::exception&) {  // not a clean interval: the general pass draws it
       d.interval_policy.forget(route.slot);
       route = SliceDecision{};

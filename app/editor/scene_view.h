@@ -80,6 +80,8 @@ class SceneView {
  private:
   void update_surface(const Document& doc, const ViewSettings& s);
   void show_slice(const Document& doc, const ViewSettings& s);
+  struct Deformer;  // posing and slicing state (skin binding, manifold cache)
+  static void grow_interval_cache(Deformer& d, const IntervalSlice& built);
   void update_skin(const Document& doc);
   void update_colors(const Document& doc, const ViewSettings& s);
   bool surface_closed(const Document& doc);
@@ -88,7 +90,6 @@ class SceneView {
   void draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s);
 
   gl::RenderBackend& gpu_;
-  struct Deformer;  // posing and slicing state (skin binding, manifold cache)
   std::unique_ptr<Deformer> deformer_;
   Eigen::MatrixXd display_V_;
   Eigen::MatrixXi display_F_;

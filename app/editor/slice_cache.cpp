@@ -71,6 +71,10 @@ int IntervalCachePolicy::next_interval(int interval, double frame_step) const {
   return next < 0 ? n - 1 : next >= n ? 0 : next;
 }
 
+void IntervalCachePolicy::grow(int capacity) {
+  if (capacity > this->capacity()) slots_.resize(capacity);
+}
+
 void IntervalCachePolicy::forget(int slot) {
   if (slot >= 0 && slot < capacity()) slots_[slot] = Slot{};
 }

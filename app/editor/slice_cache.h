@@ -35,6 +35,8 @@ class IntervalCachePolicy {
   SliceDecision choose(bool time_axis, double t, double frame_step);
   // The caller could not build the slot (an error): forget it.
   void forget(int slot);
+  // More slots (empty ones appended; existing ones kept); never fewer.
+  void grow(int capacity);
   // Interval i is in a slot.
   bool cached(int interval) const;
   // Interval i lasts at least one frame step: a topology built for it pays back.
