@@ -16,6 +16,7 @@
 #include "core/rig/pose.h"
 #include "core/skin/skin.h"
 #include "core/view/camera.h"
+#include "render/interval_records.h"
 #include "render/overlay_geometry.h"
 #include "render/surface_style.h"
 #include "render/vertex_format.h"
@@ -58,8 +59,9 @@ class ManifoldSlicer {
 class IntervalSlicer {
  public:
   virtual ~IntervalSlicer() = default;
+  // prepared: interval_records(interval, m, vertex_normals4) made beforehand (a worker's), or null.
   virtual void upload(const IntervalSlice& interval, const AnimationManifold& m,
-                      const Eigen::MatrixXd& vertex_normals4) = 0;
+                      const Eigen::MatrixXd& vertex_normals4, const IntervalRecords* prepared) = 0;
   virtual void evaluate(double t) = 0;     // the time output() is drawn at
   virtual GeometryRef output() const = 0;  // welded interval records, indexed by faces()
   virtual const Eigen::MatrixXi& faces() const = 0;

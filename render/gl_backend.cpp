@@ -48,9 +48,10 @@ class GlSlicer final : public ManifoldSlicer {
 
 class GlIntervalSlicer final : public IntervalSlicer {
  public:
-  void upload(const IntervalSlice& interval, const AnimationManifold& m,
-              const Eigen::MatrixXd& vertex_normals4) override {
-    pass_.upload(interval, m, vertex_normals4);
+  void upload(const IntervalSlice& interval, const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4,
+              const IntervalRecords* prepared) override {
+    if (prepared) pass_.upload(interval, *prepared);
+    else pass_.upload(interval, m, vertex_normals4);
   }
   void evaluate(double t) override { pass_.evaluate(t); }
   GeometryRef output() const override {

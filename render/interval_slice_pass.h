@@ -1,10 +1,10 @@
 #pragma once
 // Playback of an animation manifold at the cost of posing: one time interval's slice topology
 // (core/anim/interval_slice.h: per slice vertex the manifold edge it lies on, and welded triangles)
-// is uploaded once, as IntervalVertex records (both endpoints' positions and 3D slice normals, and the
-// interpolation parameter as a linear function of t, in double at upload, so float rounding of the
-// times does not matter: a transition's edges can be very short in time and long in space), with the
-// interval's index buffer. Each frame the surface pass draws them straight away: its vertex shader
+// is uploaded once, as IntervalVertex records (render/interval_records.h: both endpoints' positions
+// and 3D slice normals, and the interpolation parameter as a linear function of t, in double at
+// upload, so float rounding of the times does not matter: a transition's edges can be very short in
+// time and long in space), with the interval's index buffer. Each frame the surface pass draws them straight away: its vertex shader
 // (shaders/surface.vert.glsl, INTERVAL) interpolates every slice vertex to time t, so a frame costs no
 // pass of its own. read_back runs that same shader by transform feedback. Equals the CPU slicer
 // (slice_manifold) at every t inside the open interval, up to float rounding. Needs a current GL
@@ -17,6 +17,7 @@
 #include "core/anim/manifold.h"
 #include "render/gl_buffer.h"
 #include "render/gl_program.h"
+#include "render/interval_records.h"
 #include "render/vertex_format.h"
 
 namespace dfm::gl {
@@ -27,6 +28,8 @@ class IntervalSlicePass {
 
   // Uploads the interval's vertex records (from m and its unit 4D vertex normals) and triangles.
   void upload(const IntervalSlice& interval, const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4);
+  // The same from records prepared beforehand (interval_records; e.g. on a worker thread).
+  void upload(const IntervalSlice& interval, const IntervalRecords& records);
   // Sets the time the records are drawn at (t_lo < t < t_hi, or an end: the limit, see
   // core/anim/interval_slice.h); throws dfm::Error outside.
   void evaluate(double t);

@@ -47,6 +47,7 @@ class MockRenderBackend final : public gl::RenderBackend {
   struct IntervalLog {
     IntervalSlice topology;
     int uploads = 0;
+    int prepared = 0;  // uploads that came with records made beforehand
     std::vector<double> evaluations;
     gl::GeometryRef output;
     bool alive = true;
@@ -179,8 +180,10 @@ class Interval final : public gl::IntervalSlicer {
  public:
   explicit Interval(MockRenderBackend::IntervalLog* log) : log_(log) {}
   ~Interval() override { log_->alive = false; }
-  void upload(const IntervalSlice& s, const AnimationManifold& m, const Eigen::MatrixXd& normals4) override {
+  void upload(const IntervalSlice& s, const AnimationManifold& m, const Eigen::MatrixXd& normals4,
+              const gl::IntervalRecords* prepared) override {
     ++log_->uploads;
+    log_->prepared += prepared != nullptr;
     log_->topology = s;
     log_->output.vertex_count = s.num_vertices();
     log_->output.index_count = 3 * s.num_faces();

@@ -2,6 +2,7 @@
 // runs the general per-tetrahedron pass (no GL); app/editor/interval_prefetch: the next interval's
 // topology built on a worker equals the one built in place.
 #include <cmath>
+#include <cstring>
 #include <memory>
 
 #include <catch2/catch.hpp>
@@ -148,12 +149,17 @@ TEST_CASE("interval prefetch: the worker's topology is the one built in place", 
   pf.request(1);
   REQUIRE(pf.interval() == 1);
   REQUIRE_FALSE(pf.take(0));  // not the interval built
-  std::optional<dfm::IntervalSlice> got = pf.take(1);  // waits for the worker
+  std::optional<dfm::editor::PreparedInterval> got = pf.take(1);  // waits for the worker
   REQUIRE(got);
   const dfm::IntervalSlice ref = dfm::build_interval_slice(*m, *n4, times[1], times[2]);
-  REQUIRE(got->edges == ref.edges);
-  REQUIRE(got->F == ref.F);
-  REQUIRE(got->closed_outward == ref.closed_outward);
+  REQUIRE(got->topology.edges == ref.edges);
+  REQUIRE(got->topology.F == ref.F);
+  REQUIRE(got->topology.closed_outward == ref.closed_outward);
+  const dfm::gl::IntervalRecords rec = dfm::gl::interval_records(ref, *m, *n4);
+  REQUIRE(got->records.indices == rec.indices);
+  REQUIRE(got->records.vertices.size() == rec.vertices.size());
+  for (size_t v = 0; v < rec.vertices.size(); ++v)
+    REQUIRE(std::memcmp(&got->records.vertices[v], &rec.vertices[v], sizeof(rec.vertices[v])) == 0);
   REQUIRE(pf.interval() == -1);  // taken
   REQUIRE_FALSE(pf.take(1));
   // A newer manifold drops the build (the old manifold stays alive for the worker meanwhile).

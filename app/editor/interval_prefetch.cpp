@@ -27,16 +27,18 @@ void IntervalPrefetch::request(int i) {
   if (job_.valid() && job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;  // busy
   interval_ = i;
   job_ = std::async(std::launch::async, [m = manifold_, n = normals4_, lo = times_[i], hi = times_[i + 1]]()
-                                            -> std::optional<IntervalSlice> {
+                                            -> std::optional<PreparedInterval> {
     try {
-      return build_interval_slice(*m, *n, lo, hi);
+      PreparedInterval p{build_interval_slice(*m, *n, lo, hi), {}};
+      p.records = gl::interval_records(p.topology, *m, *n);
+      return p;
     } catch (const std::exception&) {
       return std::nullopt;
     }
   });
 }
 
-std::optional<IntervalSlice> IntervalPrefetch::take(int i) {
+std::optional<PreparedInterval> IntervalPrefetch::take(int i) {
   if (i != interval_ || !job_.valid()) return std::nullopt;
   interval_ = -1;
   return job_.get();

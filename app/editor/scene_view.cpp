@@ -276,13 +276,15 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
     const auto b0 = std::chrono::steady_clock::now();
     try {
       const auto& times = d.interval_policy.times();
-      std::optional<IntervalSlice> topology = d.prefetch.take(route.interval);
-      if (!topology) topology = build_interval_slice(m, *d.normals4, times[route.interval], times[route.interval + 1]);
+      std::optional<PreparedInterval> ready = d.prefetch.take(route.interval);
+      const IntervalSlice topology =
+          ready ? std::move(ready->topology)
+                : build_interval_slice(m, *d.normals4, times[route.interval], times[route.interval + 1]);
       auto& slot = d.interval_slots[route.slot];
       if (!slot) slot = gpu_.make_interval_slicer();
-      slot->upload(*topology, m, *d.normals4);
-      d.slot_closed[route.slot] = topology->closed_outward;
-      grow_interval_cache(d, *topology);
+      slot->upload(topology, m, *d.normals4, ready ? &ready->records : nullptr);
+      d.slot_closed[route.slot] = topology.closed_outward;
+      grow_interval_cache(d, topology);
     } catch (const std::exception&) {  // not a clean interval: the general pass draws it
       d.interval_policy.forget(route.slot);
       route = SliceDecision{};

@@ -4,4 +4,5 @@ dfm_test(test_interval_slice SOURCES test_interval_slice.cpp LIBS dfm_anim dfm_m
 dfm_test(test_gpu_interval_slice GL SOURCES test_gpu_interval_slice.cpp ${PROJECT_SOURCE_DIR}/app/editor/slice_cache.cpp
          LIBS dfm_render dfm_anim)
 dfm_test(test_slice_cache SOURCES test_slice_cache.cpp ${PROJECT_SOURCE_DIR}/app/editor/slice_cache.cpp
-         ${PROJECT_SOURCE_DIR}/app/editor/interval_prefetch.cpp LIBS dfm_anim dfm_mesh)
+         ${PROJECT_SOURCE_DIR}/app/editor/interval_prefetch.cpp ${PROJECT_SOURCE_DIR}/render/interval_records.cpp
+         LIBS dfm_anim dfm_mesh)
