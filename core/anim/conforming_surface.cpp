@@ -7,13 +7,12 @@
 #include <unordered_set>
 #include <set>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Geometry>
 
-#include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_vertex_base_with_info_3.h>
-
+#include "core/anim/face_protection.h"
+#include "core/anim/surface_delaunay.h"
 #include "core/bind/winding_bvh.h"
 #include "core/util/error.h"
 
@@ -21,10 +20,7 @@ namespace dfm {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-using Tds = CGAL::Triangulation_data_structure_3<Vb>;
-using Delaunay3 = CGAL::Delaunay_triangulation_3<K, Tds>;
+using K = DelaunayKernel;
 
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
@@ -38,23 +34,16 @@ std::uint64_t edge_key(int a, int b) {
 // longest edge). Returns the number of triangles that were missing; with fix false it only counts,
 // with allow_split false it only flips (and missing_rows lists the rows the flips do not mend).
 int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr, bool allow_split = true) {
-  const int n = static_cast<int>(s.V.rows()), ni = static_cast<int>(s.fill.rows());
-  std::vector<std::pair<K::Point_3, int>> pts;
-  pts.reserve(n + ni);
-  for (int i = 0; i < n; ++i) pts.push_back({K::Point_3(s.V(i, 0), s.V(i, 1), s.V(i, 2)), i});
-  for (int i = 0; i < ni; ++i) pts.push_back({K::Point_3(s.fill(i, 0), s.fill(i, 1), s.fill(i, 2)), n + i});
-  Delaunay3 dt(pts.begin(), pts.end());
-  std::vector<Delaunay3::Vertex_handle> vh(n + ni);
-  int found = 0;
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v, ++found) vh[v->info()] = v;
-  if (found != n + ni) throw Error("two surface vertices are at the same position");
+  const SurfaceDelaunay sd = surface_delaunay(s);
+  const Delaunay3& dt = sd.dt;
+  const auto& vh = sd.vertex;
   std::unordered_map<std::uint64_t, std::vector<int>> faces_of;
   for (int f = 0; f < s.F.rows(); ++f)
     for (int j = 0; j < 3; ++j) faces_of[edge_key(s.F(f, j), s.F(f, (j + 1) % 3))].push_back(f);
   Delaunay3::Cell_handle c;
   int i, j, k;
   auto is_edge = [&](int a, int b) { return dt.is_edge(vh[a], vh[b], c, i, j); };
-  auto point = [&](int v) { return pts[v].first; };
+  auto point = [&](int v) { return vh[v]->point(); };
   std::vector<char> changed(s.F.rows(), 0);
   std::vector<std::pair<int, int>> split;
   int missing = 0;
@@ -102,26 +91,42 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
 
 }  // namespace
 
-void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates) {
-  if (candidates.rows() == 0) return;
+int add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates, FillRule rule) {
+  std::vector<std::vector<Eigen::RowVector3d>> groups(static_cast<size_t>(candidates.rows()));
+  for (Eigen::Index i = 0; i < candidates.rows(); ++i) groups[static_cast<size_t>(i)] = {candidates.row(i)};
+  return add_fill_points(s, groups, rule);
+}
+
+int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups, FillRule rule) {
+  if (groups.empty()) return 0;
   const Eigen::MatrixXd before = s.fill;
   // A point (nearly) where the tetrahedralization has one already is not added: it would only make
   // slivers. Near means within 1e-6 of the surface's size, found on a grid of that cell size.
   const double cell = 1e-6 * std::max(1e-300, (s.V.colwise().maxCoeff() - s.V.colwise().minCoeff()).norm());
   std::set<std::array<std::int64_t, 3>> taken;
-  auto fresh = [&](const Eigen::RowVector3d& p) {
+  auto key_of = [&](const Eigen::RowVector3d& p) {
     std::array<std::int64_t, 3> k;
     for (int d = 0; d < 3; ++d) k[d] = static_cast<std::int64_t>(std::floor(p[d] / cell));
+    return k;
+  };
+  auto fresh = [&](const Eigen::RowVector3d& p) {
+    const auto k = key_of(p);
     for (int c = 0; c < 27; ++c)
       if (taken.count({k[0] + c % 3 - 1, k[1] + c / 3 % 3 - 1, k[2] + c / 9 - 1})) return false;
-    taken.insert(k);
     return true;
   };
-  for (Eigen::Index i = 0; i < s.V.rows(); ++i) fresh(s.V.row(i));
-  for (Eigen::Index i = 0; i < s.fill.rows(); ++i) fresh(s.fill.row(i));
+  for (Eigen::Index i = 0; i < s.V.rows(); ++i) taken.insert(key_of(s.V.row(i)));
+  for (Eigen::Index i = 0; i < s.fill.rows(); ++i) taken.insert(key_of(s.fill.row(i)));
+  std::optional<FaceProtection> protection;
+  if (rule == FillRule::Protect) protection.emplace(s, surface_delaunay(s));
   std::vector<Eigen::RowVector3d> added;
-  for (Eigen::Index i = 0; i < candidates.rows(); ++i)
-    if (candidates.row(i).allFinite() && fresh(candidates.row(i))) added.push_back(candidates.row(i));
+  for (const auto& group : groups)
+    for (const Eigen::RowVector3d& p : group)
+      if (p.allFinite() && fresh(p) && (!protection || protection->admit(p))) {
+        taken.insert(key_of(p));
+        added.push_back(p);
+        break;
+      }
   auto store = [&]() {
     s.fill.resize(before.rows() + static_cast<Eigen::Index>(added.size()), 3);
     s.fill.topRows(before.rows()) = before;
@@ -137,7 +142,7 @@ void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates) {
     conform_round(s, true, &lost, false);
     if (static_cast<int>(lost.size()) <= lost_before) {  // no worse than without the points
       s.missing = static_cast<int>(lost.size());
-      return;
+      return static_cast<int>(added.size());
     }
     const double grow = 1.0001 + 0.5 * round;  // widen the net when the diametral spheres do not do
     std::vector<char> drop(added.size(), 0);
@@ -158,9 +163,51 @@ void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates) {
   }
   ConformingSurface probe = s;
   s.missing = conform_round(probe, false);  // what the points cost in the end
+  return static_cast<int>(added.size());
 }
 
-int cover_outside_chords(ConformingSurface& s, int rounds) {
+namespace {
+
+// Points that kill a chord tetrahedron (corners p, circumcentre cc, centroid m, on the given side):
+// for Repair, one, toward the circumcentre (a flat tetrahedron's centroid sits in its surface
+// triangles' diametral spheres) at most its longest edge away; for Protect, alternatives in its
+// circumball from the centroid toward the circumcentre. Each has a small pseudo-random offset
+// (hash state h): mirror-symmetric keys would give mirror-image points, and the level set through a
+// symmetric configuration has flat pieces (zero-area slice triangles).
+std::vector<Eigen::RowVector3d> chord_points(const Eigen::RowVector3d (&p)[4], const Eigen::RowVector3d& cc, bool all_on,
+                                             bool outside, FillRule rule, const WindingTree& tree, std::uint64_t& h) {
+  const Eigen::RowVector3d m = (p[0] + p[1] + p[2] + p[3]) / 4;
+  double edge = 0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) edge = std::max(edge, (p[a] - p[b]).norm());
+  auto wobble = [&]() {
+    Eigen::RowVector3d w;
+    for (int d = 0; d < 3; ++d) {
+      h ^= h >> 31, h *= 0xBF58476D1CE4E5B9ull, h ^= h >> 27;
+      w[d] = static_cast<double>(h >> 11) * 0x1.0p-53 - 0.5;
+    }
+    return w;
+  };
+  auto on_side = [&](const Eigen::RowVector3d& q) { return (winding_number(tree, q.transpose()) < 0.5) == outside; };
+  const double len = (cc - m).norm();
+  if (rule == FillRule::Repair) {
+    const Eigen::RowVector3d base = m + 0.02 * edge * wobble();
+    if (!all_on || !std::isfinite(len) || !(len > 0)) return {base};
+    const Eigen::RowVector3d q = base + (cc - m) * std::min(1.0, edge / len);
+    return {on_side(q) ? q : base};
+  }
+  std::vector<Eigen::RowVector3d> out;
+  const double r = (cc - p[0]).norm();
+  for (const double w : {0.0, 0.25, 0.5, 0.75, 0.9}) {
+    const Eigen::RowVector3d q = (1 - w) * m + w * cc + 0.02 * std::min(edge, r) * wobble();
+    if (q.allFinite() && (q - cc).norm() < r && on_side(q)) out.push_back(q);
+  }
+  return out;
+}
+
+}  // namespace
+
+int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds) {
   const WindingTree tree = build_winding_tree(s.V, s.F);
   std::unordered_set<std::uint64_t> surface;  // sorted triangle keys (21 bits a vertex)
   auto tri_key = [](int a, int b, int c) {
@@ -172,13 +219,11 @@ int cover_outside_chords(ConformingSurface& s, int rounds) {
   const int n = static_cast<int>(s.V.rows());
   int left = 0;
   for (int round = 0; round <= rounds; ++round) {
-    const int nf = static_cast<int>(s.fill.rows());
-    std::vector<std::pair<K::Point_3, int>> pts;
-    for (int i = 0; i < n; ++i) pts.push_back({K::Point_3(s.V(i, 0), s.V(i, 1), s.V(i, 2)), i});
-    for (int i = 0; i < nf; ++i) pts.push_back({K::Point_3(s.fill(i, 0), s.fill(i, 1), s.fill(i, 2)), n + i});
-    const Delaunay3 dt(pts.begin(), pts.end());
-    std::vector<Eigen::RowVector3d> centroids;
-    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    const SurfaceDelaunay sd = surface_delaunay(s);
+    std::vector<std::vector<Eigen::RowVector3d>> groups;
+    left = 0;
+    std::uint64_t h = 0x9E3779B97F4A7C15ull;
+    for (auto c = sd.dt.finite_cells_begin(); c != sd.dt.finite_cells_end(); ++c) {
       int v[4], on = 0;
       for (int j = 0; j < 4; ++j) on += (v[j] = c->vertex(j)->info()) < n;
       if (on < 3) continue;
@@ -192,38 +237,14 @@ int cover_outside_chords(ConformingSurface& s, int rounds) {
       for (int j = 0; j < 4; ++j) m += (p[j] = v[j] < n ? s.V.row(v[j]) : s.fill.row(v[j] - n)) / 4;
       const bool outside = winding_number(tree, m.transpose()) < 0.5;
       if (on < 4 && !outside) continue;
-      // A flat tetrahedron's centroid sits in its surface triangles' diametral spheres; a point toward
-      // its circumcentre (at most its longest edge away, on its own side of the surface) kills it
-      // from farther off.
+      ++left;
       const K::Point_3 cc = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
                                                c->vertex(3)->point());
-      Eigen::RowVector3d dir = Eigen::RowVector3d(cc.x(), cc.y(), cc.z()) - m;
-      double edge = 0;
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) edge = std::max(edge, (p[a] - p[b]).norm());
-      const double len = dir.norm();
-      if (!std::isfinite(len)) dir.setZero();  // a flat tetrahedron: no circumcentre
-      else if (len > edge) dir *= edge / len;
-      // A small pseudo-random offset: mirror-symmetric keys would give mirror-image points, and the
-      // level set through a symmetric configuration has flat pieces (zero-area slice triangles).
-      Eigen::RowVector3d wobble;
-      std::uint64_t h = 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(centroids.size() + 1);
-      for (int d = 0; d < 3; ++d) {
-        h ^= h >> 31, h *= 0xBF58476D1CE4E5B9ull, h ^= h >> 27;
-        wobble[d] = static_cast<double>(h >> 11) * 0x1.0p-53 - 0.5;
-      }
-      m += 0.02 * edge * wobble;
-      const Eigen::RowVector3d q = m + dir;
-      if (on == 4 && std::isfinite(len) && len > 0 && (winding_number(tree, q.transpose()) < 0.5) == outside)
-        centroids.push_back(q);
-      else centroids.push_back(m);
+      auto group = chord_points(p, Eigen::RowVector3d(cc.x(), cc.y(), cc.z()), on == 4, outside, rule, tree, h);
+      if (!group.empty()) groups.push_back(std::move(group));
     }
-    left = static_cast<int>(centroids.size());
-    if (left == 0 || round == rounds) break;
-    Eigen::MatrixXd C(left, 3);
-    for (int i = 0; i < left; ++i) C.row(i) = centroids[i];
-    add_fill_points(s, C);
-    if (s.fill.rows() == nf) break;  // every centroid cost a surface triangle
+    if (left == 0 || round == rounds || groups.empty()) break;
+    if (add_fill_points(s, groups, rule) == 0) break;  // every candidate would cost a surface triangle
   }
   return left;
 }

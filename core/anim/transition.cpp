@@ -12,6 +12,7 @@
 #include "core/anim/conforming_surface.h"
 #include "core/anim/conforming_tetgen.h"
 #include "core/anim/delaunay_4d.h"
+#include "core/anim/face_protection.h"
 #include "core/anim/iso_manifold.h"
 #include "core/anim/key_distance.h"
 #include "core/anim/key_time_seal.h"
@@ -154,16 +155,13 @@ ConformingSurface conforming_key(const TriMesh& key, int max_rounds) {
   }
 }
 
-KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, double h_key, double h_mid,
-                   int max_rounds, int layer) {
+// The conforming key with the fill points the rule admits, split again where the fill still cost
+// triangles, its chords covered.
+KeyLayer filled_layer(const ConformingSurface& conforming, const Eigen::MatrixXd& candidates, FillRule rule,
+                      int max_rounds) {
   KeyLayer k;
-  k.surface = conforming_key(key, max_rounds);
-  // Near the surface the key's own spacing; away from it the middle layers' (the far field).
-  const auto near = band_points(box, h_key, 0.5 * h_key, 1.5 * h_key, HUGE_VAL, layer, d);
-  const auto far = band_points(box, h_mid, 0, 0, 1.5 * h_key + h_mid, layer + 100, d);
-  Eigen::MatrixXd C(near.first.rows() + far.first.rows(), 3);
-  C << near.first, far.first;
-  add_fill_points(k.surface, C);
+  k.surface = conforming;
+  add_fill_points(k.surface, candidates, rule);
   if (k.surface.missing > 0) {  // split what the fill broke, where a split does not land on a fill point
     ConformingSurface again = k.surface;
     try {
@@ -172,7 +170,22 @@ KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, 
     } catch (const Error&) {
     }
   }
-  k.chords = cover_outside_chords(k.surface);
+  k.chords = cover_outside_chords(k.surface, rule);
+  return k;
+}
+
+KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, double h_key, double h_mid,
+                   int max_rounds, int layer) {
+  const ConformingSurface surface = conforming_key(key, max_rounds);
+  // Near the surface the key's own spacing; away from it the middle layers' (the far field).
+  const auto near = band_points(box, h_key, 0.5 * h_key, 1.5 * h_key, HUGE_VAL, layer, d);
+  const auto far = band_points(box, h_mid, 0, 0, 1.5 * h_key + h_mid, layer + 100, d);
+  Eigen::MatrixXd C(near.first.rows() + far.first.rows(), 3);
+  C << near.first, far.first;
+  // Repairing after the fact fills co-spherical surfaces (regular grids) best, where protecting
+  // balls are tight; a surface that could not be made conforming keeps more of itself protected
+  // (bunny.off: 16 missing triangles and 3,313 chords left against 192 and 6,629).
+  KeyLayer k = filled_layer(surface, C, surface.missing > 0 ? FillRule::Protect : FillRule::Repair, max_rounds);
   k.fill_values = d(k.surface.fill);
   return k;
 }

@@ -1,0 +1,46 @@
+#pragma once
+// Keeps a conforming surface conforming while points are added (fill, chord cover). The spheres
+// through a triangle's corners form a pencil, their centres on the normal through its circumcentre at
+// signed offsets s; where the triangle is a Delaunay face, the empty ones are those with s between
+// the circumspheres of its two Delaunay cells. A new point on the triangle's positive side lies in
+// the spheres above some offset, on its negative side in those below one: it narrows the range. A
+// point is admitted only while every triangle keeps a range, so every protected triangle stays a
+// Delaunay face whatever else is admitted.
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/anim/surface_delaunay.h"
+
+namespace dfm {
+
+class FaceProtection {
+ public:
+  // Protects each triangle of s that is a face of d (d: surface_delaunay(s)); keeps points away from
+  // the others.
+  FaceProtection(const ConformingSurface& s, const SurfaceDelaunay& d);
+
+  // Whether adding p leaves every protected triangle an empty sphere (with a margin of 1e-6 of its
+  // circumradius, so no new point is co-spherical with one); if so, the ranges narrow by p.
+  bool admit(const Eigen::RowVector3d& p);
+
+
+ private:
+  struct Face {
+    Eigen::RowVector3d centre, normal;  // circumcentre, unit normal
+    double R2 = 0, lo = 0, hi = 0;      // squared circumradius; the range of empty offsets
+    int row = -1;                       // in s.F
+    bool missing = false;  // not a Delaunay face: no point is admitted within twice its circumradius
+  };
+  std::vector<int> candidates(const Eigen::RowVector3d& p) const;
+
+  std::vector<Face> faces_;
+  double cell_ = 1;
+  std::unordered_map<std::uint64_t, std::vector<int>> grid_;  // faces by the grid cells their spheres reach
+  std::vector<int> large_;                                    // faces whose spheres reach too many cells
+  bool indexed_ = false;
+};
+
+}  // namespace dfm
