@@ -7,8 +7,10 @@
 #include <unordered_set>
 #include <set>
 #include <cmath>
+#include <functional>
 #include <optional>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "core/anim/face_protection.h"
@@ -33,7 +35,8 @@ std::uint64_t edge_key(int a, int b) {
 // elsewhere the triangle's longest edge missing from the tetrahedralization is split (else its
 // longest edge). Returns the number of triangles that were missing; with fix false it only counts,
 // with allow_split false it only flips (and missing_rows lists the rows the flips do not mend).
-int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr, bool allow_split = true) {
+int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr, bool allow_split = true,
+                  double flip_gap = 0) {
   const SurfaceDelaunay sd = surface_delaunay(s);
   const Delaunay3& dt = sd.dt;
   const auto& vh = sd.vertex;
@@ -63,7 +66,18 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
       int d = -1;
       for (int t = 0; t < 3; ++t)
         if (s.F(g, t) != a && s.F(g, t) != b) d = s.F(g, t);
-      if (CGAL::orientation(point(a), point(b), point(cc), point(d)) != CGAL::COPLANAR || !is_edge(cc, d)) continue;
+      if (!is_edge(cc, d)) continue;
+      if (CGAL::orientation(point(a), point(b), point(cc), point(d)) != CGAL::COPLANAR) {
+        // Nearly flat: the diagonals pass within flip_gap of each other, the new edge is not on the
+        // surface yet, and both new triangles face the way the old ones did.
+        if (!(flip_gap > 0) || faces_of.count(edge_key(cc, d))) continue;
+        const Eigen::RowVector3d A = s.V.row(a), B = s.V.row(b), C = s.V.row(cc), D = s.V.row(d);
+        const Eigen::RowVector3d ncd = (B - A).cross(D - C);
+        const double gap = std::abs((C - A).dot(ncd)) / ncd.norm();
+        const Eigen::RowVector3d n_old = (B - A).cross(C - A) + (A - B).cross(D - B);
+        if (!(gap <= flip_gap) || !((D - A).cross(C - A).dot(n_old) > 0) || !((B - D).cross(C - D).dot(n_old) > 0)) continue;
+        s.flipped.push_back(edge_key(cc, d));
+      }
       s.F.row(f) << a, d, cc;  // the quad a d b cc, split by cc -- d
       s.F.row(g) << d, b, cc;
       changed[f] = changed[g] = 1;
@@ -75,11 +89,12 @@ int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows
     double len = -1, len_missing = -1;
     for (int e = 0; e < 3; ++e) {
       const int a = s.F(f, e), b = s.F(f, (e + 1) % 3);
+      if (std::find(s.flipped.begin(), s.flipped.end(), edge_key(a, b)) != s.flipped.end()) continue;
       const double l = (s.V.row(a) - s.V.row(b)).squaredNorm();
       if (l > len) len = l, best = e;
       if (!is_edge(a, b) && l > len_missing) len_missing = l, best_missing = e;
     }
-    split.push_back({f, best_missing >= 0 ? best_missing : best});
+    if (best >= 0) split.push_back({f, best_missing >= 0 ? best_missing : best});
   }
   // Splits of triangles a flip has rewritten in this round wait for the next one.
   std::vector<std::pair<int, int>> todo;
@@ -97,7 +112,8 @@ int add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates, Fil
   return add_fill_points(s, groups, rule);
 }
 
-int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups, FillRule rule) {
+int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups, FillRule rule,
+                    const std::function<bool(size_t, const Eigen::RowVector3d&)>& accept) {
   if (groups.empty()) return 0;
   const Eigen::MatrixXd before = s.fill;
   // A point (nearly) where the tetrahedralization has one already is not added: it would only make
@@ -120,9 +136,10 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
   std::optional<FaceProtection> protection;
   if (rule == FillRule::Protect) protection.emplace(s, surface_delaunay(s));
   std::vector<Eigen::RowVector3d> added;
-  for (const auto& group : groups)
-    for (const Eigen::RowVector3d& p : group)
-      if (p.allFinite() && fresh(p) && (!protection || protection->admit(p))) {
+  for (size_t g = 0; g < groups.size(); ++g)
+    for (const Eigen::RowVector3d& p : groups[g])
+      if (p.allFinite() && fresh(p) && (!protection || protection->admit(p, false)) && (!accept || accept(g, p))) {
+        if (protection) protection->admit(p);
         taken.insert(key_of(p));
         added.push_back(p);
         break;
@@ -171,7 +188,8 @@ namespace {
 // Points that kill a chord tetrahedron (corners p, circumcentre cc, centroid m, on the given side):
 // for Repair, one, toward the circumcentre (a flat tetrahedron's centroid sits in its surface
 // triangles' diametral spheres) at most its longest edge away; for Protect, alternatives in its
-// circumball from the centroid toward the circumcentre. Each has a small pseudo-random offset
+// circumball, in order of preference, their side not checked yet (the caller checks the one it
+// admits: most are never needed). Each has a small pseudo-random offset
 // (hash state h): mirror-symmetric keys would give mirror-image points, and the level set through a
 // symmetric configuration has flat pieces (zero-area slice triangles).
 std::vector<Eigen::RowVector3d> chord_points(const Eigen::RowVector3d (&p)[4], const Eigen::RowVector3d& cc, bool all_on,
@@ -196,11 +214,32 @@ std::vector<Eigen::RowVector3d> chord_points(const Eigen::RowVector3d (&p)[4], c
     const Eigen::RowVector3d q = base + (cc - m) * std::min(1.0, edge / len);
     return {on_side(q) ? q : base};
   }
-  std::vector<Eigen::RowVector3d> out;
+  // Along the normal of the corners' best-fitting plane (both ways) and toward the circumcentre,
+  // from near the circumsphere inward: a point far from the surface narrows its triangles' empty
+  // spheres least.
   const double r = (cc - p[0]).norm();
-  for (const double w : {0.0, 0.25, 0.5, 0.75, 0.9}) {
-    const Eigen::RowVector3d q = (1 - w) * m + w * cc + 0.02 * std::min(edge, r) * wobble();
-    if (q.allFinite() && (q - cc).norm() < r && on_side(q)) out.push_back(q);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& q : p) cov += (q - m).transpose() * (q - m);
+  const Eigen::RowVector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0).transpose();
+  std::vector<Eigen::RowVector3d> directions = {normal, -normal};
+  if (std::isfinite(len) && len > 0) directions.push_back((cc - m) / len);
+  std::vector<Eigen::RowVector3d> out;
+  for (const Eigen::RowVector3d& u : directions) {
+    const double b = u.dot(m - cc), c = (m - cc).squaredNorm() - r * r, disc = b * b - c;
+    if (!(disc >= 0) || !std::isfinite(disc)) continue;
+    const double t_max = -b + std::sqrt(disc);
+    for (const double w : {0.9, 0.7, 0.5, 0.3, 0.1}) {
+      const Eigen::RowVector3d q = m + w * t_max * u + 0.02 * std::min(edge, r) * wobble();
+      if (q.allFinite() && (q - cc).norm() < r) out.push_back(q);
+    }
+  }
+  // Then just inside the circumsphere all round: for the chord's own surface triangles the least
+  // narrowing points, though farther from the chord.
+  for (int k = 0; k < 27; ++k) {
+    if (k == 13) continue;
+    const Eigen::RowVector3d u = Eigen::RowVector3d(k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1).normalized();
+    const Eigen::RowVector3d q = cc + 0.95 * r * u + 0.01 * std::min(edge, r) * wobble();
+    if (q.allFinite() && (q - cc).norm() < r) out.push_back(q);
   }
   return out;
 }
@@ -221,6 +260,7 @@ int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds) {
   for (int round = 0; round <= rounds; ++round) {
     const SurfaceDelaunay sd = surface_delaunay(s);
     std::vector<std::vector<Eigen::RowVector3d>> groups;
+    std::vector<char> group_outside;
     left = 0;
     std::uint64_t h = 0x9E3779B97F4A7C15ull;
     for (auto c = sd.dt.finite_cells_begin(); c != sd.dt.finite_cells_end(); ++c) {
@@ -241,10 +281,15 @@ int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds) {
       const K::Point_3 cc = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
                                                c->vertex(3)->point());
       auto group = chord_points(p, Eigen::RowVector3d(cc.x(), cc.y(), cc.z()), on == 4, outside, rule, tree, h);
-      if (!group.empty()) groups.push_back(std::move(group));
+      if (group.empty()) continue;
+      groups.push_back(std::move(group));
+      group_outside.push_back(outside);
     }
     if (left == 0 || round == rounds || groups.empty()) break;
-    if (add_fill_points(s, groups, rule) == 0) break;  // every candidate would cost a surface triangle
+    const auto on_side = [&](size_t g, const Eigen::RowVector3d& q) {
+      return (winding_number(tree, q.transpose()) < 0.5) == static_cast<bool>(group_outside[g]);
+    };
+    if (add_fill_points(s, groups, rule, on_side) == 0) break;  // every candidate would cost a surface triangle
   }
   return left;
 }
@@ -298,6 +343,14 @@ int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& tr
   return added;
 }
 
+
+int flip_nearly_flat(ConformingSurface& s, double max_gap) {
+  const size_t before = s.flipped.size();
+  conform_round(s, true, nullptr, false, max_gap);
+  ConformingSurface probe = s;
+  s.missing = conform_round(probe, false);
+  return static_cast<int>(s.flipped.size() - before);
+}
 
 void make_conforming(ConformingSurface& s, int max_rounds) {
   ConformingSurface best;

@@ -2,6 +2,8 @@
 // Conforming Delaunay surfaces (Southern 2008, 5.1.3): surface Steiner points (edge midpoints) until
 // every triangle of a closed surface is a face of the Delaunay tetrahedralization of its vertices,
 // so that a Delaunay triangulation one dimension up keeps the surface (Theorem 5.2.1).
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -14,6 +16,9 @@ struct ConformingSurface {
   int steiner = 0;
   int rounds = 0;
   int missing = 0;  // triangles still not faces of the Delaunay tetrahedralization (0: conforming)
+  // Edges that flip_nearly_flat put across nearly flat quads (edge keys: smaller index << 32 | larger):
+  // they lie off the input surface by at most its gap, so no Steiner point goes on them.
+  std::vector<std::uint64_t> flipped;
   // Points off the surface (inside or outside), part of the Delaunay tetrahedralization.
   Eigen::MatrixXd fill = Eigen::MatrixXd(0, 3);
 };
@@ -27,6 +32,11 @@ int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& tr
 // missing (near sharp or nearly touching parts splitting cascades). `missing` says how far it got.
 // Throws dfm::Error when two vertices coincide.
 ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int max_rounds);
+// Where a missing triangle and its neighbour are nearly coplanar (their quad's diagonals pass within
+// max_gap of each other) and the other diagonal is a Delaunay edge, the surface takes it: every
+// vertex stays, the surface moves by at most max_gap (a last resort for surfaces whose splits
+// cascade). Returns the number of flips.
+int flip_nearly_flat(ConformingSurface& s, double max_gap);
 // Continues on a surface that is already partly conforming (e.g. after split_longest_edges).
 void make_conforming(ConformingSurface& s, int max_rounds);
 
@@ -40,8 +50,10 @@ enum class FillRule { Protect, Repair };
 // Southern's 8.7: small tetrahedra keep the simplices of a transition small), as the rule allows.
 // Returns the number of points added.
 int add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates, FillRule rule);
-// The same for groups of alternatives: of each group, the first candidate the rule admits.
-int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups, FillRule rule);
+// The same for groups of alternatives: of each group, the first candidate that the rule admits and
+// `accept` (if given; called with the group's index) takes.
+int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups, FillRule rule,
+                    const std::function<bool(size_t, const Eigen::RowVector3d&)>& accept = {});
 
 // Tetrahedra with all four corners on the surface, and outside tetrahedra with a triangle of three
 // surface vertices that is not a surface triangle (they bridge concavities), get a point in their
@@ -57,6 +69,11 @@ int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& tr
 // missing (near sharp or nearly touching parts splitting cascades). `missing` says how far it got.
 // Throws dfm::Error when two vertices coincide.
 ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int max_rounds);
+// Where a missing triangle and its neighbour are nearly coplanar (their quad's diagonals pass within
+// max_gap of each other) and the other diagonal is a Delaunay edge, the surface takes it: every
+// vertex stays, the surface moves by at most max_gap (a last resort for surfaces whose splits
+// cascade). Returns the number of flips.
+int flip_nearly_flat(ConformingSurface& s, double max_gap);
 // Continues on a surface that is already partly conforming (e.g. after split_longest_edges).
 void make_conforming(ConformingSurface& s, int max_rounds);
 

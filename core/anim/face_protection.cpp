@@ -37,20 +37,21 @@ FaceProtection::FaceProtection(const ConformingSurface& s, const SurfaceDelaunay
     face.R2 = (face.centre - a).squaredNorm();
     face.row = f;
     face.lo = -HUGE_VAL, face.hi = HUGE_VAL;
-    if (!is_face) {
-      face.missing = true;
-      face.lo = face.hi = 0;
-      face.R2 *= 4;
-      faces_.push_back(face);
-      continue;
-    }
     faces_.push_back(face);
-    const int apex = 6 - i - j - k;
-    const Delaunay3::Cell_handle other = c->neighbor(apex);
-    bool flat = false;  // numerically: left unprotected
-    for (const Delaunay3::Vertex_handle& v : {c->vertex(apex), other->vertex(other->index(c))})
-      flat = flat || (!d.dt.is_infinite(v) && !admit(point_of(v)));
-    if (flat) faces_.pop_back();
+    bool kept = is_face;
+    if (is_face) {
+      const int apex = 6 - i - j - k;
+      const Delaunay3::Cell_handle other = c->neighbor(apex);
+      for (const Delaunay3::Vertex_handle& v : {c->vertex(apex), other->vertex(other->index(c))})
+        kept = kept && (d.dt.is_infinite(v) || admit(point_of(v)));
+    }
+    if (!kept) {  // not a face, or one only co-spherical points hold: keep points away instead
+      ++unprotected_;
+      Face& f = faces_.back();
+      f.missing = true;
+      f.lo = f.hi = 0;
+      f.R2 = 4 * face.R2;
+    }
   }
   indexed_ = true;
   if (faces_.empty()) return;
@@ -87,7 +88,7 @@ std::vector<int> FaceProtection::candidates(const Eigen::RowVector3d& p) const {
   return out;
 }
 
-bool FaceProtection::admit(const Eigen::RowVector3d& p) {
+bool FaceProtection::admit(const Eigen::RowVector3d& p, bool commit) {
   // Offsets s with p inside the sphere: s > bound where p is on the positive side (h > 0), s < bound
   // on the negative side, every s where h = 0 and p is inside the circumcircle's cylinder.
   struct Cut {
@@ -114,7 +115,8 @@ bool FaceProtection::admit(const Eigen::RowVector3d& p) {
     if (!(lo + margin <= hi)) return false;
     cuts.push_back({b, lo, hi});
   }
-  for (const Cut& c : cuts) faces_[c.face].lo = c.lo, faces_[c.face].hi = c.hi;
+  if (commit)
+    for (const Cut& c : cuts) faces_[c.face].lo = c.lo, faces_[c.face].hi = c.hi;
   return true;
 }
 

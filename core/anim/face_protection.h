@@ -23,8 +23,12 @@ class FaceProtection {
   FaceProtection(const ConformingSurface& s, const SurfaceDelaunay& d);
 
   // Whether adding p leaves every protected triangle an empty sphere (with a margin of 1e-6 of its
-  // circumradius, so no new point is co-spherical with one); if so, the ranges narrow by p.
-  bool admit(const Eigen::RowVector3d& p);
+  // circumradius, so no new point is co-spherical with one); if so and commit is set, the ranges
+  // narrow by p.
+  bool admit(const Eigen::RowVector3d& p, bool commit = true);
+  // Triangles kept away from rather than protected (not Delaunay faces, or held only by co-spherical
+  // points).
+  int unprotected() const { return unprotected_; }
 
 
  private:
@@ -32,7 +36,9 @@ class FaceProtection {
     Eigen::RowVector3d centre, normal;  // circumcentre, unit normal
     double R2 = 0, lo = 0, hi = 0;      // squared circumradius; the range of empty offsets
     int row = -1;                       // in s.F
-    bool missing = false;  // not a Delaunay face: no point is admitted within twice its circumradius
+    // Not a Delaunay face (or held only by co-spherical points): no point is admitted within twice
+    // its circumradius of its circumcentre.
+    bool missing = false;
   };
   std::vector<int> candidates(const Eigen::RowVector3d& p) const;
 
@@ -41,6 +47,7 @@ class FaceProtection {
   std::unordered_map<std::uint64_t, std::vector<int>> grid_;  // faces by the grid cells their spheres reach
   std::vector<int> large_;                                    // faces whose spheres reach too many cells
   bool indexed_ = false;
+  int unprotected_ = 0;
 };
 
 }  // namespace dfm

@@ -133,6 +133,20 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> band_points(const Box& box, double h
 // sits on a point and no piece of the level set is flat.
 constexpr double kMinValue = 1e-4;
 constexpr double kAway = 0.05;  // middle points, in middle spacings
+// How far a key's chord-cover points are pushed from 0, in the key's spacings. At the key's time only
+// their signs matter where the key is conforming (every crossing there is an anchored surface vertex).
+// Pushed away (a shift, not a clamp: equal values would put many crossings at one time), a point in a
+// narrow concavity puts no crossing just after the key's time, where it would make short-lived specks
+// and handles.
+constexpr double kChordAway = 0.5;
+
+// |v| at least eps; positive values at least sqrt(2) eps, so that two clamped values never put a
+// crossing halfway between layers (a round time a user scrubs to, where a slice would pass through
+// the crossing itself).
+double clamp_away_from_zero(double v, double eps) {
+  if (v >= 0) return std::max(v, std::sqrt(2.0) * eps);
+  return std::min(v, -eps);
+}
 
 // One key's points at its time: the conforming surface (anchored, just inside), its fill near the
 // surface at the key's own spacing and farther out at the middle spacing, and the centroids that
@@ -140,19 +154,39 @@ constexpr double kAway = 0.05;  // middle points, in middle spacings
 struct KeyLayer {
   ConformingSurface surface;
   Eigen::VectorXd fill_values;
+  Eigen::Index banded = 0;  // fill points before the chord cover's
   int chords = 0;
 };
 
+// How far a nearly flat quad's diagonals may pass from each other for flip_nearly_flat, in the
+// key's bounding-box diagonals.
+constexpr double kFlipGap = 1e-3;
+
 // The key made conforming from TetGen's constrained tetrahedralization when TetGen takes it, else
-// from the key itself.
-ConformingSurface conforming_key(const TriMesh& key, int max_rounds) {
+// from the key itself. Where splits cascade, nearly flat quads take their other diagonal, as long as
+// that leaves fewer triangles missing and every Steiner point on the key (d: its signed distance).
+ConformingSurface conforming_key(const TriMesh& key, const SignedDistance& d, int max_rounds) {
+  ConformingSurface s;
   try {
-    ConformingSurface s = tetgen_conforming_start(key.V, key.F);
+    s = tetgen_conforming_start(key.V, key.F);
     make_conforming(s, max_rounds);
-    return s;
   } catch (const Error&) {
-    return conforming_delaunay_surface(key.V, key.F, max_rounds);
+    s = conforming_delaunay_surface(key.V, key.F, max_rounds);
   }
+  const double diag = (key.V.colwise().maxCoeff() - key.V.colwise().minCoeff()).norm();
+  for (int round = 0; round < 4 && s.missing > 0; ++round) {
+    ConformingSurface t = s;
+    if (flip_nearly_flat(t, kFlipGap * diag) == 0) break;
+    try {
+      if (t.missing > 0) make_conforming(t, max_rounds);
+    } catch (const Error&) {
+      break;
+    }
+    const Eigen::Index n = key.V.rows();
+    if (t.missing >= s.missing || d(t.V.bottomRows(t.V.rows() - n)).cwiseAbs().maxCoeff() > 1e-12 * diag) break;
+    s = std::move(t);
+  }
+  return s;
 }
 
 // The conforming key with the fill points the rule admits, split again where the fill still cost
@@ -170,33 +204,30 @@ KeyLayer filled_layer(const ConformingSurface& conforming, const Eigen::MatrixXd
     } catch (const Error&) {
     }
   }
+  k.banded = k.surface.fill.rows();
   k.chords = cover_outside_chords(k.surface, rule);
   return k;
 }
 
 KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, double h_key, double h_mid,
                    int max_rounds, int layer) {
-  const ConformingSurface surface = conforming_key(key, max_rounds);
+  const ConformingSurface surface = conforming_key(key, d, max_rounds);
   // Near the surface the key's own spacing; away from it the middle layers' (the far field).
   const auto near = band_points(box, h_key, 0.5 * h_key, 1.5 * h_key, HUGE_VAL, layer, d);
   const auto far = band_points(box, h_mid, 0, 0, 1.5 * h_key + h_mid, layer + 100, d);
   Eigen::MatrixXd C(near.first.rows() + far.first.rows(), 3);
   C << near.first, far.first;
   // Repairing after the fact fills co-spherical surfaces (regular grids) best, where protecting
-  // balls are tight; a surface that could not be made conforming keeps more of itself protected
-  // (bunny.off: 16 missing triangles and 3,313 chords left against 192 and 6,629).
-  KeyLayer k = filled_layer(surface, C, surface.missing > 0 ? FillRule::Protect : FillRule::Repair, max_rounds);
+  // balls are tight. A surface whose splits cascaded (not conforming, or conforming only after
+  // flips) would lose its triangles again: it is protected.
+  const bool irregular = surface.missing > 0 || !surface.flipped.empty();
+  KeyLayer k = filled_layer(surface, C, irregular ? FillRule::Protect : FillRule::Repair, max_rounds);
   k.fill_values = d(k.surface.fill);
+  for (Eigen::Index i = k.banded; i < k.fill_values.size(); ++i)
+    k.fill_values[i] += std::copysign(kChordAway * h_key, k.fill_values[i]);
   return k;
 }
 
-// |v| at least eps; positive values at least sqrt(2) eps, so that two clamped values never put a
-// crossing halfway between layers (a round time a user scrubs to, where a slice would pass through
-// the crossing itself).
-double clamp_away_from_zero(double v, double eps) {
-  if (v >= 0) return std::max(v, std::sqrt(2.0) * eps);
-  return std::min(v, -eps);
-}
 
 // The manifold's tetrahedra in one slab per layer interval where none crosses a layer time (else
 // the intervals merge).
@@ -246,6 +277,8 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   source_steiner += o.source_steiner;
   target_steiner += o.target_steiner;
   source_missing += o.source_missing;
+  source_flipped += o.source_flipped;
+  target_flipped += o.target_flipped;
   target_missing += o.target_missing;
   source_chords += o.source_chords;
   sealed += o.sealed;
@@ -386,6 +419,8 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   st.target_points = static_cast<int>(pts.size()) - n0 - n_mid;
   st.source_steiner = S.surface.steiner;
   st.target_steiner = T.surface.steiner;
+  st.source_flipped = static_cast<int>(S.surface.flipped.size());
+  st.target_flipped = static_cast<int>(T.surface.flipped.size());
   st.source_missing = S.surface.missing;
   st.target_missing = T.surface.missing;
   st.source_chords = S.chords;

@@ -3,8 +3,9 @@
 //
 // Each key surface is made conforming Delaunay (5.1.3: surface Steiner points until every triangle is
 // a face of the Delaunay tetrahedralization of the key's points; starting from TetGen's constrained
-// tetrahedralization, conforming_tetgen.h) and filled with points inside and
-// outside; the keys are embedded in 4D at their times, with layers of grid points in between, and
+// tetrahedralization, conforming_tetgen.h; where splits cascade, nearly flat quads take their other
+// diagonal) and filled with points inside and outside (face_protection.h keeps an irregular key's
+// triangles Delaunay faces while it is filled); the keys are embedded in 4D at their times, with layers of grid points in between, and
 // joined by one Delaunay triangulation (Theorem 5.2.1: each key's tetrahedra survive as facets).
 //
 // Southern strips the 4-simplices that lie outside the keys (8.5) and resolves the ambiguities that
@@ -44,6 +45,7 @@ struct TransitionStats {
   int middle_points = 0;                         // in the layers between
   int source_steiner = 0, target_steiner = 0;    // surface Steiner points added
   int source_missing = 0, target_missing = 0;    // surface triangles the conforming step left missing
+  int source_flipped = 0, target_flipped = 0;    // nearly flat quads that took their other diagonal
   int source_chords = 0, target_chords = 0;      // outside tetrahedra still bridging a concavity
   int sealed = 0;                                // folds at the keys' times replaced (key_time_seal.h)
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
