@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include <Eigen/Geometry>
 
@@ -25,7 +26,7 @@ Eigen::RowVector3d point_of(const Delaunay3::Vertex_handle& v) {
 FaceProtection::FaceProtection(const ConformingSurface& s, const SurfaceDelaunay& d) {
   for (int f = 0; f < s.F.rows(); ++f) {
     Delaunay3::Cell_handle c;
-    int i, j, k;
+    int i = 0, j = 0, k = 0;
     const auto &va = d.vertex[s.F(f, 0)], &vb = d.vertex[s.F(f, 1)], &vc = d.vertex[s.F(f, 2)];
     const bool is_face = d.dt.is_facet(va, vb, vc, c, i, j, k);
     const Eigen::RowVector3d a = point_of(va), ab = point_of(vb) - a, ac = point_of(vc) - a, nrm = ab.cross(ac);
@@ -37,25 +38,23 @@ FaceProtection::FaceProtection(const ConformingSurface& s, const SurfaceDelaunay
     face.R2 = (face.centre - a).squaredNorm();
     face.row = f;
     face.lo = -HUGE_VAL, face.hi = HUGE_VAL;
-    faces_.push_back(face);
-    bool kept = is_face;
-    if (is_face) {
+    if (is_face) {  // the range its two cells' apexes leave (a single sphere where they are co-spherical)
       const int apex = 6 - i - j - k;
       const Delaunay3::Cell_handle other = c->neighbor(apex);
       for (const Delaunay3::Vertex_handle& v : {c->vertex(apex), other->vertex(other->index(c))})
-        kept = kept && (d.dt.is_infinite(v) || admit(point_of(v)));
+        if (!d.dt.is_infinite(v)) std::tie(face.lo, face.hi) = narrowed(face, point_of(v));
     }
-    if (!kept) {  // not a face, or one only co-spherical points hold: keep points away instead
+    if (!(face.lo <= face.hi)) {  // not a face (or numerically not): keep points away instead
       ++unprotected_;
-      Face& f = faces_.back();
-      f.missing = true;
-      f.lo = f.hi = 0;
-      f.R2 = 4 * face.R2;
+      face.missing = true;
+      face.lo = face.hi = 0;
+      face.R2 *= 4;
     }
+    faces_.push_back(face);
   }
-  indexed_ = true;
   if (faces_.empty()) return;
-  // Index each face by the bounding box of its largest empty spheres (the range's ends), capped.
+  // Index each face by the bounding box of its largest empty spheres (the range's ends); a face
+  // reaching more than 512 cells (a hull face's range is unbounded) is checked for every point.
   std::vector<double> r;
   for (const Face& f : faces_) r.push_back(f.missing ? f.R2 / 4 : f.R2);
   std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
@@ -88,31 +87,31 @@ std::vector<int> FaceProtection::candidates(const Eigen::RowVector3d& p) const {
   return out;
 }
 
+std::pair<double, double> FaceProtection::narrowed(const Face& f, const Eigen::RowVector3d& p) {
+  // p is inside the spheres with s > bound on the positive side (h > 0), s < bound on the negative
+  // side; where h = 0, inside all of them when within the circumcircle's cylinder, else none.
+  const double h = f.normal.dot(p - f.centre), e = (p - f.centre).squaredNorm() - f.R2;
+  if (h > 0) return {f.lo, std::min(f.hi, e / (2 * h))};
+  if (h < 0) return {std::max(f.lo, e / (2 * h)), f.hi};
+  if (e < 0) return {HUGE_VAL, -HUGE_VAL};
+  return {f.lo, f.hi};
+}
+
 bool FaceProtection::admit(const Eigen::RowVector3d& p, bool commit) {
-  // Offsets s with p inside the sphere: s > bound where p is on the positive side (h > 0), s < bound
-  // on the negative side, every s where h = 0 and p is inside the circumcircle's cylinder.
   struct Cut {
     int face;
     double lo, hi;
   };
   std::vector<Cut> cuts;
-  // While constructing: the last face's own apexes.
-  const std::vector<int> near = indexed_ ? candidates(p) : std::vector<int>{static_cast<int>(faces_.size()) - 1};
-  for (const int b : near) {
+  for (const int b : candidates(p)) {
     const Face& f = faces_[b];
-    const double e = (p - f.centre).squaredNorm() - f.R2;
     if (f.missing) {
-      if (e < 0) return false;
+      if ((p - f.centre).squaredNorm() < f.R2) return false;
       continue;
     }
-    const double h = f.normal.dot(p - f.centre);
-    const double margin = kMargin * std::sqrt(f.R2);
-    double lo = f.lo, hi = f.hi;
-    if (h > 0) hi = std::min(hi, e / (2 * h));
-    else if (h < 0) lo = std::max(lo, e / (2 * h));
-    else if (e < 0) return false;
+    const auto [lo, hi] = narrowed(f, p);
     if (lo == f.lo && hi == f.hi) continue;
-    if (!(lo + margin <= hi)) return false;
+    if (!(lo + kMargin * std::sqrt(f.R2) <= hi)) return false;
     cuts.push_back({b, lo, hi});
   }
   if (commit)

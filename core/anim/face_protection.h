@@ -8,6 +8,7 @@
 // Delaunay face whatever else is admitted.
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,8 +27,7 @@ class FaceProtection {
   // circumradius, so no new point is co-spherical with one); if so and commit is set, the ranges
   // narrow by p.
   bool admit(const Eigen::RowVector3d& p, bool commit = true);
-  // Triangles kept away from rather than protected (not Delaunay faces, or held only by co-spherical
-  // points).
+  // Triangles kept away from rather than protected (not Delaunay faces).
   int unprotected() const { return unprotected_; }
 
 
@@ -36,17 +36,17 @@ class FaceProtection {
     Eigen::RowVector3d centre, normal;  // circumcentre, unit normal
     double R2 = 0, lo = 0, hi = 0;      // squared circumradius; the range of empty offsets
     int row = -1;                       // in s.F
-    // Not a Delaunay face (or held only by co-spherical points): no point is admitted within twice
-    // its circumradius of its circumcentre.
+    // Not a Delaunay face: no point is admitted within twice its circumradius of its circumcentre.
     bool missing = false;
   };
   std::vector<int> candidates(const Eigen::RowVector3d& p) const;
+  // f's range once p is added (empty: lo > hi).
+  static std::pair<double, double> narrowed(const Face& f, const Eigen::RowVector3d& p);
 
   std::vector<Face> faces_;
   double cell_ = 1;
   std::unordered_map<std::uint64_t, std::vector<int>> grid_;  // faces by the grid cells their spheres reach
   std::vector<int> large_;                                    // faces whose spheres reach too many cells
-  bool indexed_ = false;
   int unprotected_ = 0;
 };
 
