@@ -182,8 +182,8 @@ ConformingSurface conforming_key(const TriMesh& key, const SignedDistance& d, in
     } catch (const Error&) {
       break;
     }
-    const Eigen::Index n = key.V.rows();
-    if (t.missing >= s.missing || d(t.V.bottomRows(t.V.rows() - n)).cwiseAbs().maxCoeff() > 1e-12 * diag) break;
+    const Eigen::Index steiner = t.V.rows() - key.V.rows();
+    if (t.missing >= s.missing || (steiner > 0 && d(t.V.bottomRows(steiner)).cwiseAbs().maxCoeff() > 1e-12 * diag)) break;
     s = std::move(t);
   }
   return s;
