@@ -62,35 +62,4 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
 // edges and vertices. Returns the number of such tetrahedra left.
 int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds = 1);
 
-int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& triangle_edges);
-
-// Makes a closed, edge-manifold surface conforming Delaunay, as far as max_rounds rounds of flips
-// (coplanar neighbours) and edge splits get; it stops early when a round leaves no fewer triangles
-// missing (near sharp or nearly touching parts splitting cascades). `missing` says how far it got.
-// Throws dfm::Error when two vertices coincide.
-ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int max_rounds);
-// Where a missing triangle and its neighbour are nearly coplanar (their quad's diagonals pass within
-// max_gap of each other) and the other diagonal is a Delaunay edge, the surface takes it: every
-// vertex stays, the surface moves by at most max_gap (a last resort for surfaces whose splits
-// cascade). Returns the number of flips.
-int flip_nearly_flat(ConformingSurface& s, double max_gap);
-// Continues on a surface that is already partly conforming (e.g. after split_longest_edges).
-void make_conforming(ConformingSurface& s, int max_rounds);
-
-// Adds points off the surface to the tetrahedralization (as TetGen's quality mesh fills the keys in
-// Southern's 8.7: small tetrahedra keep the simplices of a transition small), then drops the points
-// inside the diametral sphere of a surface triangle the tetrahedralization loses, so the surface
-// stays as conforming as it was.
-void add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates);
-// The same for groups of alternatives: of each group, the first candidate that keeps the surface
-// conforming. Returns the number of points added.
-int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups);
-
-// Tetrahedra with all four corners on the surface, and outside tetrahedra with a triangle of three
-// surface vertices that is not a surface triangle (they bridge concavities), get a point at their
-// centroid, as far as add_fill_points keeps them: so that every tetrahedron has a corner off the
-// surface and the outside touches the surface only through surface triangles, edges and vertices.
-// Returns the number of such tetrahedra left.
-int cover_outside_chords(ConformingSurface& s, int rounds = 1);
-
 }  // namespace dfm

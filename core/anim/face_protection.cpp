@@ -45,7 +45,6 @@ FaceProtection::FaceProtection(const ConformingSurface& s, const SurfaceDelaunay
         if (!d.dt.is_infinite(v)) std::tie(face.lo, face.hi) = narrowed(face, point_of(v));
     }
     if (!(face.lo <= face.hi)) {  // not a face (or numerically not): keep points away instead
-      ++unprotected_;
       face.missing = true;
       face.lo = face.hi = 0;
       face.R2 *= 4;

@@ -27,9 +27,6 @@ class FaceProtection {
   // circumradius, so no new point is co-spherical with one); if so and commit is set, the ranges
   // narrow by p.
   bool admit(const Eigen::RowVector3d& p, bool commit = true);
-  // Triangles kept away from rather than protected (not Delaunay faces).
-  int unprotected() const { return unprotected_; }
-
 
  private:
   struct Face {
@@ -47,7 +44,6 @@ class FaceProtection {
   double cell_ = 1;
   std::unordered_map<std::uint64_t, std::vector<int>> grid_;  // faces by the grid cells their spheres reach
   std::vector<int> large_;                                    // faces whose spheres reach too many cells
-  int unprotected_ = 0;
 };
 
 }  // namespace dfm
