@@ -164,10 +164,8 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
     const double grow = 1.0001 + 0.5 * round;  // widen the net when the diametral spheres do not do
     std::vector<char> drop(added.size(), 0);
     for (int f : lost) {
-      const Eigen::RowVector3d a = s.V.row(s.F(f, 0)), b = s.V.row(s.F(f, 1)), c = s.V.row(s.F(f, 2));
-      const Eigen::RowVector3d ab = b - a, ac = c - a, nrm = ab.cross(ac);
-      const Eigen::RowVector3d centre =
-          a + (nrm.cross(ab) * ac.squaredNorm() + ac.cross(nrm) * ab.squaredNorm()) / (2 * nrm.squaredNorm());
+      const Eigen::RowVector3d a = s.V.row(s.F(f, 0));
+      const Eigen::RowVector3d centre = circumcentre(a, s.V.row(s.F(f, 1)), s.V.row(s.F(f, 2)));
       const double r2 = (centre - a).squaredNorm() * grow * grow;
       for (size_t i = 0; i < added.size(); ++i)
         if ((added[i] - centre).squaredNorm() <= r2) drop[i] = 1;
@@ -185,15 +183,15 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
 
 namespace {
 
-// Points that kill a chord tetrahedron (corners p, circumcentre cc, centroid m, on the given side):
-// for Repair, one, toward the circumcentre (a flat tetrahedron's centroid sits in its surface
-// triangles' diametral spheres) at most its longest edge away; for Protect, alternatives in its
-// circumball, in order of preference, their side not checked yet (the caller checks the one it
-// admits: most are never needed). Each has a small pseudo-random offset
+// Points that kill a chord tetrahedron (corners p, circumcentre cc, centroid m), in order of
+// preference, their side of the surface not checked yet (the caller checks the one it takes: most
+// are never needed). For Repair, a point toward the circumcentre (a flat tetrahedron's centroid sits
+// in its surface triangles' diametral spheres) at most its longest edge away, then the centroid; for
+// Protect, alternatives in its circumball. Each has a small pseudo-random offset
 // (hash state h): mirror-symmetric keys would give mirror-image points, and the level set through a
 // symmetric configuration has flat pieces (zero-area slice triangles).
 std::vector<Eigen::RowVector3d> chord_points(const Eigen::RowVector3d (&p)[4], const Eigen::RowVector3d& cc, bool all_on,
-                                             bool outside, FillRule rule, const WindingTree& tree, std::uint64_t& h) {
+                                             FillRule rule, std::uint64_t& h) {
   const Eigen::RowVector3d m = (p[0] + p[1] + p[2] + p[3]) / 4;
   double edge = 0;
   for (int a = 0; a < 4; ++a)
@@ -206,13 +204,11 @@ std::vector<Eigen::RowVector3d> chord_points(const Eigen::RowVector3d (&p)[4], c
     }
     return w;
   };
-  auto on_side = [&](const Eigen::RowVector3d& q) { return (winding_number(tree, q.transpose()) < 0.5) == outside; };
   const double len = (cc - m).norm();
   if (rule == FillRule::Repair) {
     const Eigen::RowVector3d base = m + 0.02 * edge * wobble();
     if (!all_on || !std::isfinite(len) || !(len > 0)) return {base};
-    const Eigen::RowVector3d q = base + (cc - m) * std::min(1.0, edge / len);
-    return {on_side(q) ? q : base};
+    return {base + (cc - m) * std::min(1.0, edge / len), base};
   }
   // Along the normal of the corners' best-fitting plane (both ways) and toward the circumcentre,
   // from near the circumsphere inward: a point far from the surface narrows its triangles' empty
@@ -280,7 +276,7 @@ int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds) {
       ++left;
       const K::Point_3 cc = CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
                                                c->vertex(3)->point());
-      auto group = chord_points(p, Eigen::RowVector3d(cc.x(), cc.y(), cc.z()), on == 4, outside, rule, tree, h);
+      auto group = chord_points(p, Eigen::RowVector3d(cc.x(), cc.y(), cc.z()), on == 4, rule, h);
       if (group.empty()) continue;
       groups.push_back(std::move(group));
       group_outside.push_back(outside);

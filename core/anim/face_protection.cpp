@@ -23,17 +23,22 @@ Eigen::RowVector3d point_of(const Delaunay3::Vertex_handle& v) {
 
 }  // namespace
 
+Eigen::RowVector3d circumcentre(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c) {
+  const Eigen::RowVector3d ab = b - a, ac = c - a, nrm = ab.cross(ac);
+  return a + (nrm.cross(ab) * ac.squaredNorm() + ac.cross(nrm) * ab.squaredNorm()) / (2 * nrm.squaredNorm());
+}
+
 FaceProtection::FaceProtection(const ConformingSurface& s, const SurfaceDelaunay& d) {
   for (int f = 0; f < s.F.rows(); ++f) {
     Delaunay3::Cell_handle c;
     int i = 0, j = 0, k = 0;
     const auto &va = d.vertex[s.F(f, 0)], &vb = d.vertex[s.F(f, 1)], &vc = d.vertex[s.F(f, 2)];
     const bool is_face = d.dt.is_facet(va, vb, vc, c, i, j, k);
-    const Eigen::RowVector3d a = point_of(va), ab = point_of(vb) - a, ac = point_of(vc) - a, nrm = ab.cross(ac);
+    const Eigen::RowVector3d a = point_of(va), b = point_of(vb), cc = point_of(vc), nrm = (b - a).cross(cc - a);
     const double n2 = nrm.squaredNorm();
     if (!(n2 > 0)) continue;
     Face face;
-    face.centre = a + (nrm.cross(ab) * ac.squaredNorm() + ac.cross(nrm) * ab.squaredNorm()) / (2 * n2);
+    face.centre = circumcentre(a, b, cc);
     face.normal = nrm / std::sqrt(n2);
     face.R2 = (face.centre - a).squaredNorm();
     face.row = f;
@@ -77,13 +82,16 @@ FaceProtection::FaceProtection(const ConformingSurface& s, const SurfaceDelaunay
   }
 }
 
-std::vector<int> FaceProtection::candidates(const Eigen::RowVector3d& p) const {
-  std::vector<int> out = large_;
-  if (!grid_.empty()) {
-    const auto it = grid_.find(cell_key((p.array() / cell_).floor().transpose()));
-    if (it != grid_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
-  }
-  return out;
+template <class Visit>
+bool FaceProtection::visit_near(const Eigen::RowVector3d& p, const Visit& visit) const {
+  for (const int b : large_)
+    if (!visit(b)) return false;
+  if (grid_.empty()) return true;
+  const auto it = grid_.find(cell_key((p.array() / cell_).floor().transpose()));
+  if (it == grid_.end()) return true;
+  for (const int b : it->second)
+    if (!visit(b)) return false;
+  return true;
 }
 
 std::pair<double, double> FaceProtection::narrowed(const Face& f, const Eigen::RowVector3d& p) {
@@ -102,17 +110,16 @@ bool FaceProtection::admit(const Eigen::RowVector3d& p, bool commit) {
     double lo, hi;
   };
   std::vector<Cut> cuts;
-  for (const int b : candidates(p)) {
+  const bool ok = visit_near(p, [&](int b) {
     const Face& f = faces_[b];
-    if (f.missing) {
-      if ((p - f.centre).squaredNorm() < f.R2) return false;
-      continue;
-    }
+    if (f.missing) return !((p - f.centre).squaredNorm() < f.R2);
     const auto [lo, hi] = narrowed(f, p);
-    if (lo == f.lo && hi == f.hi) continue;
+    if (lo == f.lo && hi == f.hi) return true;
     if (!(lo + kMargin * std::sqrt(f.R2) <= hi)) return false;
     cuts.push_back({b, lo, hi});
-  }
+    return true;
+  });
+  if (!ok) return false;
   if (commit)
     for (const Cut& c : cuts) faces_[c.face].lo = c.lo, faces_[c.face].hi = c.hi;
   return true;

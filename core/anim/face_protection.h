@@ -5,7 +5,9 @@
 // the circumspheres of its two Delaunay cells. A new point on the triangle's positive side lies in
 // the spheres above some offset, on its negative side in those below one: it narrows the range. A
 // point is admitted only while every triangle keeps a range, so every protected triangle stays a
-// Delaunay face whatever else is admitted.
+// Delaunay face whatever else is admitted. This widens the encroachment rule of Southern 2008, 5.1.3
+// and 7.6.2 (a point inside a facet's diametral sphere encroaches it): the diametral sphere is one
+// sphere of the pencil, and a point that enters it need not empty the whole range.
 #include <cstdint>
 #include <unordered_map>
 #include <utility>
@@ -16,6 +18,9 @@
 #include "core/anim/surface_delaunay.h"
 
 namespace dfm {
+
+// The centre of the circle through a, b and c (not finite for collinear corners).
+Eigen::RowVector3d circumcentre(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c);
 
 class FaceProtection {
  public:
@@ -36,7 +41,10 @@ class FaceProtection {
     // Not a Delaunay face: no point is admitted within twice its circumradius of its circumcentre.
     bool missing = false;
   };
-  std::vector<int> candidates(const Eigen::RowVector3d& p) const;
+  // Calls visit(face index) for every face whose spheres may hold p, until it returns false; returns
+  // whether it never did.
+  template <class Visit>
+  bool visit_near(const Eigen::RowVector3d& p, const Visit& visit) const;
   // f's range once p is added (empty: lo > hi).
   static std::pair<double, double> narrowed(const Face& f, const Eigen::RowVector3d& p);
 

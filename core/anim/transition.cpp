@@ -228,7 +228,6 @@ KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, 
   return k;
 }
 
-
 // The manifold's tetrahedra in one slab per layer interval where none crosses a layer time (else
 // the intervals merge).
 AnimationManifold into_slabs(const IsoManifold& iso, const std::vector<double>& layer_times) {
