@@ -7,38 +7,14 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/anim/tet_faces.h"
+
 namespace dfm {
 
 namespace {
 
-using Face = std::array<int, 3>;
-
-struct FaceHash {
-  size_t operator()(const Face& f) const {
-    return (static_cast<size_t>(f[0]) * 0x9E3779B97F4A7C15ull) ^ (static_cast<size_t>(f[1]) * 0xC2B2AE3D27D4EB4Full) ^
-           static_cast<size_t>(f[2]);
-  }
-};
-
-// The face of tet t opposite corner i, with the orientation the tet's boundary gives it:
-// d[v0 v1 v2 v3] = [v1 v2 v3] - [v0 v2 v3] + [v0 v1 v3] - [v0 v1 v2].
-Face oriented_face(const MatrixX4iRow& T, int t, int i) {
-  Face f;
-  int k = 0;
-  for (int c = 0; c < 4; ++c)
-    if (c != i) f[k++] = T(t, c);
-  if (i % 2 == 1) std::swap(f[1], f[2]);
-  return f;
-}
-
-// Sorted vertices and the parity of the sort (+1 even).
-std::pair<Face, int> canonical(Face f) {
-  int sign = 1;
-  if (f[0] > f[1]) std::swap(f[0], f[1]), sign = -sign;
-  if (f[1] > f[2]) std::swap(f[1], f[2]), sign = -sign;
-  if (f[0] > f[1]) std::swap(f[0], f[1]), sign = -sign;
-  return {f, sign};
-}
+// The face of tet t opposite corner i, as its boundary orients it.
+Face oriented_face(const MatrixX4iRow& T, int t, int i) { return dfm::oriented_face({T(t, 0), T(t, 1), T(t, 2), T(t, 3)}, i); }
 
 int find(std::vector<int>& parent, int x) {
   while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -126,16 +102,7 @@ int seal_key_time(MatrixX4dRow& V, MatrixX4iRow& T, double time, double inside) 
     for (int t : ts) drop[t] = 1;
     ++sealed;
   }
-  const int keep = static_cast<int>(std::count(drop.begin(), drop.end(), 0));
-  MatrixX4iRow out(keep + static_cast<int>(extra_t.size()), 4);
-  int r = 0;
-  for (int t = 0; t < nt; ++t)
-    if (!drop[t]) out.row(r++) = T.row(t);
-  for (const auto& t : extra_t) out.row(r++) << t[0], t[1], t[2], t[3];
-  T = std::move(out);
-  const Eigen::Index nv = V.rows();
-  V.conservativeResize(nv + static_cast<Eigen::Index>(extra_v.size()), 4);
-  for (size_t k = 0; k < extra_v.size(); ++k) V.row(nv + static_cast<Eigen::Index>(k)) = extra_v[k];
+  edit_tets(V, T, drop, extra_v, extra_t);
   return sealed;
 }
 

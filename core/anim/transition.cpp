@@ -15,6 +15,7 @@
 #include "core/anim/face_protection.h"
 #include "core/anim/iso_manifold.h"
 #include "core/anim/key_distance.h"
+#include "core/anim/key_plane.h"
 #include "core/anim/key_time_seal.h"
 #include "core/anim/surface_checks.h"
 #include "core/bind/handle_geometry.h"
@@ -280,6 +281,8 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   target_flipped += o.target_flipped;
   target_missing += o.target_missing;
   source_chords += o.source_chords;
+  source_plane_fixes += o.source_plane_fixes;
+  target_plane_fixes += o.target_plane_fixes;
   sealed += o.sealed;
   target_chords += o.target_chords;
   simplices += o.simplices;
@@ -408,6 +411,8 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   for (double x : u) layer_times.push_back(t0 + x * (t1 - t0));
   layer_times.back() = t1;
   IsoManifold iso = iso_manifold(field, D);
+  const KeyPlaneStats plane_s = correct_key_plane(iso.V, iso.T, t0, key_tets(S.surface, S.fill_values));
+  const KeyPlaneStats plane_t = correct_key_plane(iso.V, iso.T, t1, key_tets(T.surface, T.fill_values));
   const double seal = 1e-6 * (t1 - t0);  // how far inside the slab a sealing cone's point sits
   st.sealed = seal_key_time(iso.V, iso.T, t0, t0 + seal) + seal_key_time(iso.V, iso.T, t1, t1 - seal);
   AnimationManifold M = into_slabs(iso, layer_times);
@@ -422,6 +427,8 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   st.target_flipped = static_cast<int>(T.surface.flipped.size());
   st.source_missing = S.surface.missing;
   st.target_missing = T.surface.missing;
+  st.source_plane_fixes = plane_s.bridges + plane_s.carved;
+  st.target_plane_fixes = plane_t.bridges + plane_t.carved;
   st.source_chords = S.chords;
   st.target_chords = T.chords;
   st.simplices = static_cast<int>(D.simplices.rows());

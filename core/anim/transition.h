@@ -13,9 +13,10 @@
 // instead: the signed distance to the key at the key's points (its surface vertices just inside), the
 // blend (1 - u) d_source + u d_target of both keys' signed distances at the layers in between, as in
 // distance-field metamorphosis (Payne and Toga 1992; Cohen-Or et al. 1998). The transition is the
-// field's zero level set (iso_manifold.h). It is a closed 3-manifold by construction, so nothing has
-// to be repaired, its slices change topology where the blend does, and at a key's time the crossings
-// on the key's own edges are its surface vertices, so the slice there is the key. Keys are blended
+// field's zero level set (iso_manifold.h). It is a closed 3-manifold by construction, its slices
+// change topology where the blend does, and at a key's time the crossings on the key's own edges are
+// its surface vertices; the level set's boundary in the key's plane is corrected to the key's surface
+// (key_plane.h) and what folds there sealed (key_time_seal.h), so the slice there is the key. Keys are blended
 // where they are (no alignment): keys far apart shrink away and grow back.
 #include <string>
 
@@ -47,6 +48,7 @@ struct TransitionStats {
   int source_missing = 0, target_missing = 0;    // surface triangles the conforming step left missing
   int source_flipped = 0, target_flipped = 0;    // nearly flat quads that took their other diagonal
   int source_chords = 0, target_chords = 0;      // outside tetrahedra still bridging a concavity
+  int source_plane_fixes = 0, target_plane_fixes = 0;  // tets the keys' planes read wrongly, corrected (key_plane.h)
   int sealed = 0;                                // folds at the keys' times replaced (key_time_seal.h)
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
   int tets = 0;                                  // of the resulting manifold
