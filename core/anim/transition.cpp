@@ -190,23 +190,27 @@ ConformingSurface conforming_key(const TriMesh& key, const SignedDistance& d, in
   return s;
 }
 
-// The conforming key with the fill points the rule admits, split again where the fill still cost
-// triangles, its chords covered.
+// The conforming key with the fill points the rule admits and its chords covered, split again where
+// either cost triangles.
 KeyLayer filled_layer(const ConformingSurface& conforming, const Eigen::MatrixXd& candidates, FillRule rule,
                       int max_rounds) {
   KeyLayer k;
   k.surface = conforming;
-  add_fill_points(k.surface, candidates, rule);
-  if (k.surface.missing > 0) {  // split what the fill broke, where a split does not land on a fill point
+  // Split what the points broke, where a split does not land on a fill point.
+  auto mend = [&] {
+    if (k.surface.missing == 0) return;
     ConformingSurface again = k.surface;
     try {
       make_conforming(again, max_rounds);
       if (again.missing < k.surface.missing) k.surface = std::move(again);
     } catch (const Error&) {
     }
-  }
+  };
+  add_fill_points(k.surface, candidates, rule);
+  mend();
   k.banded = k.surface.fill.rows();
   k.chords = cover_outside_chords(k.surface, rule);
+  mend();
   return k;
 }
 
