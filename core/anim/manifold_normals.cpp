@@ -23,9 +23,23 @@ Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k) {
 
 void accumulate_tet_normals(const AnimationManifold& m, int first_tet, int last_tet, int vertex_offset,
                             Eigen::MatrixXd& sum) {
+  const bool ends = m.num_layers() >= 2;
+  const double t_first = ends ? m.times.front() : 0, t_last = ends ? m.times.back() : 0;
+  auto end_plane = [&](int v) { return ends && (m.V(v, 3) == t_first || m.V(v, 3) == t_last); };
   for (int k = first_tet; k < last_tet; ++k) {
     const Eigen::RowVector4d n = tet_normal4(m, k).transpose();
-    for (int c = 0; c < 4; ++c) sum.row(m.T(k, c) - vertex_offset) += n;
+    for (int c = 0; c < 4; ++c) {
+      const int v = m.T(k, c);
+      auto row = sum.row(v - vertex_offset);
+      if (!end_plane(v)) {
+        row.head<4>() += n;
+        continue;
+      }
+      int in_plane = 0;
+      for (int d = 0; d < 4; ++d) in_plane += m.V(m.T(k, d), 3) == m.V(v, 3);
+      if (in_plane >= 3) row.head<4>() += n;
+      row.tail<4>() += n;
+    }
   }
 }
 
@@ -34,10 +48,16 @@ Eigen::Vector4d unit_or_zero(const Eigen::Vector4d& sum) {
   return len > 0 ? Eigen::Vector4d(sum / len) : Eigen::Vector4d::Zero();
 }
 
+Eigen::Vector4d vertex_normal4(const Eigen::Matrix<double, 1, 8>& sums) {
+  const Eigen::Vector4d n = unit_or_zero(sums.head<4>().transpose());
+  return n.squaredNorm() > 0 ? n : unit_or_zero(sums.tail<4>().transpose());
+}
+
 Eigen::MatrixXd manifold_vertex_normals(const AnimationManifold& m) {
-  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(m.num_vertices(), 4);
-  accumulate_tet_normals(m, 0, m.num_tets(), 0, N);
-  for (int v = 0; v < N.rows(); ++v) N.row(v) = unit_or_zero(N.row(v).transpose()).transpose();
+  Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(m.num_vertices(), 8);
+  accumulate_tet_normals(m, 0, m.num_tets(), 0, sums);
+  Eigen::MatrixXd N(m.num_vertices(), 4);
+  for (int v = 0; v < N.rows(); ++v) N.row(v) = vertex_normal4(sums.row(v)).transpose();
   return N;
 }
 

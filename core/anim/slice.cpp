@@ -87,12 +87,12 @@ class VertexNormals {
     if (!needed || first >= last) return;
     const auto T = M.T.middleRows(first, last - first);
     offset_ = T.minCoeff();
-    sum_ = Eigen::MatrixXd::Zero(T.maxCoeff() - offset_ + 1, 4);
+    sum_ = Eigen::MatrixXd::Zero(T.maxCoeff() - offset_ + 1, 8);
     accumulate_tet_normals(M, first, last, offset_, sum_);
   }
   Eigen::Vector4d operator()(int v) const {
     if (given_) return given_->row(v).transpose();
-    return unit_or_zero(sum_.row(v - offset_).transpose());
+    return vertex_normal4(sum_.row(v - offset_));
   }
 
  private:
