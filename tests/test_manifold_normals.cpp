@@ -38,17 +38,6 @@ AnimationManifold one_tet(const Eigen::Vector4d p[4]) {
   return M;
 }
 
-// Area-weighted unit vertex normals of a triangle mesh: the layer's own normals.
-Eigen::MatrixXd area_weighted_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
-  for (int f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    for (int j = 0; j < 3; ++j) N.row(F(f, j)) += (b - a).cross(c - a).transpose();
-  }
-  N.rowwise().normalize();
-  return N;
-}
-
 // An icosphere with its vertices pushed radially at random, so area weights matter.
 TriMesh lumpy_sphere() {
   TriMesh m = test::icosphere(Eigen::Vector3d(0.2, -0.1, 0.3), 1.0, 2);
@@ -141,7 +130,7 @@ TEST_CASE("tetrahedron normals follow manifold.h: prisms of an outward triangle 
 TEST_CASE("vertex normals: Eq. 2.3 against layer normals of static manifolds", "[manifold][normals]") {
   const TriMesh s = lumpy_sphere();
   const int n = s.num_vertices();
-  const Eigen::MatrixXd layer_n = area_weighted_normals(s.V, s.F);
+  const Eigen::MatrixXd layer_n = test::area_weighted_normals(s.V, s.F);
   // Equal time steps: an inner layer vertex meets 4 of the 6 staircase tetrahedra of each incident
   // prism pair whatever its rank in the triangle, so Eq. 2.3 is the layer's area-weighted normal.
   const AnimationManifold M = build_manifold(std::vector<Eigen::MatrixXd>(4, s.V), s.F, {0, 1, 2, 3});
@@ -165,7 +154,7 @@ TEST_CASE("vertex normals: Eq. 2.3 against layer normals of static manifolds", "
 TEST_CASE("slice normals of identical layers are the layer's normals, interpolated on the cut edge", "[manifold][normals]") {
   const TriMesh s = lumpy_sphere();
   const int n = s.num_vertices();
-  const Eigen::MatrixXd layer_n = area_weighted_normals(s.V, s.F);
+  const Eigen::MatrixXd layer_n = test::area_weighted_normals(s.V, s.F);
   const AnimationManifold M = build_manifold(std::vector<Eigen::MatrixXd>(4, s.V), s.F, {0, 1, 2, 3});
   for (double t : {1.0, 1.37, 1.5, 2.0 - 1e-7, 2.0}) {
     INFO("t = " << t);

@@ -60,14 +60,10 @@ double thinnest(const TriMesh& m) {
 
 // Angles in degrees between the slice's normals and its own area-weighted vertex normals, sorted.
 std::vector<double> normal_angles(const TriMesh& s) {
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(s.V.rows(), 3);
-  for (int f = 0; f < s.F.rows(); ++f) {
-    const Eigen::RowVector3d p0 = s.V.row(s.F(f, 0)), p1 = s.V.row(s.F(f, 1)), p2 = s.V.row(s.F(f, 2));
-    for (int j = 0; j < 3; ++j) A.row(s.F(f, j)) += (p1 - p0).cross(p2 - p0);
-  }
+  const Eigen::MatrixXd A = dfm::test::area_weighted_normals(s.V, s.F);
   std::vector<double> out;
   for (int v = 0; v < A.rows(); ++v) {
-    const double c = A.row(v).normalized().dot(s.N.row(v).normalized());
+    const double c = A.row(v).dot(s.N.row(v).normalized());
     out.push_back(std::acos(std::max(-1.0, std::min(1.0, c))) * 180 / M_PI);
   }
   std::sort(out.begin(), out.end());

@@ -1,5 +1,6 @@
 #pragma once
-// Small analytic meshes for the volume tests (cube, icosphere), built in code.
+// Small analytic meshes for the volume tests (cube, icosphere), built in code, and the references
+// measured on them (enclosed volume, area-weighted normals).
 #include <array>
 #include <cmath>
 #include <map>
@@ -101,6 +102,17 @@ inline TriMesh concat(const TriMesh& a, const TriMesh& b) {
   m.F.resize(a.F.rows() + b.F.rows(), 3);
   m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
   return m;
+}
+
+// Area-weighted unit vertex normals of a triangle mesh (the reference the normals tests compare with).
+inline Eigen::MatrixXd area_weighted_normals(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(V.rows(), 3);
+  for (int f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    for (int j = 0; j < 3; ++j) N.row(F(f, j)) += (b - a).cross(c - a).transpose();
+  }
+  N.rowwise().normalize();
+  return N;
 }
 
 }  // namespace dfm::test

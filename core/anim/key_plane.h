@@ -11,6 +11,12 @@
 // tetrahedra (labelled from outside the hull across it); lids -P go in, or cancel lids of the
 // opposite orientation already there, so that the chain is the key's surface. Everything added lies
 // in the plane, so the manifold stays closed off it; seal_key_time then cones what folds.
+//
+// Southern 2008 meets the same plane when stripping: 8.5.1 projects the 4-simplices into a key's
+// plane and finds duplicates there in opposite orientations, and 8.5.2 tells inside from outside by
+// a front grown from the manifold's facets that cancels where it meets itself. Here the plane's
+// pieces are summed as an oriented chain, so duplicates cancel by construction, and the walk from
+// the hull plays the front's part against the key's own inside.
 #include <vector>
 
 #include <Eigen/Core>

@@ -24,9 +24,9 @@ Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k);
 // of sum (8 columns, rows already there), for each of its vertices v: columns 0-3 the sum the normal
 // is, 4-7 a fallback. A vertex at the manifold's first or last time (a key's plane, where a slice is
 // the key) sums only the tetrahedra with a face in that plane, whose normals, without t, are those
-// faces' normals: the tetrahedra that leave the plane at a grazing angle would tilt it (by 4 degrees
-// at the median, 43 at the 99th percentile, on the default scene's key of a transition). Only if it
-// has none does it take them all (columns 4-7).
+// faces' normals, so a slice at the key's time is shaded as the key (2.3.2 asks for the slice's
+// normal; tetrahedra leaving the plane at a grazing angle tilt it). Only if it has none does it take
+// them all (columns 4-7).
 void accumulate_tet_normals(const AnimationManifold& m, int first_tet, int last_tet, int vertex_offset,
                             Eigen::MatrixXd& sum);
 
