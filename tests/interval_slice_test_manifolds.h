@@ -27,6 +27,14 @@ inline AnimationManifold deforming_sphere_manifold() {
   return build_manifold(keys, s.F, {0.0, 1.0, 2.5});
 }
 
+// The same tetrahedra without the prism build's records, as a manifold made otherwise: its frames and
+// interval topologies are the per-tetrahedron slice's (the path transitions take).
+inline AnimationManifold without_prism_records(AnimationManifold m) {
+  m.prism_slabs.clear();
+  m.prism_faces.clear();
+  return m;
+}
+
 inline AnimationManifold sphere_to_box_transition() {
   const TriMesh a = icosphere(Eigen::Vector3d(0, 0, 0), 0.6, 1);
   const TriMesh b = box_mesh(Eigen::Vector3d(-0.3, -0.5, -0.4), Eigen::Vector3d(0.5, 0.4, 0.3));

@@ -71,6 +71,26 @@ TEST_CASE("deform manifold: same-connectivity keyframes are exactly the prism bu
   CHECK(got.times == want.times);
   CHECK(got.slab_offsets == want.slab_offsets);
   CHECK(fs::exists(s / "seq0002.obj"));
+  // Issue 38: the slice at 0.5 and every frame of the sequence are the keys' mesh (the vertices in
+  // their order, each on its own straight path between the keys around its time, and their triangles).
+  const dfm::TriMesh at = dfm::read_surface(s / "slice.obj");
+  REQUIRE(at.num_vertices() == a.num_vertices());
+  CHECK(at.F == a.F);
+  CHECK((at.V - (0.5 * a.V + 0.5 * b.V)).cwiseAbs().maxCoeff() < 1e-12);
+  for (int i = 0; i < 3; ++i) {  // frames at t = 0, 1.5, 3
+    const dfm::TriMesh f = dfm::read_surface(s / ("seq000" + std::to_string(i) + ".obj"));
+    REQUIRE(f.num_vertices() == a.num_vertices());
+    CHECK(f.F == a.F);
+    const Eigen::MatrixXd expect = i == 0 ? a.V : i == 1 ? Eigen::MatrixXd(0.75 * b.V + 0.25 * c.V) : c.V;
+    CHECK((f.V - expect).cwiseAbs().maxCoeff() < 1e-12);
+  }
+  // The saved manifold keeps its prism layers, so slicing it again gives the same frame.
+  const RunResult again = deform(s, {"manifold", "--manifold", s / "m.tet4", "--at", "0.5", "-o", s / "again.obj"});
+  INFO(describe_run(again));
+  REQUIRE(again.exit_code == 0);
+  const dfm::TriMesh at2 = dfm::read_surface(s / "again.obj");
+  CHECK(at2.V == at.V);
+  CHECK(at2.F == at.F);
 }
 
 TEST_CASE("deform manifold: a bad keyframe exits 1 naming the file", "[cli][hostile]") {

@@ -1,5 +1,6 @@
 // Playback from a cached interval (render/interval_slice_pass, shaders/surface.vert.glsl with
-// INTERVAL) against the CPU slicer; the surface pass drawing the records equals drawing their read-back;
+// INTERVAL) against the CPU frame (manifold_frame: the layers' mesh between prism layers, the slice
+// in a transition); the surface pass drawing the records equals drawing their read-back;
 // and the editor's cache-or-general-pass loop (app/editor/slice_cache) on a real GL context.
 #include <algorithm>
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include "app/editor/slice_cache.h"
 #include "core/anim/interval_slice.h"
+#include "core/anim/manifold_frame.h"
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
 #include "render/gl_context.h"
@@ -102,7 +104,7 @@ TEST_CASE("the interval pass equals the CPU slice at times inside each interval"
         INFO("t = " << t);
         REQUIRE(pass.contains(t));
         pass.evaluate(t);
-        require_same_slice(slice_manifold(M, SliceAxis::T, t, &N4), pass, tol);
+        require_same_slice(manifold_frame(M, t, &N4), pass, tol);
       }
       REQUIRE_FALSE(pass.contains(times[i]));
       REQUIRE_FALSE(pass.contains(times[i + 1]));
@@ -175,7 +177,7 @@ TEST_CASE("playback draws from the interval cache and rebuilds when t leaves the
   for (int frame = 0; frame <= 74; ++frame) {  // t < 2.5, the last vertex time
     const double t = frame == 30 ? 1.0 : frame * step;  // frame 0 and 30: on a vertex time
     INFO("frame " << frame << ", t = " << t);
-    const ManifoldSlice cpu = slice_manifold(M, SliceAxis::T, t, &N4);
+    const ManifoldSlice cpu = manifold_frame(M, t, &N4);
     editor::SliceDecision d = policy.choose(true, t, frame ? t - prev : 0.0);
     prev = t;
     if (d.route == editor::SliceRoute::Build) {

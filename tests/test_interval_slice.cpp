@@ -59,7 +59,7 @@ TEST_CASE("vertex times and the open interval holding a time", "[manifold][inter
 }
 
 TEST_CASE("an interval's topology gives the CPU slice at every time inside it (prism manifold)", "[manifold][interval]") {
-  const AnimationManifold M = test::deforming_sphere_manifold();
+  const AnimationManifold M = test::without_prism_records(test::deforming_sphere_manifold());
   const Eigen::MatrixXd N4 = manifold_vertex_normals(M);
   const std::vector<double> times = manifold_vertex_times(M);
   for (size_t i = 0; i + 1 < times.size(); ++i) {
@@ -82,7 +82,8 @@ TEST_CASE("an interval's topology gives the CPU slice at every time inside it (p
   // An open surface's manifold (the sphere less one triangle) slices open: never culled.
   const TriMesh sphere = test::icosphere(Eigen::Vector3d::Zero(), 1.0, 1);
   const Eigen::MatrixXi open_F = sphere.F.topRows(sphere.F.rows() - 1);
-  const AnimationManifold open = build_manifold({sphere.V, 1.1 * sphere.V}, open_F, {0.0, 1.0});
+  const AnimationManifold open =
+      test::without_prism_records(build_manifold({sphere.V, 1.1 * sphere.V}, open_F, {0.0, 1.0}));
   const IntervalSlice o = build_interval_slice(open, manifold_vertex_normals(open), 0.0, 1.0);
   REQUIRE(o.num_faces() > 0);
   REQUIRE_FALSE(o.closed_outward);
@@ -92,7 +93,7 @@ TEST_CASE("an interval's topology gives the CPU slice at every time inside it (p
 // the same surface: the same points (each limit vertex is a CPU vertex and back), the same area and
 // the same enclosed volume, the extra triangles collapsed to zero area.
 TEST_CASE("an interval's limit at its ends is the CPU slice's surface", "[manifold][interval]") {
-  const AnimationManifold M = test::deforming_sphere_manifold();
+  const AnimationManifold M = test::without_prism_records(test::deforming_sphere_manifold());
   const Eigen::MatrixXd N4 = manifold_vertex_normals(M);
   const std::vector<double> times = manifold_vertex_times(M);
   auto area = [](const TriMesh& m) {
@@ -123,6 +124,35 @@ TEST_CASE("an interval's limit at its ends is the CPU slice's surface", "[manifo
       REQUIRE(test::enclosed_volume(lim.V, lim.F) == Approx(test::enclosed_volume(cpu.V, cpu.F)).epsilon(1e-12));
       REQUIRE(lim.num_faces() > cpu.num_faces());  // collapsed triangles remain in the limit
     }
+  }
+}
+
+// Issue 38: between prism layers the interval's topology is the layers' mesh, so playback draws the
+// artist's triangles: each vertex on the segment between its own two copies (written out here), the
+// layers' triangles, the layers themselves at the ends, and a closed mesh stays closed.
+TEST_CASE("a prism slab's interval is its layers' mesh, vertex for vertex", "[manifold][interval]") {
+  const AnimationManifold M = test::deforming_sphere_manifold();
+  const Eigen::MatrixXd N4 = manifold_vertex_normals(M);
+  const std::vector<double> times = manifold_vertex_times(M);
+  REQUIRE(times.size() == 3);
+  const int n = M.prism_slabs[0].count;
+  const Eigen::MatrixXi& F = M.prism_faces[0];
+  for (int i = 0; i < 2; ++i) {
+    const IntervalSlice s = build_interval_slice(M, N4, times[i], times[i + 1]);
+    REQUIRE(s.num_vertices() == n);
+    REQUIRE(s.F == F);
+    REQUIRE(s.closed_outward);
+    const Eigen::MatrixXd lo = M.V.block(i * n, 0, n, 3), hi = M.V.block((i + 1) * n, 0, n, 3);
+    for (double t : times_inside(times[i], times[i + 1])) {
+      const TriMesh f = evaluate_interval_slice(s, M, N4, t);
+      const double u = (t - times[i]) / (times[i + 1] - times[i]);
+      REQUIRE((f.V - (lo + u * (hi - lo))).cwiseAbs().maxCoeff() < 1e-12);
+      for (int v = 0; v < n; ++v) REQUIRE(f.N.row(v).norm() == Approx(1.0).epsilon(1e-12));
+    }
+    REQUIRE((evaluate_interval_slice(s, M, N4, times[i]).V - lo).cwiseAbs().maxCoeff() < 1e-14);
+    REQUIRE(evaluate_interval_slice(s, M, N4, times[i + 1]).V == hi);
+    // The exact slice of the prisms has the kinks: more vertices than the mesh.
+    REQUIRE(slice_manifold(M, SliceAxis::T, 0.5 * (times[i] + times[i + 1]), &N4).mesh.num_vertices() > n);
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/anim/bake.h"
 #include "core/anim/manifold.h"
+#include "core/anim/manifold_frame.h"
 #include "core/anim/surface_checks.h"
 #include "core/mesh/io.h"
 #include "core/scene/key_surfaces.h"
@@ -269,6 +270,31 @@ TEST_CASE("a transition: sphere key at 0, torus key-mesh at 1, the slice at 0.5 
   document_manifold(d, &st);
   CHECK(st.transition_slabs == 1);
   CHECK(st.prism_slabs == 0);
+
+  // A torus moved by (0, 0, 1) keyed at 2: the transition is followed by a prism slab, whose frames
+  // are the torus mesh (its layers renumbered after the transition's vertices), while the transition's
+  // frames stay its slices.
+  TriMesh moved = test::torus({0, 0, 0}, 1.0, 0.35, 16, 8);
+  const TriMesh torus = moved;
+  moved.V.col(2).array() += 1.0;
+  write_surface(tmp / "moved.obj", moved);
+  run_script(d, parse_script("key-mesh " + tmp / "moved.obj" + " 2\n", "s.txt"), "s.txt");
+  const AnimationManifold M = document_manifold(d, &st);
+  CHECK(st.transition_slabs == 1);
+  CHECK(st.prism_slabs == 1);
+  REQUIRE(M.prism_slabs.size() == static_cast<size_t>(M.num_slabs()));
+  CHECK(prism_slab_at(M, 0.5) == -1);
+  CHECK(prism_slab_at(M, 1.0) == M.num_slabs() - 1);  // the torus key: its prism layer
+  const ManifoldSlice f = manifold_frame(M, 1.25);
+  REQUIRE(f.mesh.F == torus.F);
+  Eigen::MatrixXd expect = torus.V;
+  expect.col(2).array() += 0.25;
+  CHECK((f.mesh.V - expect).cwiseAbs().maxCoeff() < 1e-12);
+  const ManifoldSlice key = manifold_frame(M, 1.0);
+  CHECK(key.mesh.V == torus.V);  // a layer's time: that layer, bit for bit
+  const ManifoldSlice tr = manifold_frame(M, 0.5), exact = slice_manifold(M, SliceAxis::T, 0.5);
+  CHECK(tr.mesh.V == exact.mesh.V);
+  CHECK(tr.mesh.F == exact.mesh.F);
 }
 
 TEST_CASE("in-betweens per key interval: ARAP turns a body rigidly, linear shrinks it, handles add none "

@@ -15,6 +15,7 @@
 
 #include "core/anim/frame_sequence.h"
 #include "core/anim/manifold.h"
+#include "core/anim/manifold_frame.h"
 #include "core/anim/manifold_io.h"
 #include "core/anim/slice.h"
 #include "core/anim/slice_table.h"
@@ -373,6 +374,13 @@ TEST_CASE("tet4 files round-trip exactly and reject malformed input with a line 
   REQUIRE(R.T == M.T);
   REQUIRE(R.times == M.times);
   REQUIRE(R.slab_offsets == M.slab_offsets);
+  // The prism build's layers (version 2's closing sections) come back too.
+  REQUIRE(R.prism_faces.size() == 1);
+  REQUIRE(R.prism_faces[0] == cube.F);
+  REQUIRE(R.prism_slabs.size() == 2);
+  CHECK(R.prism_slabs[1].lower == 8);
+  CHECK(R.prism_slabs[1].upper == 16);
+  CHECK(R.prism_slabs[1].count == 8);
 
   std::ifstream in(p);
   std::vector<std::string> lines;
@@ -388,13 +396,34 @@ TEST_CASE("tet4 files round-trip exactly and reject malformed input with a line 
     for (auto& s : l) out << s << "\n";
     return q;
   };
-  // lines: 0 header, 1 comment, 2 vertices, 3 tets, 4 layers, 5..7 layer, 8.. vertices, then tets.
+  // lines: 0 header, 1 comment, 2 vertices, 3 tets, 4 layers, 5..7 layer, 8.. vertices, then tets,
+  // then the surfaces and prisms sections.
+  int last_tet = 0;
+  for (int i = 0; i < static_cast<int>(lines.size()); ++i)
+    if (lines[i].rfind("t ", 0) == 0) last_tet = i;
+  const int last = static_cast<int>(lines.size()) - 1;
+  REQUIRE(lines[last].rfind("prism ", 0) == 0);
   REQUIRE_THROWS_WITH(read_manifold(write_with(0, "tet5 1")), Catch::Contains("bad.tet4:1") && Catch::Contains("tet4"));
   REQUIRE_THROWS_WITH(read_manifold(write_with(6, "layer 0.05 36")), Catch::Contains("increasing"));
   REQUIRE_THROWS_WITH(read_manifold(write_with(9, "v 1 2 zz 0.1")), Catch::Contains("bad.tet4:10"));
-  REQUIRE_THROWS_WITH(read_manifold(write_with(static_cast<int>(lines.size()) - 1, "t 0 1 2 999")),
-                      Catch::Contains("outside"));
+  REQUIRE_THROWS_WITH(read_manifold(write_with(last_tet, "t 0 1 2 999")), Catch::Contains("outside"));
   REQUIRE_THROWS_WITH(read_manifold(write_with(-3, "")), Catch::Contains("end of file"));
+  // A prism slab whose layer is not at its times, or whose triangle list does not exist.
+  REQUIRE_THROWS_WITH(read_manifold(write_with(last, "prism 0 0 16 8")),
+                      Catch::Contains("prism slab 1") && Catch::Contains("times"));
+  REQUIRE_THROWS_WITH(read_manifold(write_with(last, "prism 3 8 16 8")), Catch::Contains("bad.tet4:" + std::to_string(last + 1)));
+  // Version 1 (no closing sections) still reads, without prism slabs.
+  {
+    std::vector<std::string> v1(lines.begin(), lines.begin() + last_tet + 1);
+    v1[0] = "tet4 1";
+    const std::string q = (dir / "v1.tet4").string();
+    std::ofstream out(q);
+    for (auto& l : v1) out << l << "\n";
+    out.close();
+    const AnimationManifold R1 = read_manifold(q);
+    CHECK(R1.T == M.T);
+    CHECK(R1.prism_slabs.empty());
+  }
   // A vertex moved outside its slab's time span.
   REQUIRE_THROWS_WITH(read_manifold(write_with(8, "v 0 0 0 5")), Catch::Contains("slab"));
   REQUIRE_THROWS_AS(read_manifold((dir / "missing.tet4").string()), Error);
@@ -433,4 +462,64 @@ TEST_CASE("frame sequences: one naming rule, frames evenly over the animation, b
   CHECK_THROWS_WITH(write_frame_sequence(M, (dir / "g").string(), 0), Catch::Contains("at least one frame"));
   CHECK_THROWS_WITH(write_frame_sequence(M, (dir / "missing" / "g").string(), 2), Catch::Contains("missing"));
   fs::remove_all(dir);
+}
+
+TEST_CASE("frames between prism layers are the layers' mesh, each vertex on its own time edge", "[manifold]") {
+  // A cube whose corners move differently: each by its own vector between layers (not a rigid move),
+  // so the prisms' exact slice kinks on the side diagonals while the frame stays the cube's mesh.
+  const TriMesh cube = unit_cube();
+  Eigen::MatrixXd V1 = cube.V, V2 = cube.V;
+  for (int v = 0; v < 8; ++v) {
+    V1.row(v) += Eigen::RowVector3d(0.02 * v, -0.01 * (v % 3), 0.3);
+    V2.row(v) = 1.5 * V1.row(v);
+  }
+  const std::vector<double> times = {0.0, 1.0, 3.0};
+  const AnimationManifold M = build_manifold(std::vector<Eigen::MatrixXd>{cube.V, V1, V2}, cube.F, times);
+  REQUIRE(M.prism_slabs.size() == 2);
+  CHECK(prism_slab_at(M, -0.1) == -1);
+  CHECK(prism_slab_at(M, 0.0) == 0);
+  CHECK(prism_slab_at(M, 1.0) == 0);  // shared by two slabs: the earlier
+  CHECK(prism_slab_at(M, 2.0) == 1);
+  CHECK(prism_slab_at(M, 3.5) == -1);
+
+  for (double t : {0.25, 0.5, 1.0, 2.2, 3.0}) {
+    const ManifoldSlice f = manifold_frame(M, t);
+    REQUIRE(f.mesh.F == cube.F);
+    REQUIRE(f.mesh.num_vertices() == 8);
+    // The reference: vertex v on the segment between its copies in the layers around t.
+    const Eigen::MatrixXd& A = t <= 1.0 ? cube.V : V1;
+    const Eigen::MatrixXd& B = t <= 1.0 ? V1 : V2;
+    const double u = t <= 1.0 ? t : (t - 1.0) / 2.0;
+    CHECK((f.mesh.V - (A + u * (B - A))).cwiseAbs().maxCoeff() < 1e-14);
+    for (int v = 0; v < 8; ++v) {
+      CHECK(f.mesh.N.row(v).norm() == Approx(1.0).epsilon(1e-12));
+      // Edges name the vertex's own copies: (lower, upper), or the vertex itself on a layer.
+      const int slab = t <= 1.0 ? 0 : 1;
+      if (t == times[slab + 1]) {
+        CHECK(f.edges[v][0] == (slab + 1) * 8 + v);
+        CHECK(f.edges[v][1] == f.edges[v][0]);
+      } else {
+        CHECK(f.edges[v][0] == slab * 8 + v);
+        CHECK(f.edges[v][1] == (slab + 1) * 8 + v);
+      }
+    }
+    // The exact slice of the prisms has more vertices (the kinks) and encloses another volume.
+    if (t != 1.0 && t != 3.0) CHECK(slice_manifold(M, SliceAxis::T, t).mesh.num_vertices() > 8);
+  }
+  // At a layer time the frame is that layer, bit for bit, outward normals included.
+  const ManifoldSlice key = manifold_frame(M, 1.0);
+  CHECK(key.mesh.V == V1);
+  for (int f = 0; f < key.mesh.num_faces(); ++f) {
+    const Eigen::Vector3d a = key.mesh.V.row(key.mesh.F(f, 0)), b = key.mesh.V.row(key.mesh.F(f, 1)),
+                          c = key.mesh.V.row(key.mesh.F(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    for (int j = 0; j < 3; ++j) CHECK(key.mesh.N.row(key.mesh.F(f, j)).dot(n) > 0);
+  }
+  // Without prism records (a manifold made otherwise) the frame is the exact slice.
+  AnimationManifold plain = M;
+  plain.prism_slabs.clear();
+  plain.prism_faces.clear();
+  CHECK(manifold_frame(plain, 0.5).mesh.V == slice_manifold(M, SliceAxis::T, 0.5).mesh.V);
+  CHECK_THROWS_WITH(prism_frame(plain, 0, 0.5), Catch::Contains("prism build"));
+  CHECK_THROWS_WITH(prism_frame(M, 1, 0.5), Catch::Contains("outside"));
 }

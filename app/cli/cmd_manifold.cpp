@@ -7,6 +7,7 @@
 
 #include "app/cli/command.h"
 #include "core/anim/manifold.h"
+#include "core/anim/manifold_frame.h"
 #include "core/anim/manifold_io.h"
 #include "core/anim/frame_sequence.h"
 #include "core/anim/inbetween.h"
@@ -193,7 +194,9 @@ int run(const dfm::cli::Args& args) {
 
   if (!save_manifold.empty()) dfm::write_manifold(save_manifold, M);
   if (at) {
-    const dfm::ManifoldSlice s = dfm::slice_manifold(M, axis, *at);
+    // In time, the frame (a same-connectivity interval's own mesh); across it, the sweep's slice.
+    const dfm::ManifoldSlice s =
+        axis == dfm::SliceAxis::T ? dfm::manifold_frame(M, *at) : dfm::slice_manifold(M, axis, *at);
     if (!out.empty()) dfm::write_surface(out, s.mesh);
     if (stats) print_stats(M, s, axis, *at);
   }

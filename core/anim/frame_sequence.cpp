@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "core/anim/slice.h"
+#include "core/anim/manifold_frame.h"
 #include "core/mesh/io.h"
 #include "core/util/error.h"
 
@@ -34,7 +34,7 @@ std::vector<std::string> write_frame_sequence(const AnimationManifold& m, const 
   std::vector<std::string> paths;
   for (int i = 0; i < count; ++i) {
     paths.push_back(frame_path(naming, i));
-    write_surface(paths.back(), slice_manifold(m, SliceAxis::T, frame_time(m.times.front(), m.times.back(), i, count)).mesh);
+    write_surface(paths.back(), manifold_frame(m, frame_time(m.times.front(), m.times.back(), i, count)).mesh);
   }
   return paths;
 }

@@ -3,7 +3,7 @@
 // save-frames, the editor's File > Save frames and `deform manifold --sequence` share.
 //
 // PREFIX names the files: "out/walk" and "out/walk.obj" both give out/walk0000.obj, out/walk0001.obj, ...;
-// "out/walk.ply" (or .off, .stl) picks that format. COUNT frames are slices on t evenly spaced from the
+// "out/walk.ply" (or .off, .stl) picks that format. COUNT frames (manifold_frame.h) at times evenly spaced from the
 // manifold's first to its last time, both included (one frame: the first time).
 #include <string>
 #include <vector>

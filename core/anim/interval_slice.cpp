@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/anim/manifold_frame.h"
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
 #include "core/mesh/mesh_info.h"
@@ -30,7 +31,7 @@ IntervalSlice build_interval_slice(const AnimationManifold& m, const Eigen::Matr
   if (!(t_lo < t_hi))
     throw Error("interval slice: empty interval (" + std::to_string(t_lo) + ", " + std::to_string(t_hi) + ")");
   const double mid = t_lo + 0.5 * (t_hi - t_lo);
-  ManifoldSlice s = slice_manifold(m, SliceAxis::T, mid, &vertex_normals4);
+  ManifoldSlice s = manifold_frame(m, mid, &vertex_normals4);
   IntervalSlice out;
   out.t_lo = t_lo;
   out.t_hi = t_hi;
@@ -63,7 +64,7 @@ TriMesh evaluate_interval_slice(const IntervalSlice& s, const AnimationManifold&
   out.F = s.F;
   for (int v = 0; v < nv; ++v) {
     const int up = s.edges[v][0], dn = s.edges[v][1];
-    // The same operations as slice_manifold, so the same bits.
+    // The same operations as slice_manifold and prism_frame, so the same bits.
     const double su = m.V(up, 3) - t, sd = m.V(dn, 3) - t;
     const double mu = su / (su - sd);
     for (int d = 0; d < 3; ++d) {

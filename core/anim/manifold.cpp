@@ -91,12 +91,43 @@ AnimationManifold build_manifold(const std::vector<Eigen::MatrixXd>& layers, con
     M.T.block(3L * l * i, 0, 3L * l, 4) = pattern.array() + static_cast<int>(i * n);
   }
   M.slab_offsets[m - 1] = 3 * l * (m - 1);
+  M.prism_faces.push_back(F);
+  M.prism_slabs.resize(m - 1);
+  for (int i = 0; i + 1 < m; ++i)
+    M.prism_slabs[i] = PrismSlab{0, static_cast<int>(i * n), static_cast<int>((i + 1) * n), static_cast<int>(n)};
   return M;
 }
 
 AnimationManifold build_manifold(const BakedLayers& layers, const Eigen::MatrixXi& F) {
   return build_manifold(layers.positions, F, layers.times);
 }
+
+namespace {
+
+// A prism slab's layers are vertex ranges at the slab's two times, and its triangles index them.
+void validate_prism_slabs(const AnimationManifold& M, const std::string& what) {
+  if (M.prism_slabs.empty()) return;
+  if (static_cast<int>(M.prism_slabs.size()) != M.num_slabs())
+    throw Error(what + ": " + std::to_string(M.prism_slabs.size()) + " prism slab entries for " +
+                std::to_string(M.num_slabs()) + " slabs");
+  const int nv = M.num_vertices();
+  for (int i = 0; i < M.num_slabs(); ++i) {
+    const PrismSlab& p = M.prism_slabs[i];
+    if (!p.is_prism()) continue;
+    const std::string slab = what + ": prism slab " + std::to_string(i);
+    if (p.faces >= static_cast<int>(M.prism_faces.size())) throw Error(slab + " names a missing triangle list");
+    if (p.count < 1 || p.lower < 0 || p.upper < 0 || p.lower > nv - p.count || p.upper > nv - p.count)
+      throw Error(slab + " has a layer outside the vertices");
+    for (int v = 0; v < p.count; ++v)
+      if (M.V(p.lower + v, 3) != M.times[i] || M.V(p.upper + v, 3) != M.times[i + 1])
+        throw Error(slab + ": layer vertex " + std::to_string(v) + " is not at the slab's times");
+    const Eigen::MatrixXi& F = M.prism_faces[p.faces];
+    if (F.cols() != 3 || (F.size() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= p.count)))
+      throw Error(slab + ": a triangle has a vertex index outside [0, " + std::to_string(p.count) + ")");
+  }
+}
+
+}  // namespace
 
 void validate_manifold(const AnimationManifold& M, const std::string& what) {
   const int m = M.num_layers();
@@ -128,6 +159,7 @@ void validate_manifold(const AnimationManifold& M, const std::string& what) {
       }
     }
   }
+  validate_prism_slabs(M, what);
 }
 
 }  // namespace dfm

@@ -12,6 +12,10 @@
 // Orientation: each tetrahedron (p0, p1, p2, p3) is ordered so that its 4D normal
 //   N = generalized cross product of (p1-p0, p2-p0, p3-p0), <N, w> = det[w, p1-p0, p2-p0, p3-p0],
 // points out of the space-time solid swept by the (outward-oriented) layers.
+//
+// The prism build also records, per slab, the layer mesh its prisms stand on (PrismSlab), so a frame
+// between two layers of one connectivity can be that mesh (core/anim/manifold_frame.h).
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,6 +27,15 @@ namespace dfm {
 using MatrixX4dRow = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>;
 using MatrixX4iRow = Eigen::Matrix<int, Eigen::Dynamic, 4, Eigen::RowMajor>;
 
+// A slab made by the prism build: vertex v (0 <= v < count) of its lower layer is manifold vertex
+// lower + v, of its upper layer upper + v, and its triangles are prism_faces[faces]. faces = -1 for a
+// slab made otherwise (a transition).
+struct PrismSlab {
+  int faces = -1;
+  int lower = 0, upper = 0, count = 0;
+  bool is_prism() const { return faces >= 0; }
+};
+
 struct AnimationManifold {
   MatrixX4dRow V;             // #V x 4: x, y, z, t
   MatrixX4iRow T;             // #T x 4 vertex indices, oriented as above
@@ -30,6 +43,10 @@ struct AnimationManifold {
   // m entries: the tetrahedra between times[i] and times[i+1] (slab i) are rows
   // [slab_offsets[i], slab_offsets[i+1]) of T; slab_offsets.back() == #T.
   std::vector<int> slab_offsets;
+  // Empty, or one entry per slab saying how it was made; prism_faces holds the triangle lists
+  // (#F x 3, outward) the prism slabs refer to, one per run of keys sharing a connectivity.
+  std::vector<PrismSlab> prism_slabs;
+  std::vector<Eigen::MatrixXi> prism_faces;
 
   int num_vertices() const { return static_cast<int>(V.rows()); }
   int num_tets() const { return static_cast<int>(T.rows()); }
@@ -38,7 +55,7 @@ struct AnimationManifold {
 };
 
 // Layers: m >= 2 matrices #V x 3 (the same #V), F: #F x 3 triangles (0-based, outward), times:
-// m strictly increasing values. Gives exactly 3 #F (m - 1) tetrahedra. Throws dfm::Error on
+// m strictly increasing values. Gives exactly 3 #F (m - 1) tetrahedra, and every slab a PrismSlab. Throws dfm::Error on
 // mismatched sizes, indices out of range, a triangle with a repeated vertex, or unsorted times.
 AnimationManifold build_manifold(const std::vector<Eigen::MatrixXd>& layers, const Eigen::MatrixXi& F,
                                  const std::vector<double>& times);
@@ -48,9 +65,9 @@ AnimationManifold build_manifold(const BakedLayers& layers, const Eigen::MatrixX
 // lower-layer vertex v is lower_offset + v, its upper copy lower_offset + stride + v.
 std::vector<Eigen::Vector4i> prism_tets(const Eigen::Vector3i& f, int lower_offset, int stride);
 
-// Checks the invariants above (sizes, index range, sorted times, offsets, and that every vertex of
-// slab i's tetrahedra has times[i] <= t <= times[i+1]); throws dfm::Error naming `what` and the
-// first problem.
+// Checks the invariants above (sizes, index range, sorted times, offsets, that every vertex of slab
+// i's tetrahedra has times[i] <= t <= times[i+1], and that a prism slab's layers lie at its two times
+// with triangles on them); throws dfm::Error naming `what` and the first problem.
 void validate_manifold(const AnimationManifold& m, const std::string& what = "manifold");
 
 }  // namespace dfm

@@ -65,6 +65,43 @@ class Lines {
   long line_ = 0;
 };
 
+// Version 2's closing sections: the prism build's triangle lists and each slab's entry (manifold.h).
+// Index ranges are checked here; validate_manifold checks them against the layers.
+void read_prism_slabs(Lines& L, std::vector<std::string_view>& tok, AnimationManifold& M) {
+  auto count = [&](const char* name) {
+    L.expect(tok, name);
+    if (tok.size() != 2 || tok[0] != name) throw L.error(std::string("expected '") + name + " <count>'");
+    const long long n = L.number<long long>(tok[1], "count");
+    if (n < 0 || n > 2000000000LL) throw L.error(std::string(name) + " count out of range");
+    return static_cast<int>(n);
+  };
+  const int ns = count("surfaces");
+  for (int i = 0; i < ns; ++i) {
+    const int nf = count("surface");
+    Eigen::MatrixXi F(nf, 3);
+    for (int f = 0; f < nf; ++f) {
+      L.expect(tok, "a triangle line 'f A B C'");
+      if (tok.size() != 4 || tok[0] != "f") throw L.error("expected a triangle line 'f A B C'");
+      for (int d = 0; d < 3; ++d) F(f, d) = L.number<int>(tok[d + 1], "vertex index");
+    }
+    M.prism_faces.push_back(std::move(F));
+  }
+  const int np = count("prisms");
+  if (np != 0 && np != M.num_slabs())
+    throw L.error("prisms: " + std::to_string(np) + " entries for " + std::to_string(M.num_slabs()) + " slabs");
+  for (int i = 0; i < np; ++i) {
+    L.expect(tok, "a line 'prism FACES LOWER UPPER COUNT'");
+    if (tok.size() != 5 || tok[0] != "prism") throw L.error("expected 'prism FACES LOWER UPPER COUNT'");
+    PrismSlab p;
+    p.faces = L.number<int>(tok[1], "triangle list index");
+    p.lower = L.number<int>(tok[2], "first lower vertex");
+    p.upper = L.number<int>(tok[3], "first upper vertex");
+    p.count = L.number<int>(tok[4], "layer vertex count");
+    if (p.faces < -1 || p.faces >= ns) throw L.error("prism: triangle list " + std::to_string(p.faces) + " does not exist");
+    M.prism_slabs.push_back(p);
+  }
+}
+
 }  // namespace
 
 void write_manifold(const std::string& path, const AnimationManifold& M) {
@@ -78,7 +115,7 @@ void write_manifold(const std::string& path, const AnimationManifold& M) {
         buf.clear();
       }
     };
-    buf += "tet4 1\n# animation manifold: 4D vertices (x y z t), oriented tetrahedra grouped in time slabs\n";
+    buf += "tet4 2\n# animation manifold: 4D vertices (x y z t), oriented tetrahedra grouped in time slabs\n";
     buf += "vertices ";
     put(buf, M.num_vertices());
     buf += "\ntets ";
@@ -111,6 +148,34 @@ void write_manifold(const std::string& path, const AnimationManifold& M) {
       buf += '\n';
       flush(false);
     }
+    buf += "surfaces ";
+    put(buf, static_cast<int>(M.prism_faces.size()));
+    buf += '\n';
+    for (const Eigen::MatrixXi& F : M.prism_faces) {
+      buf += "surface ";
+      put(buf, static_cast<int>(F.rows()));
+      buf += '\n';
+      for (Eigen::Index f = 0; f < F.rows(); ++f) {
+        buf += 'f';
+        for (int d = 0; d < 3; ++d) {
+          buf += ' ';
+          put(buf, F(f, d));
+        }
+        buf += '\n';
+        flush(false);
+      }
+    }
+    buf += "prisms ";
+    put(buf, static_cast<int>(M.prism_slabs.size()));
+    buf += '\n';
+    for (const PrismSlab& p : M.prism_slabs) {
+      buf += "prism";
+      for (int x : {p.faces, p.lower, p.upper, p.count}) {
+        buf += ' ';
+        put(buf, x);
+      }
+      buf += '\n';
+    }
     flush(true);
     if (!os) throw Error(path + ": write failed");
   });
@@ -125,9 +190,10 @@ AnimationManifold read_manifold(const std::string& path) {
   Lines L(path, ss.str());
   std::vector<std::string_view> tok;
 
-  L.expect(tok, "the header 'tet4 1'");
-  if (tok.size() != 2 || tok[0] != "tet4") throw L.error("not a tet4 file (expected the header 'tet4 1')");
-  if (L.number<int>(tok[1], "version") != 1) throw L.error("unsupported tet4 version " + std::string(tok[1]));
+  L.expect(tok, "the header 'tet4 2'");
+  if (tok.size() != 2 || tok[0] != "tet4") throw L.error("not a tet4 file (expected the header 'tet4 2')");
+  const int version = L.number<int>(tok[1], "version");
+  if (version != 1 && version != 2) throw L.error("unsupported tet4 version " + std::string(tok[1]));
   auto count = [&](const char* name) {
     L.expect(tok, name);
     if (tok.size() != 2 || tok[0] != name) throw L.error(std::string("expected '") + name + " <count>'");
@@ -165,6 +231,7 @@ AnimationManifold read_manifold(const std::string& path) {
       M.T(k, d) = v;
     }
   }
+  if (version >= 2) read_prism_slabs(L, tok, M);
   if (L.next(tok)) throw L.error("unexpected content after the last tetrahedron");
   validate_manifold(M, path);
   return M;

@@ -1,6 +1,10 @@
 #include "core/anim/manifold_normals.h"
 
+#include <string>
+
 #include <Eigen/LU>
+
+#include "core/util/error.h"
 
 namespace dfm {
 
@@ -51,6 +55,27 @@ Eigen::Vector4d unit_or_zero(const Eigen::Vector4d& sum) {
 Eigen::Vector4d vertex_normal4(const Eigen::Matrix<double, 1, 8>& sums) {
   const Eigen::Vector4d n = unit_or_zero(sums.head<4>().transpose());
   return n.squaredNorm() > 0 ? n : unit_or_zero(sums.tail<4>().transpose());
+}
+
+VertexNormalSource::VertexNormalSource(const AnimationManifold& m, const Eigen::MatrixXd* given, int first_tet,
+                                       int last_tet)
+    : given_(given) {
+  if (given) {
+    if (given->rows() != m.num_vertices() || given->cols() != 4)
+      throw Error("vertex normals must be " + std::to_string(m.num_vertices()) + " x 4, got " +
+                  std::to_string(given->rows()) + " x " + std::to_string(given->cols()));
+    return;
+  }
+  if (first_tet >= last_tet) return;
+  const auto T = m.T.middleRows(first_tet, last_tet - first_tet);
+  offset_ = T.minCoeff();
+  sum_ = Eigen::MatrixXd::Zero(T.maxCoeff() - offset_ + 1, 8);
+  accumulate_tet_normals(m, first_tet, last_tet, offset_, sum_);
+}
+
+Eigen::Vector4d VertexNormalSource::operator()(int v) const {
+  if (given_) return given_->row(v).transpose();
+  return vertex_normal4(sum_.row(v - offset_));
 }
 
 Eigen::MatrixXd manifold_vertex_normals(const AnimationManifold& m) {

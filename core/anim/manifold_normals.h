@@ -40,6 +40,21 @@ Eigen::Vector4d vertex_normal4(const Eigen::Matrix<double, 1, 8>& sums);
 // tetrahedron uses.
 Eigen::MatrixXd manifold_vertex_normals(const AnimationManifold& m);
 
+// Unit 4D normals of single vertices: rows of a caller's #V x 4 manifold_vertex_normals, or, without
+// one, summed over rows [first_tet, last_tet) of m.T only (the same tetrahedra in the same order as
+// manifold_vertex_normals sees around a vertex, so the same bits, when the range holds all of them).
+class VertexNormalSource {
+ public:
+  // Throws dfm::Error when `given` is not #V x 4.
+  VertexNormalSource(const AnimationManifold& m, const Eigen::MatrixXd* given, int first_tet, int last_tet);
+  Eigen::Vector4d operator()(int v) const;
+
+ private:
+  const Eigen::MatrixXd* given_;
+  Eigen::MatrixXd sum_;
+  int offset_ = 0;
+};
+
 // The slice's 3D normal: n4 without the axis component, renormalised (zero stays zero). Components are
 // in the slice's display order (the coordinates left after dropping the axis, as in slice.h).
 Eigen::Vector3d slice_normal3(const Eigen::Vector4d& n4, SliceAxis axis);

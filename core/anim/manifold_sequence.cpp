@@ -73,6 +73,18 @@ void append_slabs(AnimationManifold& out, const AnimationManifold& M) {
     out.times.push_back(M.times[i]);
     out.slab_offsets.push_back(base_t + M.slab_offsets[i]);
   }
+  // How each slab was made, renumbered the same way (a transition's slabs have no prism entry).
+  const int base_f = static_cast<int>(out.prism_faces.size());
+  for (int i = 0; i < M.num_slabs(); ++i) {
+    PrismSlab p = M.prism_slabs.empty() ? PrismSlab{} : M.prism_slabs[i];
+    if (p.is_prism()) {
+      p.faces += base_f;
+      p.lower += base_v;
+      p.upper += base_v;
+    }
+    out.prism_slabs.push_back(p);
+  }
+  out.prism_faces.insert(out.prism_faces.end(), M.prism_faces.begin(), M.prism_faces.end());
 }
 
 }  // namespace

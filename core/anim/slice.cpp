@@ -38,6 +38,18 @@ std::pair<int, int> slice_tet_range(const AnimationManifold& M, SliceAxis axis, 
   return {M.slab_offsets[lo], M.slab_offsets[hi + 1]};
 }
 
+std::pair<int, int> normal_tet_range(const AnimationManifold& M, SliceAxis axis, double c) {
+  if (axis != SliceAxis::T || M.num_layers() < 2) return {0, M.num_tets()};
+  const auto& t = M.times;
+  const int slabs = M.num_slabs();
+  int lo = 0;
+  while (lo < slabs && t[lo + 1] < c) ++lo;
+  int hi = slabs - 1;
+  while (hi >= 0 && t[hi] > c) --hi;
+  if (lo > hi) return {0, 0};
+  return {M.slab_offsets[std::max(lo - 1, 0)], M.slab_offsets[std::min(hi + 2, slabs)]};
+}
+
 bool slice_on_plane_is_above(const AnimationManifold& M, SliceAxis axis, double c) {
   const int k = static_cast<int>(axis);
   double lowest;
@@ -56,50 +68,6 @@ inline std::uint64_t key_of(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
-
-// The tetrahedra around every vertex of the sliced ones: for t the slabs on either side as well (a
-// vertex of slab i lies in slabs i-1..i+1 only, by validate_manifold's invariant), else all.
-std::pair<int, int> normal_tet_range(const AnimationManifold& M, SliceAxis axis, double c) {
-  if (axis != SliceAxis::T || M.num_layers() < 2) return {0, M.num_tets()};
-  const auto& t = M.times;
-  const int slabs = M.num_slabs();
-  int lo = 0;
-  while (lo < slabs && t[lo + 1] < c) ++lo;
-  int hi = slabs - 1;
-  while (hi >= 0 && t[hi] > c) --hi;
-  if (lo > hi) return {0, 0};
-  return {M.slab_offsets[std::max(lo - 1, 0)], M.slab_offsets[std::min(hi + 2, slabs)]};
-}
-
-// Unit 4D normals of the vertices the slice uses: the caller's, or summed over normal_tet_range only
-// (same tetrahedra in the same order as manifold_vertex_normals, so the same bits).
-class VertexNormals {
- public:
-  VertexNormals(const AnimationManifold& M, SliceAxis axis, double c, const Eigen::MatrixXd* given, bool needed)
-      : given_(given) {
-    if (given) {
-      if (given->rows() != M.num_vertices() || given->cols() != 4)
-        throw Error("slice: vertex normals must be " + std::to_string(M.num_vertices()) + " x 4, got " +
-                    std::to_string(given->rows()) + " x " + std::to_string(given->cols()));
-      return;
-    }
-    const auto [first, last] = normal_tet_range(M, axis, c);
-    if (!needed || first >= last) return;
-    const auto T = M.T.middleRows(first, last - first);
-    offset_ = T.minCoeff();
-    sum_ = Eigen::MatrixXd::Zero(T.maxCoeff() - offset_ + 1, 8);
-    accumulate_tet_normals(M, first, last, offset_, sum_);
-  }
-  Eigen::Vector4d operator()(int v) const {
-    if (given_) return given_->row(v).transpose();
-    return vertex_normal4(sum_.row(v - offset_));
-  }
-
- private:
-  const Eigen::MatrixXd* given_;
-  Eigen::MatrixXd sum_;
-  int offset_ = 0;
-};
 
 }  // namespace
 
@@ -181,7 +149,8 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
   int keep[3], nk = 0;
   for (int d = 0; d < 4; ++d)
     if (d != axis) keep[nk++] = d;
-  const VertexNormals normal4(M, axis_e, c, vertex_normals4, nv > 0);
+  const auto [nfirst, nlast] = nv > 0 ? normal_tet_range(M, axis_e, c) : std::pair<int, int>{0, 0};
+  const VertexNormalSource normal4(M, vertex_normals4, nfirst, nlast);
   for (int v = 0; v < nv; ++v) {
     const int a = static_cast<int>(keys[v] >> 32), b = static_cast<int>(keys[v] & 0xffffffffu);
     out.edges[v] = {a, b};

@@ -48,6 +48,11 @@ ManifoldSlice slice_manifold(const AnimationManifold& m, SliceAxis axis, double 
 // whose time span holds `value` (empty outside the animation), for x, y, z all of them.
 std::pair<int, int> slice_tet_range(const AnimationManifold& m, SliceAxis axis, double value);
 
+// The tetrahedra around every vertex of the ones slice_tet_range gives: for t the slabs on either
+// side as well (a vertex of slab i lies in slabs i-1..i+1 only, by validate_manifold's invariant),
+// else all. Their sums are the slice's vertex normals.
+std::pair<int, int> normal_tet_range(const AnimationManifold& m, SliceAxis axis, double value);
+
 // True when vertices exactly on the hyperplane count as above (see the rules).
 bool slice_on_plane_is_above(const AnimationManifold& m, SliceAxis axis, double value);
 

@@ -10,7 +10,7 @@
 #include "core/anim/frame_sequence.h"
 #include "core/anim/inbetween_method.h"
 #include "core/anim/manifold.h"
-#include "core/anim/slice.h"
+#include "core/anim/manifold_frame.h"
 #include "core/pose/fast_rig.h"
 #include "core/scene/bind_document.h"
 #include "core/scene/brush.h"
@@ -219,7 +219,7 @@ std::vector<ScriptLine> read_script(const std::string& path) {
 }
 
 TriMesh posed_surface(const Document& doc) {
-  if (doc.keys().size() >= 2) return slice_manifold(document_manifold(doc), SliceAxis::T, doc.time()).mesh;
+  if (doc.keys().size() >= 2) return manifold_frame(document_manifold(doc), doc.time()).mesh;
   return still_frame(doc);
 }
 
