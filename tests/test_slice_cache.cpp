@@ -119,6 +119,30 @@ TEST_CASE("slice cache: an interval shorter than the frame step is not worth bui
   REQUIRE(p.choose(true, 1.5, kStep).route == SliceRoute::Build);
 }
 
+// Issue 38: between prism layers the frame is the layers' mesh, which only a built interval draws;
+// building it is a copy, so it is built however short, and on a vertex time at its ends too.
+TEST_CASE("slice cache: prism intervals are always built, on their ends too", "[editor][interval]") {
+  IntervalCachePolicy p(4);
+  // Interval 0 (0, 0.01) is a prism slab's and shorter than the frame step; interval 1 a transition's.
+  p.reset({0.0, 0.01, 0.012, 1.0}, {true, false, true});
+  SliceDecision d = p.choose(true, 0.005, kStep);
+  REQUIRE(d.route == SliceRoute::Build);
+  REQUIRE(d.interval == 0);
+  REQUIRE(p.choose(true, 0.011, kStep).route == SliceRoute::General);  // the short transition interval
+  // On the vertex time 1.0 (the end of prism interval 2, nothing cached there): built, not the general pass.
+  d = p.choose(true, 1.0, kStep);
+  REQUIRE(d.route == SliceRoute::Build);
+  REQUIRE(d.interval == 2);
+  REQUIRE(p.choose(true, 1.0, kStep).route == SliceRoute::Cached);
+  REQUIRE(p.builds() == 2);
+  // The flags come from the manifold: a prism build's intervals are all prism ones, the same
+  // tetrahedra without the records none.
+  const dfm::AnimationManifold m = dfm::test::deforming_sphere_manifold();
+  const std::vector<double> times = {0.0, 1.0, 2.5};
+  CHECK(dfm::editor::prism_intervals(m, times) == std::vector<bool>{true, true});
+  CHECK(dfm::editor::prism_intervals(dfm::test::without_prism_records(m), times) == std::vector<bool>{false, false});
+}
+
 TEST_CASE("slice cache: the interval playback reaches next, and which are cached", "[editor][interval]") {
   IntervalCachePolicy p(2);
   p.reset({0.0, 0.2, 0.4, 1.0});  // intervals 0, 1, 2

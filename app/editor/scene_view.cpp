@@ -194,7 +194,8 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       const AnimationManifold& m = d.builder.manifold();
       d.normals4 = std::make_shared<const Eigen::MatrixXd>(manifold_vertex_normals(m));
       d.slice->upload(m, *d.normals4);
-      d.interval_policy.reset(manifold_vertex_times(m));
+      const std::vector<double> vertex_times = manifold_vertex_times(m);
+      d.interval_policy.reset(vertex_times, prism_intervals(m, vertex_times));
       d.prefetch.reset(d.builder.shared_manifold(), d.normals4, d.interval_policy.times());
       d.interval_slots.clear();
       d.interval_slots.resize(d.interval_policy.capacity());

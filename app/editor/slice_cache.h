@@ -11,8 +11,13 @@
 //   - Build: the interval is not cached yet and worth it: the caller builds its topology into `slot`
 //     (the least recently used one when all are taken), then draws as Cached.
 // Intervals are the open ones between consecutive distinct vertex times (core/anim/interval_slice.h).
+// An interval inside a prism slab (keys of one connectivity) is always built, on a vertex time at its
+// ends too: its frame is the layers' mesh (core/anim/manifold_frame.h), which the general pass (the
+// prisms' exact slice, four triangles for each) does not draw, and building it costs a copy.
 #include <cstdint>
 #include <vector>
+
+#include "core/anim/manifold.h"
 
 namespace dfm::editor {
 
@@ -27,8 +32,9 @@ struct SliceDecision {
 class IntervalCachePolicy {
  public:
   explicit IntervalCachePolicy(int capacity = 4);
-  // A new manifold: its distinct vertex times (increasing); forgets every cached interval.
-  void reset(std::vector<double> vertex_times);
+  // A new manifold: its distinct vertex times (increasing) and, per interval, whether it lies in a
+  // prism slab (prism_intervals; empty: none does); forgets every cached interval.
+  void reset(std::vector<double> vertex_times, std::vector<bool> prism = {});
   // time_axis: slicing along t (false for the x, y, z sweep). frame_step: how far the time moved
   // since the last frame (0 when it did not, or the last frame was not a time slice).
   // Records a Build as cached (the caller must then fill that slot) and a use of the slot.
@@ -39,7 +45,7 @@ class IntervalCachePolicy {
   void grow(int capacity);
   // Interval i is in a slot.
   bool cached(int interval) const;
-  // Interval i lasts at least one frame step: a topology built for it pays back.
+  // Interval i is a prism slab's, or lasts at least one frame step: a topology built for it pays back.
   bool worth_building(int interval, double frame_step) const;
   // The interval playback reaches after interval i when moving by frame_step (forward when 0),
   // wrapping around as a looping timeline does; -1 without intervals.
@@ -52,15 +58,20 @@ class IntervalCachePolicy {
 
  private:
   SliceDecision on_vertex_time(double t);
+  SliceDecision build(int interval);
 
   struct Slot {
     int interval = -1;
     std::uint64_t used = 0;
   };
   std::vector<double> times_;
+  std::vector<bool> prism_;
   std::vector<Slot> slots_;
   std::uint64_t clock_ = 0;
   int builds_ = 0;
 };
+
+// Per interval (times[i], times[i + 1]) of m's distinct vertex times: it lies in a prism slab.
+std::vector<bool> prism_intervals(const AnimationManifold& m, const std::vector<double>& times);
 
 }  // namespace dfm::editor
