@@ -58,6 +58,14 @@ class Lines {
     return x;
   }
   Error error(const std::string& msg) const { return file_error(path_, line_, msg); }
+  // A line 'NAME <count>' with 0 <= count <= 2e9.
+  int count(std::vector<std::string_view>& tok, const char* name) {
+    expect(tok, name);
+    if (tok.size() != 2 || tok[0] != name) throw error(std::string("expected '") + name + " <count>'");
+    const long long n = number<long long>(tok[1], "count");
+    if (n < 0 || n > 2000000000LL) throw error(std::string(name) + " count out of range");
+    return static_cast<int>(n);
+  }
 
  private:
   std::string path_, text_;
@@ -68,13 +76,7 @@ class Lines {
 // Version 2's closing sections: the prism build's triangle lists and each slab's entry (manifold.h).
 // Index ranges are checked here; validate_manifold checks them against the layers.
 void read_prism_slabs(Lines& L, std::vector<std::string_view>& tok, AnimationManifold& M) {
-  auto count = [&](const char* name) {
-    L.expect(tok, name);
-    if (tok.size() != 2 || tok[0] != name) throw L.error(std::string("expected '") + name + " <count>'");
-    const long long n = L.number<long long>(tok[1], "count");
-    if (n < 0 || n > 2000000000LL) throw L.error(std::string(name) + " count out of range");
-    return static_cast<int>(n);
-  };
+  auto count = [&](const char* name) { return L.count(tok, name); };
   const int ns = count("surfaces");
   for (int i = 0; i < ns; ++i) {
     const int nf = count("surface");
@@ -194,13 +196,7 @@ AnimationManifold read_manifold(const std::string& path) {
   if (tok.size() != 2 || tok[0] != "tet4") throw L.error("not a tet4 file (expected the header 'tet4 2')");
   const int version = L.number<int>(tok[1], "version");
   if (version != 1 && version != 2) throw L.error("unsupported tet4 version " + std::string(tok[1]));
-  auto count = [&](const char* name) {
-    L.expect(tok, name);
-    if (tok.size() != 2 || tok[0] != name) throw L.error(std::string("expected '") + name + " <count>'");
-    const long long n = L.number<long long>(tok[1], "count");
-    if (n < 0 || n > 2000000000LL) throw L.error(std::string(name) + " count out of range");
-    return static_cast<int>(n);
-  };
+  auto count = [&](const char* name) { return L.count(tok, name); };
   const int nv = count("vertices");
   const int nt = count("tets");
   const int nl = count("layers");
