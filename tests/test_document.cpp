@@ -226,10 +226,17 @@ TEST_CASE("bone rotation is in world space: a child turned after its parent ends
   const Pose p = d.pose();
   const Eigen::Vector3d tip = p.transforms[1] * Eigen::Vector3d(2, 0, 0);
   CHECK(tip.isApprox(Eigen::Vector3d(-1, 1, 0), 1e-12));
-  // World translation of a child bone under a rotated parent.
-  d.translate_handle(1, {0, 0, 1});
+  // A world translation of a child under a rotated parent turns it about its joint (0,1,0), its tip
+  // (-1,1,0) toward (-1,1,1): the unit bone then points along (-1,0,1)/sqrt 2, the joint unmoved.
+  const DragReport r = d.translate_handle(1, {0, 0, 1});
+  CHECK(r.kind == DragKind::Rotated);
   const Eigen::Vector3d tip2 = d.pose().transforms[1] * Eigen::Vector3d(2, 0, 0);
-  CHECK(tip2.isApprox(Eigen::Vector3d(-1, 1, 1), 1e-12));
+  CHECK(tip2.isApprox(Eigen::Vector3d(0, 1, 0) + Eigen::Vector3d(-1, 0, 1) / std::sqrt(2.0), 1e-12));
+  CHECK((d.pose().transforms[1] * Eigen::Vector3d(1, 0, 0) - d.pose().transforms[0] * Eigen::Vector3d(1, 0, 0)).norm() < 1e-12);
+  // The root translates, and the chain with it.
+  CHECK(d.translate_handle(0, {0, 0, 1}).kind == DragKind::Moved);
+  const Eigen::Vector3d tip3 = d.pose().transforms[1] * Eigen::Vector3d(2, 0, 0);
+  CHECK((tip3 - tip2 - Eigen::Vector3d(0, 0, 1)).norm() < 1e-12);
 }
 
 TEST_CASE("keys: set replaces at the same time, stay sorted, move refuses collisions") {

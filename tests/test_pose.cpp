@@ -91,6 +91,79 @@ TEST_CASE("FK: twist and stretch act in the bone's rest frame; children follow",
   REQUIRE(twist_stretch_transform(Vector3d(0, 0, 0), Vector3d(1, 0, 0), BoneTwistStretch{}).matrix().isIdentity(0));
 }
 
+// Joints 0 -- 1 -- 2 along x, and two more roots starting at joint 0 (down and up): bone 0 = (0,1),
+// bone 1 = (1,2) its child, bones 2 = (0,3) and 3 = (0,4) roots sharing bone 0's first joint.
+static Skeleton chain_with_roots() {
+  Skeleton s;
+  s.joints.resize(5, 3);
+  s.joints << 0, 0, 0, 1, 0, 0, 2, 0, 0, 0, -1, 0, 0, 1, 0;
+  s.bones = {{0, 1}, {1, 2}, {0, 3}, {0, 4}};
+  compute_bone_parents(s);
+  return s;
+}
+
+TEST_CASE("bone attachments: the parent, else the first root at the same joint", "[pose][fk]") {
+  const Skeleton s = chain_with_roots();
+  CHECK(bone_attachments(s) == std::vector<int>{-1, 0, 0, 0});
+  CHECK(bone_attachments(chain()) == std::vector<int>{-1, 0});
+}
+
+TEST_CASE("connect_bones: each bone shifts to where its attachment puts its first joint, linear parts kept",
+          "[pose][fk]") {
+  const Skeleton s = chain_with_roots();
+  // Transforms as a solver or a stray translation may leave them: every bone somewhere else.
+  std::vector<Eigen::Affine3d> T(4);
+  T[0] = Eigen::Translation3d(0.5, 0.25, 0) * rot_z(kPi / 2);                  // root, moved and turned
+  T[1] = Eigen::Translation3d(3, 3, 3) * Eigen::Scaling(1.5, 1.0, 1.0);        // detached, stretched
+  T[2] = Eigen::Affine3d(Eigen::Translation3d(-1, 0, 0));                      // a root off its joint
+  T[3] = Eigen::Affine3d(rot_z(0.3));
+  const std::vector<Eigen::Affine3d> before = T;
+  connect_bones(s, T);
+  CHECK(T[0].matrix() == before[0].matrix());  // places its own joint: untouched
+  // Bone 0 maps its rest end (1,0,0) to (0.5, 1.25, 0): bone 1 starts there.
+  require_near(T[1] * Vector3d(1, 0, 0), Vector3d(0.5, 1.25, 0));
+  // The roots at joint 0 start where bone 0 starts, (0.5, 0.25, 0).
+  require_near(T[2] * Vector3d(0, 0, 0), Vector3d(0.5, 0.25, 0));
+  require_near(T[3] * Vector3d(0, 0, 0), Vector3d(0.5, 0.25, 0));
+  for (int b = 1; b < 4; ++b) CHECK(T[b].linear() == before[b].linear());
+  // `only`: bones not flagged keep their transforms exactly.
+  std::vector<Eigen::Affine3d> U = before;
+  connect_bones(s, U, {0, 1, 0, 0});
+  CHECK(U[2].matrix() == before[2].matrix());
+  require_near(U[1] * Vector3d(1, 0, 0), Vector3d(0.5, 1.25, 0));
+}
+
+TEST_CASE("evaluate_pose: a bone with a parent never leaves its joint; plain FK is untouched bit for bit",
+          "[pose][fk]") {
+  Rig r;
+  r.skeleton = chain_with_roots();
+  PoseParams p = rest_pose_params(r);
+  p.bone_rotation = {rot_z(0.4), rot_z(-0.7), rot_z(0.2), Eigen::Quaterniond::Identity()};
+  // Pure rotations: exactly forward kinematics.
+  const auto fk = forward_kinematics(r.skeleton, p.bone_rotation, p.bone_translation, p.bone_twist_stretch);
+  Pose pose = evaluate_pose(r, p);
+  for (int b = 0; b < 4; ++b) CHECK(pose.transforms[b].matrix() == fk[b].matrix());
+  // A child's translation is projected out; a root's moves every bone at its joint with it.
+  p.bone_translation[1] = Vector3d(0, 0.5, 0);
+  p.bone_translation[0] = Vector3d(0, 0, 2);
+  pose = evaluate_pose(r, p);
+  const Eigen::Matrix3d R0 = rot_z(0.4).toRotationMatrix();
+  const Vector3d elbow = Vector3d(0, 0, 2) + R0 * Vector3d(1, 0, 0);  // bone 0's end, by hand
+  require_near(pose.transforms[0] * Vector3d(1, 0, 0), elbow);
+  require_near(pose.transforms[1] * Vector3d(1, 0, 0), elbow);
+  require_near(pose.transforms[1] * Vector3d(2, 0, 0), elbow + R0 * rot_z(-0.7).toRotationMatrix() * Vector3d(1, 0, 0));
+  require_near(pose.transforms[2] * Vector3d(0, 0, 0), Vector3d(0, 0, 2));
+  require_near(pose.transforms[3] * Vector3d(0, 0, 0), Vector3d(0, 0, 2));
+  // A solved transform of a parent carries its children's starts along; the handle's own parameters
+  // (evaluate_handle_parameters) do not.
+  p = rest_pose_params(r);
+  p.solved[0] = Eigen::Affine3d(Eigen::Translation3d(0, 1, 0));
+  pose = evaluate_pose(r, p);
+  require_near(pose.transforms[1] * Vector3d(1, 0, 0), Vector3d(1, 1, 0));
+  require_near(pose.transforms[2] * Vector3d(0, 0, 0), Vector3d(0, 1, 0));
+  CHECK(evaluate_handle_parameters(r, p).transforms[1].matrix().isIdentity(0));
+}
+
 TEST_CASE("FK: bad parent index is an error", "[pose][fk]") {
   Skeleton s = chain();
   s.bones[1].parent = 7;

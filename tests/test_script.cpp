@@ -12,6 +12,7 @@
 #include "core/scene/bind_document.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
+#include "tests/test_support.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
@@ -272,4 +273,172 @@ TEST_CASE("paint-dab is one dab of the Paint tool: smoothstep falloff, adds or e
                     Catch::Contains("'erase'"));
   CHECK_THROWS_WITH(run_script(d, parse_script("paint-dab 0 0 0 1 1.5 0.5\n", "s.txt"), "s.txt"),
                     Catch::Contains("strength must be in [0, 1]"));
+}
+
+namespace {
+
+const std::string kDefaultScene = std::string(DFM_ASSETS_DIR) + "/default.scene.json";
+
+// A closed bar along x (length 2, radius 0.3): `rings` rings of `around` vertices and two capped
+// ends, oriented outward (checked by its signed volume, a closed form here: about pi r^2 L).
+TriMesh closed_bar(int rings, int around) {
+  TriMesh m;
+  m.V.resize(rings * around + 2, 3);
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < around; ++k) {
+      const double a = 2 * M_PI * k / around;
+      m.V.row(i * around + k) << 2.0 * i / (rings - 1), 0.3 * std::cos(a), 0.3 * std::sin(a);
+    }
+  const int c0 = rings * around, c1 = c0 + 1;
+  m.V.row(c0) << 0, 0, 0;
+  m.V.row(c1) << 2, 0, 0;
+  std::vector<Eigen::Vector3i> F;
+  for (int i = 0; i + 1 < rings; ++i)
+    for (int k = 0; k < around; ++k) {
+      const int a = i * around + k, b = i * around + (k + 1) % around, c = a + around, d = b + around;
+      F.push_back({a, b, d});
+      F.push_back({a, d, c});
+    }
+  for (int k = 0; k < around; ++k) {
+    F.push_back({c0, (k + 1) % around, k});
+    F.push_back({c1, (rings - 1) * around + k, (rings - 1) * around + (k + 1) % around});
+  }
+  m.F.resize(static_cast<int>(F.size()), 3);
+  for (int f = 0; f < m.F.rows(); ++f) m.F.row(f) = F[f].transpose();
+  double vol = 0;
+  for (int f = 0; f < m.F.rows(); ++f)
+    vol += Eigen::Vector3d(m.V.row(m.F(f, 0))).dot(Eigen::Vector3d(m.V.row(m.F(f, 1))).cross(Eigen::Vector3d(m.V.row(m.F(f, 2))))) / 6;
+  REQUIRE(vol > 0.9 * M_PI * 0.09 * 2 * 0.9);
+  return m;
+}
+
+ScriptResult run_text(Document& d, const std::string& text, const ScriptHost& host = {}) {
+  return run_script(d, parse_script(text, "s.txt"), "s.txt", host);
+}
+
+}  // namespace
+
+TEST_CASE("open: a mesh after the default scene starts a new document, which binds once handles are added",
+          "[script][open]") {
+  TempDir tmp;
+  const std::string bar = tmp / "bar.obj";
+  write_surface(bar, closed_bar(9, 12));
+  Document d;
+  run_text(d, "open " + kDefaultScene + "\nselect l_upper_arm\nrotate 30 0 0 1\n");
+  REQUIRE(d.num_handles() > 10);
+  REQUIRE(d.dirty());
+  run_text(d, "open " + bar + "\n");
+  CHECK(d.num_handles() == 0);
+  CHECK(d.rig().skeleton.num_joints() == 0);
+  CHECK(d.keys().empty());
+  CHECK(d.surface().num_vertices() == 9 * 12 + 2);
+  CHECK(d.path().empty());  // Save asks for a name...
+  CHECK(d.title() == bar);  // ...while the title names the file
+  CHECK_FALSE(d.can_undo());
+  CHECK_FALSE(d.dirty());
+  CHECK(d.posing() == PosingSettings{});
+  CHECK(d.camera() == Camera{});
+  CHECK(d.weights_note() == "not bound yet");
+  // The issue's failure was the old rig's handles lying outside the new surface; now the bind works.
+  run_text(d, "add-point 0.5 0 0\nadd-point 1.5 0 0\nbind\n");
+  REQUIRE(d.has_weights());
+  CHECK(d.weights().cols() == 2);
+  CHECK((d.weights().rowwise().sum().array() - 1.0).abs().maxCoeff() < 1e-9);
+  // A bad file names itself and leaves the document as it was.
+  CHECK_THROWS_WITH(run_text(d, "open " + tmp / "missing.obj" + "\n"), Catch::Contains("missing.obj"));
+  CHECK(d.has_weights());
+  CHECK(d.num_handles() == 2);
+}
+
+TEST_CASE("open: arm.obj after the default scene leaves no handle", "[script][open][data]") {
+  DFM_DATA_OR_SKIP(arm, "arm.obj");
+  Document d;
+  run_text(d, "open " + kDefaultScene + "\nopen " + arm + "\n");
+  CHECK(d.num_handles() == 0);
+  CHECK(d.surface().num_vertices() == read_surface(arm).num_vertices());
+  CHECK(d.title() == arm);
+}
+
+TEST_CASE("replace-surface keeps the rig, clears the weights and is one undo step", "[script][open]") {
+  TempDir tmp;
+  write_surface(tmp / "bar.obj", closed_bar(9, 12));
+  write_surface(tmp / "bar_fine.obj", closed_bar(17, 20));  // the character remeshed
+  Document d;
+  run_text(d, "open " + tmp / "bar.obj" + "\nadd-point 0.5 0 0\nadd-point 1.5 0 0\nselect 1\ntranslate 0 0.1 0\nbind\n");
+  REQUIRE(d.has_weights());
+  const Rig rig = d.rig();
+  const PoseParams pose = d.pose_params();
+  const int depth = d.undo_depth();
+  run_text(d, "replace-surface " + tmp / "bar_fine.obj" + "\n");
+  CHECK(d.surface().num_vertices() == 17 * 20 + 2);
+  CHECK(d.rig().points.size() == 2);
+  CHECK(d.rig().points[1].position == rig.points[1].position);
+  CHECK(d.pose_params().point_translation[1] == pose.point_translation[1]);
+  CHECK_FALSE(d.has_weights());
+  CHECK_THAT(d.weights_note(), Catch::Contains("bind again"));
+  CHECK(d.undo_depth() == depth + 1);
+  CHECK(d.undo_name() == "replace surface bar_fine.obj");
+  d.undo();
+  CHECK(d.surface().num_vertices() == 9 * 12 + 2);
+  CHECK(d.has_weights());
+  d.redo();
+  run_text(d, "bind\n");
+  CHECK(d.has_weights());
+  CHECK(d.weights().rows() == 17 * 20 + 2);
+  // On the default scene: the teddy's rig stays whole over the replaced surface.
+  Document t;
+  t.load_scene(kDefaultScene);
+  const int handles = t.num_handles();
+  const std::string title = t.title();
+  run_text(t, "replace-surface " + std::string(DFM_ASSETS_DIR) + "/default.obj\n");
+  CHECK(t.num_handles() == handles);
+  CHECK(t.rig().skeleton.num_bones() == 10);
+  CHECK(t.rig().cages.size() == 1);
+  CHECK_FALSE(t.has_weights());
+  CHECK(t.title() == title);
+}
+
+TEST_CASE("scripts take handle names wherever they take handle numbers", "[script][names]") {
+  Document by_name, by_number;
+  by_name.load_scene(kDefaultScene);
+  by_number.load_scene(kDefaultScene);
+  run_text(by_name, "select l_forearm r_ear\n");
+  CHECK(by_name.selection().handles == std::vector<int>{6, 1});
+  CHECK(handle_name(by_name.rig(), 6) == "l_forearm");
+  std::vector<std::string> printed;
+  ScriptHost host;
+  host.print = [&](const std::string& s) { printed.push_back(s); };
+  run_text(by_name, "handle-state l_ear free\nselect l_forearm\ntranslate 0 0.3 0.2\n", host);
+  run_text(by_number, "handle-state 0 free\nselect 6\ntranslate 0 0.3 0.2\n", host);
+  REQUIRE(printed.size() == 2);
+  CHECK(printed[0] == printed[1]);
+  CHECK_THAT(printed[0], Catch::StartsWith("translate: l_forearm turned"));
+  CHECK(by_name.handle_states() == by_number.handle_states());
+  for (int h = 0; h < by_name.num_handles(); ++h)
+    CHECK(by_name.pose().transforms[h].matrix() == by_number.pose().transforms[h].matrix());
+  // An unknown name is named, with the close ones and their numbers.
+  CHECK_THROWS_WITH(run_text(by_name, "select l_forarm\n"),
+                    Catch::Contains("s.txt:1: select: no handle named 'l_forarm'") && Catch::Contains("l_forearm (6)"));
+  CHECK_THROWS_WITH(run_text(by_name, "ik-chain r_shinn\n"), Catch::Contains("r_shin (12)"));
+  CHECK_THROWS_WITH(run_text(by_name, "select 99\n"), Catch::Contains("no handle 99"));
+  expect_parse_error("select 1.5\n", 1, "not a handle number or name");
+  expect_parse_error("drag l_forearm 0 up 0\n", 1, "'up' is not a finite number");
+  // Unnamed handles are "point 0", "bone 1", ...: a name with a space, so they go by number.
+  Document plain;
+  plain.set_surface(tetra(), "tetra");
+  run_text(plain, "add-point 0.1 0.1 0.1\nadd-bone 0 0 0.2  0.1 0 0.2  0.2 0 0.2\nselect 2\n");
+  CHECK(plain.selection().handles == std::vector<int>{2});
+  CHECK(handle_name(plain.rig(), 2) == "bone 1");
+  CHECK_THROWS_WITH(run_text(plain, "select bone\n"), Catch::Contains("bone 0 (1)") && Catch::Contains("bone 1 (2)"));
+  // The weight tools' locked handles, drag and pseudo-edge take names too.
+  Document a, b;
+  make_posable(a);
+  make_posable(b);
+  for (Document* x : {&a, &b}) x->rename_handle(0, "left"), x->rename_handle(1, "right");
+  run_text(a, "weights-smooth 1 0.5 uniform right\ndrag left 0 0.1 0\npseudo-edge left right\n", host);
+  run_text(b, "weights-smooth 1 0.5 uniform 1\ndrag 0 0 0.1 0\npseudo-edge 0 1\n", host);
+  CHECK(a.weights() == b.weights());
+  CHECK(a.pose().transforms[0].matrix() == b.pose().transforms[0].matrix());
+  CHECK(a.rig().pseudo_edges == b.rig().pseudo_edges);
+  CHECK_THROWS_WITH(run_text(a, "weights-normalize rihgt\n"), Catch::Contains("right (1)"));
 }

@@ -178,7 +178,7 @@ TEST_CASE("weights-* arguments are checked before the script runs") {
   CHECK_THAT(error_of("weights-limit 0\n"), Catch::StartsWith("s.txt:1:") && Catch::Contains("influence count"));
   CHECK_THAT(error_of("weights-limit 2.5\n"), Catch::Contains("integer"));
   CHECK_THAT(error_of("weights-limit 4 -1\n"), Catch::Contains("radius"));
-  CHECK_THAT(error_of("weights-normalize 1 x\n"), Catch::Contains("'x' is not a finite number"));
+  CHECK_THAT(error_of("weights-normalize 1 2.5\n"), Catch::Contains("handle '2.5' must be an integer"));  // a name waits for the run
   CHECK_THAT(error_of("weights-smooth 3 1.5\n"), Catch::Contains("factor"));
   CHECK_THAT(error_of("weights-smooth 3 0.5 gauss\n"), Catch::Contains("uniform or cotan"));
   CHECK_THAT(error_of("weights-smooth 3 0.5 uniform -2\n"), Catch::Contains("handle"));

@@ -138,53 +138,116 @@ void Editor::status(const std::string& msg, bool error) {
   if (error) std::fprintf(stderr, "deform-editor: %s\n", msg.c_str());
 }
 
+namespace {
+bool is_mesh_extension(const std::string& ext) {
+  for (const char* e : {"obj", "off", "ply", "stl", "mesh", "node", "ele"})
+    if (ext == e) return true;
+  return false;
+}
+}  // namespace
+
+void Editor::open_file(const std::string& path) {
+  const std::string ext = file_extension(path);
+  if (ends_with(path, ".json")) {
+    doc_.load_scene(path);
+    show_opened(Opened::Scene);
+  } else if (ext == "tgf") {
+    doc_.load_skeleton(path);
+  } else if (doc_.surface().num_vertices() > 0 && (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl") &&
+             ImGui::GetCurrentContext() && ImGui::GetIO().KeyAlt) {
+    doc_.load_cage(path);  // Alt+drop: a cage around the current surface
+  } else {
+    doc_.open_mesh(path);  // a new document (Replace surface... keeps the rig)
+    show_opened(Opened::NewMesh);
+  }
+}
+
+void Editor::show_opened(Opened what) {
+  if (what != Opened::Surface) {
+    // A fresh document's view: nothing of the last one's tools, selection helpers or playback.
+    tool_ = Tool::Select;
+    weight_view_ = WeightView::Off;
+    wireframe_ = false;
+    show_grid_ = true;
+    show_handles_ = true;
+    playing_ = false;
+    slice_axis_ = SliceAxis::T;
+    picked_vertex_ = -1;
+    weight_rows_.clear();
+    bone_chain_.clear();
+    bone_chain_parent_ = -1;
+    paint_region_ = -1;
+    weight_tools_ = WeightToolsUi{};
+  }
+  view_->sync(doc_, {});
+  if (what == Opened::Scene) {
+    view::Camera c = cam_;
+    from_document_camera(doc_.camera(), c);
+    cam_ = c;
+    fit_scene_radius();
+  } else {
+    if (what == Opened::NewMesh) cam_.orientation = default_orientation();
+    frame_all();
+  }
+}
+
 void Editor::open_any(const std::string& path) {
+  const std::string ext = file_extension(path);
+  const bool alt = ImGui::GetCurrentContext() && ImGui::GetIO().KeyAlt;
+  const bool new_document = ext == "json" || (is_mesh_extension(ext) && !(alt && doc_.surface().num_vertices() > 0));
+  if (new_document && doc_.dirty() && pending_open_ != path) {
+    pending_open_ = path;  // draw_open_prompt asks, then calls open_any again
+    return;
+  }
+  pending_open_.clear();
   try {
-    const std::string ext = file_extension(path);
-    if (ends_with(path, ".json")) {
-      doc_.load_scene(path);
-      view::Camera c = cam_;
-      from_document_camera(doc_.camera(), c);
-      cam_ = c;
-      view_->sync(doc_, {});
-      fit_scene_radius();
-    } else if (ext == "tgf") {
-      doc_.load_skeleton(path);
-    } else if (doc_.surface().num_vertices() > 0 && (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl") &&
-               ImGui::GetCurrentContext() && ImGui::GetIO().KeyAlt) {
-      doc_.load_cage(path);  // Alt+drop: a cage around the current surface
-    } else {
-      doc_.open_mesh(path);
-      view_->sync(doc_, {});
-      cam_.orientation = default_orientation();
-      frame_all();
-    }
+    if (const std::string why = unopenable_reason(path); !why.empty()) throw Error(why);
+    open_file(path);
     files_.add_recent(path);
-    status("opened " + path);
+    status("opened " + path + (new_document && ext != "json" ? " (a new document)" : ""));
   } catch (const std::exception& e) {
     error_popup_ = e.what();
     status(e.what(), true);
   }
 }
 
+void Editor::replace_surface_file(const std::string& path) {
+  try {
+    doc_.replace_surface(path);
+    show_opened(Opened::Surface);
+    files_.add_recent(path);
+    status("replaced the surface with " + path + ": rig kept, bind again");
+  } catch (const std::exception& e) {
+    error_popup_ = e.what();
+    status(e.what(), true);
+  }
+}
+
+void Editor::draw_open_prompt() {
+  if (pending_open_.empty()) return;
+  const char* title = "Discard unsaved changes?";
+  if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s has unsaved changes.", fs::path(doc_.title()).filename().string().c_str());
+    ImGui::Text("Opening %s starts a new document.", fs::path(pending_open_).filename().string().c_str());
+    ImGui::TextDisabled("(File > Replace surface... keeps the rig on a new mesh.)");
+    if (ImGui::Button("Discard and open")) {
+      const std::string p = pending_open_;
+      ImGui::CloseCurrentPopup();
+      open_any(p);  // pending_open_ == p: opens without asking again
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) pending_open_.clear(), ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
 void Editor::load_initial() {
   if (!opts_.file.empty()) {
     // A bad file on the command line is fatal for batch use (--quit), a message otherwise.
-    if (opts_.quit) {
-      if (ends_with(opts_.file, ".json")) {
-        doc_.load_scene(opts_.file);
-        from_document_camera(doc_.camera(), cam_);
-        view_->sync(doc_, {});
-        fit_scene_radius();
-      } else {
-        doc_.open_mesh(opts_.file);
-        view_->sync(doc_, {});
-        cam_.orientation = default_orientation();
-        frame_all();
-      }
-    } else {
-      open_any(opts_.file);
-    }
+    if (opts_.quit) open_file(opts_.file);
+    else open_any(opts_.file);
     return;
   }
   const std::string def = find_default_scene();
@@ -193,9 +256,7 @@ void Editor::load_initial() {
     return;
   }
   doc_.load_scene(def);
-  from_document_camera(doc_.camera(), cam_);
-  view_->sync(doc_, {});
-  fit_scene_radius();
+  show_opened(Opened::Scene);
   // The default scene is a template: saving it should ask for a new name, not overwrite the asset.
   status("default scene: " + def);
 }
@@ -205,9 +266,11 @@ void Editor::fit_scene_radius() {
 }
 
 void Editor::frame_all() {
-  const Eigen::AlignedBox3d b = view_->surface_bounds();
+  const Eigen::AlignedBox3d b = view_->framing_bounds();  // the surface and every handle
   if (b.isEmpty()) return;
   fit_scene_radius();
+  const Rect v = panel_layout().viewport;  // the free viewport, also before the first frame
+  cam_.width = v.w, cam_.height = v.h;
   view::frame_box(cam_, b.min(), b.max());
   sync_camera_to_doc();
 }
@@ -221,6 +284,8 @@ void Editor::frame_selection() {
     if (h >= 0 && h < P.rows()) b.extend(Eigen::Vector3d(P.row(h)));
   if (b.isEmpty()) return frame_all();
   const double r = std::max(0.5 * b.diagonal().norm(), 0.12 * cam_.scene_radius);
+  const Rect v = panel_layout().viewport;
+  cam_.width = v.w, cam_.height = v.h;
   view::frame_sphere(cam_, b.center(), r);
   sync_camera_to_doc();
 }
@@ -312,6 +377,7 @@ void Editor::render_frame() {
   if (forced_cursor_) ImGui::GetIO().MousePos = ImVec2(float(forced_cursor_->x()), float(forced_cursor_->y()));
   ImGui::NewFrame();
   draw_ui();  // lays out panels, sets viewport_
+  draw_open_prompt();
   handle_shortcuts();
   handle_viewport_input();
   stage_end(t, stages_.ui);
@@ -505,13 +571,8 @@ int Editor::run() {
     };
     host.after_command = [this](const ScriptLine& line) {
       frame_stats_.pause();  // the command ran since the last frame
-      if (!line.words.empty() && (line.words[0] == "open" || line.words[0] == "load-scene")) {
-        view_->sync(doc_, {});
-        if (line.words[0] == "open" && file_extension(line.words[1]) != "json") {
-          cam_.orientation = default_orientation();
-          frame_all();
-        }
-      }
+      if (line.words[0] == "open") show_opened(file_extension(line.words[1]) == "json" ? Opened::Scene : Opened::NewMesh);
+      if (line.words[0] == "replace-surface") show_opened(Opened::Surface);
       render_frame();
       present_frame();
       glfwPollEvents();

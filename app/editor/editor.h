@@ -78,13 +78,24 @@ class Editor {
     double ui = 0, sync = 0, scene = 0, imgui = 0;
   };
   void save_screenshot(const std::string& path);
-  void open_any(const std::string& path);    // scene, mesh, tet mesh, skeleton or cage by extension
+  // A scene, mesh or tet mesh (a new document: asks first when the open one has unsaved changes),
+  // a skeleton (added to the rig), or a cage (Alt+drop) by extension; errors go to the popup.
+  void open_any(const std::string& path);
   Document& document() { return doc_; }
 
  private:
   // editor.cpp
   void init_imgui();
   void load_initial();
+  // Opening files (editor.cpp). open_file does it without asking (throws dfm::Error); every open of a
+  // scene or mesh, by the menu, a drop, the command line or a script, ends in show_opened: a new
+  // document gets a fresh document's view settings, then the view syncs and frames it (a scene by its
+  // saved camera, a mesh from the three-quarter view).
+  void open_file(const std::string& path);
+  enum class Opened { Scene, NewMesh, Surface };
+  void show_opened(Opened what);
+  void replace_surface_file(const std::string& path);  // File > Replace surface... (one undo step)
+  void draw_open_prompt();  // "Discard unsaved changes?" before a new document replaces a dirty one
   void fit_scene_radius();  // from the surface's bounds (pan/zoom speeds, gizmo size)
   void frame_all();
   void frame_selection();
@@ -232,6 +243,7 @@ class Editor {
   int export_influences_ = 4;
   double key_mesh_time_ = 0;  // the time "Key mesh..." was pressed at
   bool quit_prompt_ = false;
+  std::string pending_open_;  // a file waiting on "Discard unsaved changes?"
   bool should_quit_ = false;
   std::chrono::steady_clock::time_point last_autosave_;
   std::uint64_t autosaved_revision_ = 0;

@@ -78,6 +78,7 @@ void Editor::draw_ui() {
     const std::string p = files_.path(), what = files_.purpose();
     try {
       if (what == "open") open_any(p);
+      else if (what == "replace-surface") replace_surface_file(p);
       else if (what == "save-scene") save_scene_as(p);
       else if (what == "save-posed") save_posed(p);
       else if (what == "save-frames") save_frames(p, kDefaultFrameCount);
@@ -104,6 +105,8 @@ void Editor::draw_menu_bar() {
         if (ImGui::MenuItem(r.c_str())) open_any(r);
       ImGui::EndMenu();
     }
+    if (ImGui::MenuItem("Replace surface...", nullptr, false, doc_.surface().num_vertices() > 0))
+      files_.show(FilePanel::Mode::Open, "Replace surface (the rig stays)", "replace-surface");
     if (ImGui::MenuItem("Load skeleton (.tgf)...")) files_.show(FilePanel::Mode::Open, "Load skeleton", "load-skeleton");
     if (ImGui::MenuItem("Load cage...")) files_.show(FilePanel::Mode::Open, "Load cage", "load-cage");
     ImGui::Separator();
@@ -156,7 +159,7 @@ void Editor::draw_menu_bar() {
     ImGui::EndMenu();
   }
   // Document name and dirty flag on the right of the bar.
-  std::string title = doc_.path().empty() ? std::string("untitled") : doc_.path();
+  std::string title = doc_.title();
   if (doc_.dirty()) title += "  *";
   ImGui::SameLine(ImGui::GetWindowWidth() - ImGui::CalcTextSize(title.c_str()).x - 16);
   ImGui::TextDisabled("%s", title.c_str());

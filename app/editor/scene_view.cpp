@@ -16,6 +16,7 @@
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
 #include "core/mesh/mesh_info.h"
+#include "core/rig/forward_kinematics.h"
 #include "core/skin/skin.h"
 #include "core/skin/stbs.h"
 
@@ -396,16 +397,12 @@ void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
   handle_pos_.resize(n, 3);
   int h = 0;
   for (const PointHandle& p : rig.points) handle_pos_.row(h) = X(h, p.position), ++h;
-  joint_pos_ = rig.skeleton.joints;
-  for (const Bone& b : rig.skeleton.bones) {
-    const Eigen::Vector3d a = rig.skeleton.joints.row(b.a), c = rig.skeleton.joints.row(b.b);
-    handle_pos_.row(h) = X(h, a);
-    if (posed) {
-      joint_pos_.row(b.b) = X(h, c);
-      if (b.parent < 0) joint_pos_.row(b.a) = X(h, a);
-    }
-    ++h;
-  }
+  // Joints by core's one rule (posed_joints on the bones' transforms), so what is drawn is what skins.
+  const int np = h, nb = rig.skeleton.num_bones();
+  joint_pos_ = posed ? posed_joints(rig.skeleton, std::vector<Eigen::Affine3d>(pose.transforms.begin() + np,
+                                                                               pose.transforms.begin() + np + nb))
+                     : rig.skeleton.joints;
+  for (const Bone& b : rig.skeleton.bones) handle_pos_.row(h++) = joint_pos_.row(b.a);
   for (const Cage& c : rig.cages)
     for (int v = 0; v < c.mesh.num_vertices(); ++v) handle_pos_.row(h) = X(h, c.mesh.V.row(v)), ++h;
   for (const Region& r : rig.regions) {

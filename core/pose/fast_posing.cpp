@@ -47,6 +47,7 @@ void FastPosing::invalidate() {
   model_.reset();
   solver_.reset();
   constraints_.clear();
+  joints_.clear();
 }
 
 FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements,
@@ -71,9 +72,11 @@ FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, cons
   }
   std::vector<FastConstraint> constraints(nh);
   for (int h = 0; h < nh; ++h) constraints[h] = {states[h], handle_anchor(rig, h)};
-  if (!solver_ || !same_constraints(constraints, constraints_)) {
-    solver_ = std::make_unique<FastSolver>(*model_, constraints);
+  std::vector<FastJoint> joints = fast_joints(rig);
+  if (!solver_ || !same_constraints(constraints, constraints_) || joints != joints_) {
+    solver_ = std::make_unique<FastSolver>(*model_, constraints, joints);
     constraints_ = constraints;
+    joints_ = std::move(joints);
     report.switched = true;
     report.switch_seconds = solver_->switch_seconds();
   }
@@ -83,7 +86,9 @@ FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, cons
   Pose pose = evaluate_pose(rig, params);  // the warm start: last solved transforms where present
   for (int h = 0; h < nh; ++h)
     if (states[h] == HandleConstraint::Fixed) pose.transforms[h] = given.transforms[h];
-  solver_->set_targets(given, fast_targets(constraints, given));
+  // Targets where the parameters put each anchor: a bone dragged as IK keeps its target in its
+  // translation, which the connected pose projects out.
+  solver_->set_targets(given, fast_targets(constraints, evaluate_handle_parameters(rig, base)));
   const auto t0 = std::chrono::steady_clock::now();
   solver_->iterate(pose, iterations);
   report.iterate_seconds = seconds_since(t0);

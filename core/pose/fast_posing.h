@@ -28,8 +28,9 @@ struct FastSolveReport {
 class FastPosing {
  public:
   // V, elements, W: the energy mesh (the surface with its triangles, or the bind's tets) and its weights.
-  // Fixed transforms and position targets come from evaluate_pose(params) without solved entries;
-  // params.solved is rewritten to hold exactly the non-fixed handles' solved transforms.
+  // Fixed transforms come from evaluate_pose(params) without solved entries, position targets from
+  // evaluate_handle_parameters; the skeleton's joints are constraints (fast_joints), so solved bones
+  // stay connected. params.solved is rewritten to hold exactly the non-fixed handles' solved transforms.
   // Throws dfm::Error when sizes disagree with the rig.
   FastSolveReport solve(const Rig& rig, const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements,
                         const Eigen::MatrixXd& W, const std::vector<HandleConstraint>& states, int iterations,
@@ -46,6 +47,7 @@ class FastPosing {
   Signature model_signature_;
   std::unique_ptr<FastModel> model_;
   std::vector<FastConstraint> constraints_;
+  std::vector<FastJoint> joints_;  // the skeleton's (fast_joints): every solve keeps bones connected
   std::unique_ptr<FastSolver> solver_;
 };
 

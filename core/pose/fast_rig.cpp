@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "core/rig/forward_kinematics.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -58,24 +59,22 @@ std::vector<HandleConstraint> ik_chain_states(const Rig& rig, std::vector<Handle
   return states;
 }
 
+std::vector<FastJoint> fast_joints(const Rig& rig) {
+  std::vector<FastJoint> out;
+  const Skeleton& sk = rig.skeleton;
+  const std::vector<int> to = bone_attachments(sk);
+  const int np = num_point_handles(rig);
+  for (int b = 0; b < sk.num_bones(); ++b)
+    if (to[b] >= 0) out.push_back({np + b, np + to[b], sk.joints.row(sk.bones[b].a).transpose()});
+  return out;
+}
+
 std::vector<int> parse_handle_list(const Rig& rig, const std::string& list) {
   std::vector<int> out;
   std::stringstream ss(list);
   std::string item;
-  const int n = num_handles(rig);
-  while (std::getline(ss, item, ',')) {
-    if (item.empty()) continue;
-    int h = -1;
-    if (std::all_of(item.begin(), item.end(), [](char ch) { return ch >= '0' && ch <= '9'; })) {
-      h = std::stoi(item);
-      if (h >= n) throw Error("handle " + item + " is out of range: the rig has " + std::to_string(n) + " handles");
-    } else {
-      for (int k = 0; k < n && h < 0; ++k)
-        if (handle_name(rig, k) == item) h = k;
-      if (h < 0) throw Error("no handle named '" + item + "' in the rig");
-    }
-    out.push_back(h);
-  }
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(find_handle(rig, item));
   return out;
 }
 

@@ -29,7 +29,11 @@ std::vector<Eigen::Vector3d> fast_targets(const std::vector<FastConstraint>& con
 // pinned; every other state is kept. Throws dfm::Error when the handle is not a bone.
 std::vector<HandleConstraint> ik_chain_states(const Rig& rig, std::vector<HandleConstraint> states, int bone_handle);
 
-// "2,point 3,bone 1": handle indices or names (rig.h order), in any mix. Throws dfm::Error naming an
+// The skeleton's joints (bone_attachments) as FAST joint rows: a solve keeps every bone starting
+// where its parent ends.
+std::vector<FastJoint> fast_joints(const Rig& rig);
+
+// "2,point 3,bone 1": handle indices or names (find_handle) (rig.h order), in any mix. Throws dfm::Error naming an
 // unknown entry.
 std::vector<int> parse_handle_list(const Rig& rig, const std::string& list);
 

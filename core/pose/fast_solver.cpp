@@ -42,7 +42,7 @@ double fast_energy(const FastModel& model, const Pose& pose) {
   return energy_of(model, T, best_rotations_transposed(model.Kt * T));
 }
 
-FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> constraints)
+FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> constraints, std::vector<FastJoint> joints)
     : model_(&model), constraints_(std::move(constraints)) {
   const auto t0 = std::chrono::steady_clock::now();
   if (static_cast<int>(constraints_.size()) != model.handles)
@@ -53,8 +53,16 @@ FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> const
     else unknown_.push_back(j);
     if (constraints_[j].state == HandleConstraint::Position) position_.push_back(j);
   }
+  for (const FastJoint& jt : joints)
+    if (jt.child < 0 || jt.child >= model.handles || jt.parent < 0 || jt.parent >= model.handles || jt.child == jt.parent)
+      throw Error("FAST: a joint between handles " + std::to_string(jt.child) + " and " + std::to_string(jt.parent) +
+                  " of " + std::to_string(model.handles));
+  joints.erase(std::remove_if(joints.begin(), joints.end(),
+                              [&](const FastJoint& jt) { return constraints_[jt.child].state == HandleConstraint::Fixed; }),
+               joints.end());
   const std::vector<int> u = block_indices(unknown_), f = block_indices(fixed_);
   const int nu = static_cast<int>(u.size()), c = static_cast<int>(position_.size());
+  const int k = c + static_cast<int>(joints.size());  // constraint rows: positions, then joints
   Kt_u_ = model.Kt(Eigen::all, u);
   Kt_f_ = model.Kt(Eigen::all, f);
   T_fixed_ = Eigen::MatrixXd::Zero(f.size(), 3);
@@ -64,21 +72,30 @@ FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> const
   S_.resize(model.Kt.rows(), 3);
   Rt_.resize(model.Kt.rows(), 3);
   if (nu == 0) return;
-  // Eq. 7.19 on the unknown blocks: [Lt_uu P^T; P 0], P holding [anchor^T 1] per position constraint.
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nu + c, nu + c);
-  A.topLeftCorner(nu, nu) = model.Lt(u, u);
-  for (int p = 0; p < c; ++p) {
-    const int q = static_cast<int>(std::find(unknown_.begin(), unknown_.end(), position_[p]) - unknown_.begin());
-    const Eigen::Vector3d& a = constraints_[position_[p]].anchor;
-    for (int d = 0; d < 3; ++d) A(nu + p, 4 * q + d) = A(4 * q + d, nu + p) = a(d);
-    A(nu + p, 4 * q + 3) = A(4 * q + 3, nu + p) = 1.0;
+  // M_eq over every handle's block (Eq. 7.15): [anchor^T 1] per position constraint, then per joint
+  // [point^T 1] on the child's block and its negative on the parent's.
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(k, 4 * model.handles);
+  auto put = [&](int row, int handle, const Eigen::Vector3d& x, double sign) {
+    C.block<1, 3>(row, 4 * handle) += sign * x.transpose();
+    C(row, 4 * handle + 3) += sign;
+  };
+  for (int p = 0; p < c; ++p) put(p, position_[p], constraints_[position_[p]].anchor, 1.0);
+  for (size_t j = 0; j < joints.size(); ++j) {
+    put(c + static_cast<int>(j), joints[j].child, joints[j].point, 1.0);
+    put(c + static_cast<int>(j), joints[j].parent, joints[j].point, -1.0);
   }
+  const Eigen::MatrixXd C_u = C(Eigen::all, u), C_f = C(Eigen::all, f);
+  // Eq. 7.19 on the unknown blocks: [Lt_uu C_u^T; C_u 0]; fixed blocks move to the right-hand side.
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(nu + k, nu + k);
+  A.topLeftCorner(nu, nu) = model.Lt(u, u);
+  A.topRightCorner(nu, k) = C_u.transpose();
+  A.bottomLeftCorner(k, nu) = C_u;
   // A pseudo-inverse: free handles may leave directions the energy does not see (a global
   // translation with no position constraint); those get the least-norm solution.
   const Eigen::MatrixXd Pi = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).pseudoInverse();
   gamma_ = Pi.topLeftCorner(nu, nu) * Kt_u_.transpose();
-  pi_fixed_ = -Pi.topLeftCorner(nu, nu) * model.Lt(u, f);
-  pi_targets_ = Pi.topRightCorner(nu, c);
+  pi_fixed_ = -Pi.topLeftCorner(nu, nu) * model.Lt(u, f) - Pi.topRightCorner(nu, k) * C_f;
+  pi_targets_ = Pi.topRightCorner(nu, k).leftCols(c);
   // An iteration in rotation space costs (3r)^2 against 2 (3r)(4u) multiply-adds per column.
   rotation_space_ = model.Kt.rows() < 2 * nu;
   if (rotation_space_) kt_gamma_ = Kt_u_ * gamma_;

@@ -20,10 +20,20 @@ struct FastConstraint {
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // rest point a Position constraint moves
 };
 
+// Two handles that must map `point` to the same place: a bone's first joint and the bone it hangs
+// from (core/rig/forward_kinematics.h, bone_attachments). More rows of Eq. 7.15's M_eq T = P_eq, with
+// P_eq = 0: [point; 1]^T (T_child - T_parent) = 0. A joint whose child is fixed adds nothing (the
+// child follows its parent afterwards, connect_bones).
+struct FastJoint {
+  int child = -1, parent = -1;  // handle indices
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  bool operator==(const FastJoint& o) const { return child == o.child && parent == o.parent && point == o.point; }
+};
+
 class FastSolver {
  public:
-  // One constraint per handle of the model. Throws dfm::Error on a size mismatch.
-  FastSolver(const FastModel& model, std::vector<FastConstraint> constraints);
+  // One constraint per handle of the model; joints as above. Throws dfm::Error on a size mismatch.
+  FastSolver(const FastModel& model, std::vector<FastConstraint> constraints, std::vector<FastJoint> joints = {});
 
   // Per-frame inputs: `pose` supplies the transforms of the Fixed handles; targets[j] is where the
   // anchor of Position handle j must go (entries for other handles are ignored).
@@ -54,7 +64,7 @@ class FastSolver {
   std::vector<int> unknown_, fixed_, position_;  // handle indices by state
   Eigen::MatrixXd Kt_u_, Kt_f_;     // Kt's columns of unknown / fixed blocks
   Eigen::MatrixXd gamma_;           // 4u x 3r
-  Eigen::MatrixXd pi_fixed_;        // 4u x 4f: -Pi11 Lt_uf
+  Eigen::MatrixXd pi_fixed_;        // 4u x 4f: -Pi11 Lt_uf - Pi12 C_f (joint rows on fixed blocks)
   Eigen::MatrixXd pi_targets_;      // 4u x c:   Pi12
   Eigen::MatrixXd phi_;             // 4u x 3 for the current targets
   Eigen::MatrixXd s_fixed_;         // 3r x 3: Kt_f T_f for the current fixed transforms

@@ -1,5 +1,7 @@
 #include "core/rig/forward_kinematics.h"
 
+#include <algorithm>
+#include <functional>
 #include <string>
 
 #include "core/util/error.h"
@@ -68,6 +70,38 @@ Eigen::MatrixXd posed_joints(const Skeleton& s, const std::vector<Eigen::Affine3
     }
   }
   return J;
+}
+
+std::vector<int> bone_attachments(const Skeleton& s) {
+  const int nb = s.num_bones();
+  std::vector<int> to(nb, -1);
+  for (int i = 0; i < nb; ++i) {
+    if (s.bones[i].parent >= 0) {
+      to[i] = s.bones[i].parent;
+      continue;
+    }
+    for (int k = 0; k < i && to[i] < 0; ++k)
+      if (s.bones[k].a == s.bones[i].a) to[i] = k;
+  }
+  return to;
+}
+
+void connect_bones(const Skeleton& s, std::vector<Eigen::Affine3d>& T, const std::vector<char>& only) {
+  const std::vector<int> to = bone_attachments(s);
+  const int n = std::min(s.num_bones(), static_cast<int>(T.size()));
+  std::vector<char> done(s.num_bones(), 0);
+  // The bone a bone is attached to is connected first (attachments form a forest: parents, or earlier roots).
+  std::function<void(int)> connect = [&](int i) {
+    if (done[i]) return;
+    done[i] = 1;
+    if (to[i] < 0 || to[i] >= n) return;
+    connect(to[i]);
+    if (!only.empty() && (i >= static_cast<int>(only.size()) || !only[i])) return;
+    const Eigen::Vector3d a = s.joints.row(s.bones[i].a).transpose();
+    // The parent's end is its transform of its rest second joint, which is this bone's rest first joint.
+    T[i].pretranslate(T[to[i]] * a - T[i] * a);
+  };
+  for (int i = 0; i < n; ++i) connect(i);
 }
 
 Eigen::Quaterniond parent_world_rotation(const Skeleton& skeleton, const std::vector<Eigen::Quaterniond>& rotation,

@@ -39,6 +39,20 @@ Eigen::Quaterniond parent_world_rotation(const Skeleton& skeleton, const std::ve
 
 // Posed joint positions (#J x 3) under bone transforms from forward_kinematics: each joint moves with
 // a bone it ends (its b), or else with a bone it starts (its a); a joint on no bone stays at rest.
+// With connected transforms (connect_bones) every bone at a joint puts it at this one point.
 Eigen::MatrixXd posed_joints(const Skeleton& skeleton, const std::vector<Eigen::Affine3d>& bone_transforms);
+
+// Per bone, the bone that places its first joint when posed: its parent (which ends there), else the
+// first bone in index order starting at the same joint (roots sharing a joint move as one); -1 when
+// the bone places that joint itself. Needs Bone::parent (compute_bone_parents).
+std::vector<int> bone_attachments(const Skeleton& skeleton);
+
+// The skeleton's one rule: every bone starts where the bone it is attached to (bone_attachments)
+// puts that joint (Jacobson 2013, 4.3: bones sharing a joint transform it to the same point). Moves
+// each attached bone's transform by a translation (its linear part kept), parents first, so a posed
+// start equals its parent's posed end to rounding. `only` (one flag per bone, or empty for all):
+// the bones to move; plain forward kinematics is connected already and is left bit for bit.
+void connect_bones(const Skeleton& skeleton, std::vector<Eigen::Affine3d>& bone_transforms,
+                   const std::vector<char>& only = {});
 
 }  // namespace dfm

@@ -1,5 +1,7 @@
 #include "core/rig/pose_params.h"
 
+#include <algorithm>
+
 #include "core/rig/forward_kinematics.h"
 #include "core/rig/pseudo_edges.h"
 
@@ -25,7 +27,7 @@ T at_or(const std::vector<T>& v, int i, const T& fallback) {
 }
 }  // namespace
 
-Pose evaluate_pose(const Rig& rig, const PoseParams& params) {
+Pose evaluate_handle_parameters(const Rig& rig, const PoseParams& params) {
   Pose pose;
   pose.transforms.reserve(num_handles(rig));
 
@@ -59,6 +61,39 @@ Pose evaluate_pose(const Rig& rig, const PoseParams& params) {
     pose.transforms.push_back(at_or(params.region_transform, i, Eigen::Affine3d::Identity()));
   for (const auto& [h, T] : params.solved)
     if (h >= 0 && h < pose.size()) pose.transforms[h] = T;
+  return pose;
+}
+
+Pose evaluate_pose(const Rig& rig, const PoseParams& params) {
+  Pose pose = evaluate_handle_parameters(rig, params);
+  const Skeleton& sk = rig.skeleton;
+  const int np = num_point_handles(rig), nb = sk.num_bones();
+  if (nb == 0 || pose.size() < np + nb) return pose;
+  // Which bones need connecting: a solved one, a bone hanging from another (a parent, or a root
+  // sharing an earlier root's joint) with a translation, a root sharing a translated root's joint,
+  // and whatever hangs off those. The rest is forward kinematics, connected already: it stays bit
+  // for bit.
+  const std::vector<int> to = bone_attachments(sk);
+  auto translated = [&](int b) {
+    return b < static_cast<int>(params.bone_translation.size()) && !params.bone_translation[b].isZero(0);
+  };
+  std::vector<char> only(nb, 0);
+  bool any = false;
+  for (int b = 0; b < nb; ++b) {
+    const bool own = to[b] >= 0 && (translated(b) || (sk.bones[b].parent < 0 && translated(to[b])));
+    only[b] = params.solved.count(np + b) > 0 || own;
+    any = any || only[b];
+  }
+  if (!any) return pose;
+  // Spread to every bone hanging (transitively) from a flagged one; a chain is at most nb long.
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (int b = 0; b < nb; ++b)
+      if (!only[b] && to[b] >= 0 && only[to[b]]) only[b] = 1, grew = true;
+  }
+  std::vector<Eigen::Affine3d> T(pose.transforms.begin() + np, pose.transforms.begin() + np + nb);
+  connect_bones(sk, T, only);
+  std::copy(T.begin(), T.end(), pose.transforms.begin() + np);
   return pose;
 }
 

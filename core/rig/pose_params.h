@@ -40,7 +40,12 @@ struct PoseParams {
 // Sizes every vector to the rig, identity entries.
 PoseParams rest_pose_params(const Rig& rig);
 // Forward kinematics + pseudo-edge rotation inference -> one affine per handle (rig.h order), then the
-// solved transforms in place of theirs (entries past the rig's handles are ignored).
+// solved transforms in place of theirs (entries past the rig's handles are ignored), then the bones
+// connected (connect_bones): every bone starts where its parent ends, whatever a solve or a
+// translation of a bone with a parent gave it (such a translation is projected out).
 Pose evaluate_pose(const Rig& rig, const PoseParams& params);
+// evaluate_pose before the bones are connected: each handle where its own parameters put it. FAST
+// reads position targets from it (a dragged bone's tip target is its translated tip, fast_posing.h).
+Pose evaluate_handle_parameters(const Rig& rig, const PoseParams& params);
 
 }  // namespace dfm

@@ -1,5 +1,7 @@
 #include "core/rig/rig.h"
 
+#include <algorithm>
+#include <cctype>
 #include <functional>
 
 #include "core/util/error.h"
@@ -72,6 +74,67 @@ std::string handle_name(const Rig& rig, int h) {
   }
   if (!given.empty()) return given;
   return std::string(handle_kind_name(r.kind)) + " " + std::to_string(r.index);
+}
+
+namespace {
+
+// Levenshtein distance, case-insensitive (names are short: the full table is fine).
+int edit_distance(const std::string& a, const std::string& b) {
+  std::vector<int> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<int>(j);
+  for (size_t i = 1; i <= a.size(); ++i) {
+    int diag = row[0];
+    row[0] = static_cast<int>(i);
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const int up = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+bool is_integer(const std::string& w) {
+  size_t i = !w.empty() && (w[0] == '-' || w[0] == '+') ? 1 : 0;
+  if (i == w.size() || w.size() - i > 9) return false;
+  for (; i < w.size(); ++i)
+    if (!std::isdigit(static_cast<unsigned char>(w[i]))) return false;
+  return true;
+}
+
+}  // namespace
+
+int find_handle(const Rig& rig, const std::string& word) {
+  const int n = num_handles(rig);
+  if (is_integer(word)) {
+    const int h = std::stoi(word);
+    if (h < 0 || h >= n)
+      throw Error("no handle " + word + " (the rig has " + std::to_string(n) + " handle" + (n == 1 ? "" : "s") +
+                  (n > 0 ? ": 0.." + std::to_string(n - 1) : "") + ")");
+    return h;
+  }
+  std::vector<int> exact;
+  std::vector<std::pair<int, std::string>> close;  // (distance, name)
+  const int reach = std::max<int>(2, static_cast<int>(word.size()) / 3);
+  for (int h = 0; h < n; ++h) {
+    const std::string name = handle_name(rig, h);
+    if (name == word) exact.push_back(h);
+    const int d = edit_distance(word, name);
+    if (d <= reach) close.emplace_back(d, name + " (" + std::to_string(h) + ")");
+  }
+  if (exact.size() == 1) return exact[0];
+  if (exact.size() > 1) {
+    std::string which;
+    for (int h : exact) which += (which.empty() ? "" : ", ") + std::to_string(h);
+    throw Error("handle name '" + word + "' is shared by handles " + which + ": use the number");
+  }
+  std::stable_sort(close.begin(), close.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::string list;
+  for (size_t i = 0; i < close.size() && i < 5; ++i) list += (i ? ", " : "") + close[i].second;
+  throw Error("no handle named '" + word + "'" + (list.empty() ? " (and none close; handles are also numbered 0.." +
+                                                                  std::to_string(std::max(0, n - 1)) + ")"
+                                                             : "; close: " + list));
 }
 
 void compute_bone_parents(Skeleton& s) {

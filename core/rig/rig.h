@@ -74,6 +74,10 @@ HandleRef handle_ref(const Rig& rig, int handle);
 int handle_index(const Rig& rig, const HandleRef& ref);
 std::string handle_name(const Rig& rig, int handle);
 const char* handle_kind_name(HandleKind kind);
+// A handle by its number or its name, as scripts and the CLI take one: an integer is an index, any
+// other word a name (handle_name's). Throws dfm::Error naming the word: out of range, a name two
+// handles share, or no such name (with the closest names, by edit distance, listed).
+int find_handle(const Rig& rig, const std::string& word);
 
 // Fills Bone::parent from connectivity (parent of (a,b) is the bone whose second joint is a).
 // Throws dfm::Error if the bones contain a cycle.

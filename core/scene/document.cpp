@@ -246,6 +246,10 @@ Eigen::Vector3d Document::handle_pivot(int h) const {
 
 void Document::load_scene(const std::string& path) {
   SceneData d = read_scene(path);  // throws before anything changes
+  start_document(std::move(d), path);
+}
+
+void Document::start_document(SceneData d, const std::string& path) {
   s_ = std::move(d);
   path_ = path;
   weights_note_ = s_.weights.size() > 0 ? "" : "not bound yet";
@@ -253,7 +257,13 @@ void Document::load_scene(const std::string& path) {
   redo_.clear();
   saved_serial_ = 0;
   gesture_merge_ok_ = false;
+  if (fast_) fast_->invalidate();
   after_change();
+}
+
+std::string Document::title() const {
+  if (!path_.empty()) return path_;
+  return s_.surface_path.empty() ? std::string("untitled") : s_.surface_path;
 }
 
 void Document::save_scene(const std::string& path) {
@@ -269,15 +279,9 @@ std::string Document::autosave() const {
 }
 
 void Document::clear() {
-  s_ = SceneData{};
-  s_.pose = fit_pose_params(s_.rig, {});
-  path_.clear();
-  weights_note_ = "not bound yet";
-  undo_.clear();
-  redo_.clear();
-  saved_serial_ = 0;
-  gesture_merge_ok_ = false;
-  after_change();
+  SceneData d;
+  d.pose = fit_pose_params(d.rig, {});
+  start_document(std::move(d), "");
 }
 
 // ---- bind results and settings ---------------------------------------------------------------------

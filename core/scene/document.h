@@ -118,6 +118,17 @@ struct SceneData {
   Selection selection;
 };
 
+// What a translate or drag did to a handle (the script prints it, the editor's status line shows it).
+// A bone attached to another (a parent, or a root sharing its joint: bone_attachments) never
+// translates: it turns about its first joint toward the drag, or, when it is position-constrained
+// with a free bone above it and FAST solves (a drag, or translate with FAST on), the drag moves its
+// tip's target and FAST runs the chain as IK.
+enum class DragKind { Moved, Rotated, Ik };
+struct DragReport {
+  DragKind kind = DragKind::Moved;
+  std::string message;  // e.g. "l_forearm turned about its first joint (its chain is pinned; ...)"
+};
+
 // Pose params with every vector sized to `rig` (existing entries kept, missing ones identity).
 PoseParams fit_pose_params(const Rig& rig, PoseParams p);
 
@@ -169,6 +180,9 @@ class Document {
 
   // ---- documents and files -----------------------------------------------------------------------
   const std::string& path() const { return path_; }  // "" until saved or loaded
+  // What a window title shows: path(), else the mesh file the document was started from
+  // (open_mesh), else "untitled".
+  std::string title() const;
   bool dirty() const;
   // Replace everything with a scene file (clears undo). Throws dfm::Error; the document is unchanged then.
   void load_scene(const std::string& path);
@@ -179,6 +193,11 @@ class Document {
   std::string autosave() const;
   // Start over: empty scene, empty undo.
   void clear();
+  // A new document from a surface (.obj .off .ply .stl) or tet mesh (.mesh .node .ele): no handles,
+  // no keys, every setting as in a fresh document, undo cleared, path() empty (Save asks for a name),
+  // title() the file. Throws dfm::Error naming the file; the document is unchanged then. The editor
+  // asks before discarding unsaved changes; a script does not.
+  void open_mesh(const std::string& path);
 
   // ---- undo ----------------------------------------------------------------------------------------
   bool can_undo() const;
@@ -193,10 +212,11 @@ class Document {
   void end_gesture();
 
   // ---- edits (each is one undo step; all throw dfm::Error on bad input, leaving the doc unchanged) ---
-  // Surface from a file (.obj .off .ply .stl) or a tet mesh (.mesh .node .ele). Clears weights, mask
-  // and regions (their vertex indices belong to the old surface); keeps the rig, pose and keys.
-  void open_mesh(const std::string& path);
-  void set_surface(const TriMesh& surface, const std::string& source_name);
+  // "Replace surface...": the surface (or tet mesh) from a file under the same rig, for a remeshed
+  // character. Keeps the rig, pose, keys and settings; clears weights (bind again), mask and regions
+  // (their vertex indices belong to the old surface). One undo step.
+  void replace_surface(const std::string& path);
+  void set_surface(const TriMesh& surface, const std::string& source_name);  // the same, from data
   // Adds a .tgf's bones (joint chains) and point handles to the rig.
   void load_skeleton(const std::string& path);
   // Adds a cage (any surface file; open or partial cages allowed).
@@ -244,7 +264,7 @@ class Document {
   //   first joint relative to the parent; cage vertex: translation (rotation: error); region: affine
   //   about its centroid. Both merge within a gesture.
   void set_pose_params(const PoseParams& p);
-  void translate_handle(int handle, const Eigen::Vector3d& delta);
+  DragReport translate_handle(int handle, const Eigen::Vector3d& delta);
   void rotate_handle(int handle, const Eigen::Quaterniond& q);
   void reset_pose();
   // FAST settings and handle states (one undo step; re-solves the pose when FAST is on and bound).
@@ -252,7 +272,7 @@ class Document {
   void set_handle_state(int handle, HandleConstraint state);
   // A drag: translate_handle, then the FAST solve whether or not posing().fast is on (what the Pose
   // tool's drag and the script's `drag` do). Needs weights (dfm::Error otherwise). Merges in a gesture.
-  void drag_handle(int handle, const Eigen::Vector3d& delta);
+  DragReport drag_handle(int handle, const Eigen::Vector3d& delta);
 
   // Keys: set_key stores the current pose params at time t (replacing a key at the same time, a mesh
   // key included).
@@ -288,10 +308,12 @@ class Document {
   void rig_edit(const std::string& name, const std::string& merge_target,
                 const std::function<void(SceneData&)>& edit);
   void after_change(unsigned parts = ~0u);
-  // open_mesh / set_surface: the new surface (and tets) with weights, mask and regions cleared.
-  void replace_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet);
+  // load_scene, open_mesh, clear: `d` becomes the whole document, with a fresh undo history.
+  void start_document(SceneData d, const std::string& path);
+  // replace_surface / set_surface: the new surface (and tets) with weights, mask and regions cleared.
+  void install_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet);
   void store_weights(const std::string& name, Eigen::MatrixXd W);  // weights_*: one step, none if unchanged
-  void move_handle(int handle, const Eigen::Vector3d& delta, bool solve);  // translate_handle, drag_handle
+  DragReport move_handle(int handle, const Eigen::Vector3d& delta, bool solve);  // translate_handle, drag_handle
   // Re-solves s.pose's non-pinned handles (no-op without weights); inside an edit.
   void solve_fast(SceneData& s);
 

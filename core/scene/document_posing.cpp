@@ -46,30 +46,76 @@ void Document::set_pose_params(const PoseParams& p) {
   execute("pose", kPose, "pose", [&](SceneData& s) { s.pose = std::move(q); });
 }
 
-void Document::translate_handle(int handle, const Eigen::Vector3d& d) { move_handle(handle, d, s_.posing.fast); }
+DragReport Document::translate_handle(int handle, const Eigen::Vector3d& d) {
+  return move_handle(handle, d, s_.posing.fast);
+}
 
-void Document::move_handle(int handle, const Eigen::Vector3d& d, bool solve) {
+namespace {
+
+// Whether a bone above `bone` (through bone_attachments) is free: a drag on the bone can then run the
+// chain as IK.
+bool free_bone_above(const Rig& rig, const std::vector<HandleConstraint>& states, int bone) {
+  const std::vector<int> to = bone_attachments(rig.skeleton);
+  const int np = num_point_handles(rig);
+  for (int b = to[bone], steps = 0; b >= 0 && steps <= rig.skeleton.num_bones(); b = to[b], ++steps)
+    if (states[np + b] == HandleConstraint::Free) return true;
+  return false;
+}
+
+}  // namespace
+
+DragReport Document::move_handle(int handle, const Eigen::Vector3d& d, bool solve) {
   check_finite(d, "translation");
   const HandleRef r = handle_ref(s_.rig, handle);
-  execute("translate " + handle_name(s_.rig, handle), kPose, "transform " + std::to_string(handle),
-          [&](SceneData& s) {
-            PoseParams& p = s.pose;
-            switch (r.kind) {
-              case HandleKind::Point: p.point_translation[r.index] += d; break;
-              case HandleKind::Bone:
-                // A bone's translation lives in its parent's frame; `d` is in world space.
-                p.bone_translation[r.index] += parent_world_rotation(s.rig.skeleton, p.bone_rotation, r.index).inverse() * d;
-                break;
-              case HandleKind::CageVertex: {
-                int base = 0;
-                for (int c = 0; c < r.cage; ++c) base += s.rig.cages[c].mesh.num_vertices();
-                p.cage_translation[base + r.index] += d;
-                break;
-              }
-              case HandleKind::Region: p.region_transform[r.index].pretranslate(d); break;
-            }
-            if (solve) solve_fast(s);
-          });
+  const std::string name = handle_name(s_.rig, handle);
+  DragReport report{DragKind::Moved, "moved " + name};
+  Eigen::Quaterniond turn = Eigen::Quaterniond::Identity();  // for DragKind::Rotated, in world space
+  if (r.kind == HandleKind::Bone && bone_attachments(s_.rig.skeleton)[r.index] >= 0) {
+    const std::vector<HandleConstraint> states = handle_states();
+    if (solve && has_weights() && states[handle] == HandleConstraint::Position &&
+        free_bone_above(s_.rig, states, r.index)) {
+      report = {DragKind::Ik, "IK: " + name + "'s tip follows the drag, the free bones above it are solved (FAST)"};
+    } else {
+      // Turn about the first joint, the tip toward tip + d (the shortest arc). The bone's own
+      // parameters give its direction: a solved transform is FAST's, not what the drag turns.
+      PoseParams base = s_.pose;
+      base.solved.clear();
+      const Eigen::Affine3d T = evaluate_pose(s_.rig, base).transforms[handle];
+      const Bone& b = s_.rig.skeleton.bones[r.index];
+      const Eigen::Vector3d a = s_.rig.skeleton.joints.row(b.a).transpose(), e = s_.rig.skeleton.joints.row(b.b).transpose();
+      const Eigen::Vector3d from = T.linear() * (e - a), to = from + d;
+      if (from.norm() > 0 && to.norm() > 1e-12 * from.norm()) turn = Eigen::Quaterniond::FromTwoVectors(from, to);
+      const int to_bone = bone_attachments(s_.rig.skeleton)[r.index];
+      const std::string joint = b.parent >= 0 ? "where " + s_.rig.skeleton.bones[to_bone].name + " ends"
+                                              : "shared with " + s_.rig.skeleton.bones[to_bone].name;
+      const long deg = std::lround(turn.angularDistance(Eigen::Quaterniond::Identity()) * 180.0 / M_PI);
+      report = {DragKind::Rotated, name + " turned " + std::to_string(deg) + " deg about its first joint (" + joint +
+                                       "): a bone there never translates; with a free bone above it, ik-chain " +
+                                       std::to_string(handle) + " drags the chain instead"};
+    }
+  }
+  execute("translate " + name, kPose, "transform " + std::to_string(handle), [&](SceneData& s) {
+    PoseParams& p = s.pose;
+    switch (r.kind) {
+      case HandleKind::Point: p.point_translation[r.index] += d; break;
+      case HandleKind::Bone: {
+        // A bone's translation lives in its parent's frame; `d` is in world space.
+        const Eigen::Quaterniond Rp = parent_world_rotation(s.rig.skeleton, p.bone_rotation, r.index);
+        if (report.kind == DragKind::Rotated) p.bone_rotation[r.index] = (Rp.inverse() * turn * Rp * p.bone_rotation[r.index]).normalized();
+        else p.bone_translation[r.index] += Rp.inverse() * d;  // a root's move, or an IK target (projected out when posed)
+        break;
+      }
+      case HandleKind::CageVertex: {
+        int base = 0;
+        for (int c = 0; c < r.cage; ++c) base += s.rig.cages[c].mesh.num_vertices();
+        p.cage_translation[base + r.index] += d;
+        break;
+      }
+      case HandleKind::Region: p.region_transform[r.index].pretranslate(d); break;
+    }
+    if (solve) solve_fast(s);
+  });
+  return report;
 }
 
 void Document::rotate_handle(int handle, const Eigen::Quaterniond& q_in) {
@@ -142,9 +188,9 @@ void Document::set_handle_state(int handle, HandleConstraint state) {
           });
 }
 
-void Document::drag_handle(int handle, const Eigen::Vector3d& delta) {
+DragReport Document::drag_handle(int handle, const Eigen::Vector3d& delta) {
   if (!has_weights()) throw Error("drag: bind first (FAST solves with the weights)");
-  move_handle(handle, delta, true);
+  return move_handle(handle, delta, true);
 }
 
 // ---- keys ------------------------------------------------------------------------------------------

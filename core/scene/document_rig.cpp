@@ -19,29 +19,59 @@ using document_detail::erase_at;
 
 // ---- edits: surface and rig ------------------------------------------------------------------------
 
-void Document::open_mesh(const std::string& path) {
+namespace {
+
+// A surface file, or a tet mesh and its boundary surface. Throws dfm::Error naming the file.
+struct MeshFile {
+  TriMesh surface;
+  TetMesh tets;
+  Eigen::VectorXi surface_to_tet;
+};
+
+MeshFile read_mesh_file(const std::string& path) {
+  MeshFile m;
   if (is_tet_mesh_path(path)) {
-    TetMesh tm = read_tet_mesh(path);
-    if (tm.num_tets() == 0) throw file_error(path, 0, "tet mesh has no tetrahedra");
-    Eigen::VectorXi to_tet;
-    TriMesh surf = tet_boundary_surface(tm, &to_tet);
-    replace_surface(std::move(surf), path, std::move(tm), std::move(to_tet));
-    return;
+    m.tets = read_tet_mesh(path);
+    if (m.tets.num_tets() == 0) throw file_error(path, 0, "tet mesh has no tetrahedra");
+    m.surface = tet_boundary_surface(m.tets, &m.surface_to_tet);
+    return m;
   }
-  TriMesh m = read_surface(path);
-  if (m.num_faces() == 0) throw file_error(path, 0, "mesh has no triangles");
-  set_surface(m, path);
+  m.surface = read_surface(path);
+  if (m.surface.num_faces() == 0) throw file_error(path, 0, "mesh has no triangles");
+  if (m.surface.F.minCoeff() < 0 || m.surface.F.maxCoeff() >= m.surface.num_vertices())
+    throw file_error(path, 0, "face index out of range");
+  if (!m.surface.V.allFinite()) throw file_error(path, 0, "vertex position is not finite");
+  return m;
+}
+
+}  // namespace
+
+void Document::open_mesh(const std::string& path) {
+  MeshFile m = read_mesh_file(path);  // throws before anything changes
+  SceneData d;
+  d.surface = std::move(m.surface);
+  d.surface_path = path;
+  d.tets = std::move(m.tets);
+  d.surface_to_tet = std::move(m.surface_to_tet);
+  d.pose = fit_pose_params(d.rig, {});
+  start_document(std::move(d), "");
+}
+
+void Document::replace_surface(const std::string& path) {
+  MeshFile m = read_mesh_file(path);
+  install_surface(std::move(m.surface), path, std::move(m.tets), std::move(m.surface_to_tet));
 }
 
 void Document::set_surface(const TriMesh& surface, const std::string& source_name) {
   if (surface.num_faces() > 0 && (surface.F.minCoeff() < 0 || surface.F.maxCoeff() >= surface.num_vertices()))
     throw Error(source_name + ": face index out of range");
   if (!surface.V.allFinite()) throw Error(source_name + ": vertex position is not finite");
-  replace_surface(surface, source_name, TetMesh{}, Eigen::VectorXi());
+  install_surface(surface, source_name, TetMesh{}, Eigen::VectorXi());
 }
 
-void Document::replace_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet) {
-  execute("open " + std::filesystem::path(path).filename().string(),
+void Document::install_surface(TriMesh surface, const std::string& path, TetMesh tets, Eigen::VectorXi surface_to_tet) {
+  const bool bound = s_.weights.size() > 0;
+  execute("replace surface " + std::filesystem::path(path).filename().string(),
           kSurface | kRig | kPose | kKeys | kWeights | kMask, "", [&](SceneData& s) {
             s.surface = std::move(surface);
             s.surface_path = path;
@@ -53,7 +83,7 @@ void Document::replace_surface(TriMesh surface, const std::string& path, TetMesh
             s.rig.regions.clear();
             s.pose = fit_pose_params(s.rig, std::move(s.pose));
             for (SceneKey& k : s.keys) k.params = fit_pose_params(s.rig, std::move(k.params));
-            weights_note_ = "not bound yet";
+            weights_note_ = bound ? "surface replaced: weights cleared, bind again" : "not bound yet";
           });
 }
 

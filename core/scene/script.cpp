@@ -1,5 +1,6 @@
 #include "core/scene/script.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -37,20 +38,21 @@ struct Spec {
 const std::map<std::string, Spec>& specs() {
   static const std::map<std::string, Spec> s = {
       {"open", {1, 1, 0, "open FILE"}},
+      {"replace-surface", {1, 1, 0, "replace-surface FILE"}},
       {"add-point", {3, 3, -1, "add-point X Y Z"}},
       {"add-bone", {6, 3000, -1, "add-bone X0 Y0 Z0 X1 Y1 Z1 [X2 Y2 Z2 ...]"}},
       {"load-skeleton", {1, 1, 0, "load-skeleton FILE.tgf"}},
       {"load-cage", {1, 1, 0, "load-cage FILE"}},
-      {"pseudo-edge", {2, 2, -1, "pseudo-edge POINT_A POINT_B"}},
+      {"pseudo-edge", {2, 2, 0, "pseudo-edge POINT_A POINT_B"}},
       {"bind", {0, 0, 0, "bind"}},
-      {"select", {1, 1000, -1, "select HANDLE [HANDLE ...]"}},
+      {"select", {1, 1000, 0, "select HANDLE [HANDLE ...]"}},
       {"translate", {3, 3, -1, "translate DX DY DZ"}},
       {"rotate", {4, 4, -1, "rotate DEGREES AX AY AZ"}},
-      {"drag", {4, 4, -1, "drag HANDLE DX DY DZ"}},
+      {"drag", {4, 4, 0, "drag HANDLE DX DY DZ"}},
       {"handle-state", {2, 2, 0, "handle-state HANDLE pinned|position|free"}},
       {"fast", {1, 2, 0, "fast on|off [ITERATIONS]"}},
       {"bind-monotone", {1, 1, 0, "bind-monotone on|off"}},
-      {"ik-chain", {1, 1, -1, "ik-chain BONE_HANDLE"}},
+      {"ik-chain", {1, 1, 0, "ik-chain BONE_HANDLE"}},
       {"set-method", {1, 1, 0, "set-method lbs|dqs|stbs"}},
       {"set-key", {0, 1, -1, "set-key [TIME]"}},
       {"key-mesh", {1, 2, 0, "key-mesh FILE [TIME]"}},
@@ -69,7 +71,7 @@ const std::map<std::string, Spec>& specs() {
       {"paint-dab", {6, 7, 6, "paint-dab X Y Z RADIUS STRENGTH FALLOFF [erase]"}},
       {"export-gltf", {1, 2, 0, "export-gltf OUT.glb|OUT.gltf [4|8]"}},
       {"weights-limit", {1, 2, -1, "weights-limit K [RADIUS]"}},
-      {"weights-normalize", {0, 1000, -1, "weights-normalize [LOCKED_HANDLE ...]"}},
+      {"weights-normalize", {0, 1000, 0, "weights-normalize [LOCKED_HANDLE ...]"}},
       {"weights-smooth", {0, 1000, 0, "weights-smooth [N [FACTOR [uniform|cotan [LOCKED_HANDLE ...]]]]"}},
       {"weights-mirror", {1, 4, 0, "weights-mirror x|y|z [OFFSET [+|-|flip [TOLERANCE]]]"}},
       {"weights-report", {0, 1, -1, "weights-report [THRESHOLD]"}},
@@ -90,6 +92,16 @@ double num(const ScriptLine& l, int i) {
   parse_number(l.words[i], x);  // checked by parse_script
   return x;
 }
+
+// Words that name a handle (SCRIPT.md): a number or a name. Parse time checks numbers only (a name
+// needs the rig the script has built by then); handle_arg resolves at run time (find_handle).
+const std::map<std::string, std::vector<int>>& handle_words() {
+  static const std::map<std::string, std::vector<int>> w = {
+      {"select", {-1}}, {"drag", {1}}, {"handle-state", {1}}, {"ik-chain", {1}}, {"pseudo-edge", {1, 2}}};
+  return w;
+}
+
+int handle_arg(const Document& doc, const ScriptLine& l, int i) { return find_handle(doc.rig(), l.words[i]); }
 
 int integer_arg(const ScriptLine& l, int i) {
   const double x = num(l, i);
@@ -163,6 +175,20 @@ std::vector<ScriptLine> parse_script(const std::string& text, const std::string&
       if (!parse_number(l.words[i], x))
         throw file_error(name, line, "'" + l.words[i] + "' is not a finite number; usage: " + s.usage);
     }
+    if (const auto hw = handle_words().find(l.words[0]); hw != handle_words().end()) {
+      for (int i = 1; i <= nargs; ++i) {
+        const auto& at = hw->second;
+        if (at[0] != -1 && std::find(at.begin(), at.end(), i) == at.end()) {
+          double x;  // the other arguments of these commands are numbers (drag's offset) or words
+          if (l.words[0] == "drag" && !parse_number(l.words[i], x))
+            throw file_error(name, line, "'" + l.words[i] + "' is not a finite number; usage: " + s.usage);
+          continue;
+        }
+        double x;
+        if (parse_number(l.words[i], x) && (x != std::floor(x) || x < 0))
+          throw file_error(name, line, "'" + l.words[i] + "' is not a handle number or name; usage: " + s.usage);
+      }
+    }
     if (l.words[0] == "add-bone" && nargs % 3 != 0)
       throw file_error(name, line, "add-bone needs joint positions in threes (x y z), got " + std::to_string(nargs) + " numbers");
     if (l.words[0] == "save-frames" && nargs == 2) {
@@ -231,7 +257,9 @@ bool run_rig_command(Document& doc, const ScriptLine& l, const ScriptHost& host)
   if (cmd == "open") {
     const std::string& f = l.words[1];
     if (ends_with(f, ".json")) doc.load_scene(f);
-    else doc.open_mesh(f);
+    else doc.open_mesh(f);  // a new document
+  } else if (cmd == "replace-surface") {
+    doc.replace_surface(l.words[1]);
   } else if (cmd == "add-point") {
     doc.add_point({num(l, 1), num(l, 2), num(l, 3)});
   } else if (cmd == "add-bone") {
@@ -243,7 +271,11 @@ bool run_rig_command(Document& doc, const ScriptLine& l, const ScriptHost& host)
   } else if (cmd == "load-cage") {
     doc.load_cage(l.words[1]);
   } else if (cmd == "pseudo-edge") {
-    doc.add_pseudo_edge(integer_arg(l, 1), integer_arg(l, 2));
+    const int a = handle_arg(doc, l, 1), b = handle_arg(doc, l, 2);
+    for (int h : {a, b})
+      if (handle_ref(doc.rig(), h).kind != HandleKind::Point)
+        throw Error(handle_name(doc.rig(), h) + " (" + std::to_string(h) + ") is not a point handle");
+    doc.add_pseudo_edge(a, b);
   } else if (cmd == "bind") {
     if (host.bind) host.bind(doc);
     else run_bind_blocking(doc);
@@ -269,30 +301,31 @@ bool run_rig_command(Document& doc, const ScriptLine& l, const ScriptHost& host)
 }
 
 // Selection, posing and undo commands; false when the line is not one of them.
-bool run_pose_command(Document& doc, const ScriptLine& l) {
+bool run_pose_command(Document& doc, const ScriptLine& l, const std::function<void(const std::string&)>& print) {
   const std::string& cmd = l.words[0];
   if (cmd == "select") {
     Selection s;
-    for (size_t i = 1; i < l.words.size(); ++i) s.handles.push_back(integer_arg(l, i));
+    for (size_t i = 1; i < l.words.size(); ++i) s.handles.push_back(handle_arg(doc, l, static_cast<int>(i)));
     doc.set_selection(s);
   } else if (cmd == "translate") {
     const Eigen::Vector3d d(num(l, 1), num(l, 2), num(l, 3));
-    for (int h : selected_or_fail(doc)) doc.translate_handle(h, d);
+    for (int h : selected_or_fail(doc)) {
+      const DragReport r = doc.translate_handle(h, d);
+      if (r.kind != DragKind::Moved) print("translate: " + r.message);
+    }
   } else if (cmd == "rotate") {
     const Eigen::Vector3d axis(num(l, 2), num(l, 3), num(l, 4));
     if (axis.norm() < 1e-12) throw Error("rotation axis is zero");
     const Eigen::Quaterniond q(Eigen::AngleAxisd(num(l, 1) * M_PI / 180.0, axis.normalized()));
     for (int h : selected_or_fail(doc)) doc.rotate_handle(h, q);
   } else if (cmd == "drag") {
-    doc.drag_handle(integer_arg(l, 1), Eigen::Vector3d(num(l, 2), num(l, 3), num(l, 4)));
+    print("drag: " + doc.drag_handle(handle_arg(doc, l, 1), Eigen::Vector3d(num(l, 2), num(l, 3), num(l, 4))).message);
   } else if (cmd == "handle-state") {
-    double h = 0;
-    if (!parse_number(l.words[1], h) || h != std::floor(h)) throw Error("'" + l.words[1] + "' is not a handle index");
-    doc.set_handle_state(static_cast<int>(h), parse_constraint_state(l.words[2]));
+    doc.set_handle_state(handle_arg(doc, l, 1), parse_constraint_state(l.words[2]));
   } else if (cmd == "ik-chain") {
     PosingSettings p = doc.posing();
     p.fast = true;
-    p.states = ik_chain_states(doc.rig(), doc.handle_states(), integer_arg(l, 1));
+    p.states = ik_chain_states(doc.rig(), doc.handle_states(), handle_arg(doc, l, 1));
     doc.set_posing(p);
   } else if (cmd == "bind-monotone") {
     if (l.words[1] != "on" && l.words[1] != "off")
@@ -393,7 +426,7 @@ ScriptResult run_script(Document& doc, const std::vector<ScriptLine>& lines, con
     try {
       if (cmd == "quit") {
         res.quit = true;
-      } else if (!run_rig_command(doc, l, host) && !run_pose_command(doc, l) && !run_animation_command(doc, l) &&
+      } else if (!run_rig_command(doc, l, host) && !run_pose_command(doc, l, print) && !run_animation_command(doc, l) &&
                  !run_file_command(doc, l, host)) {
         script_detail::run_weight_command(doc, l, print);
       }

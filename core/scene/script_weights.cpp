@@ -23,9 +23,17 @@ int integer(const std::string& w, int lo, int hi, const char* what) {
   return static_cast<int>(x);
 }
 
-std::vector<int> handles(const ScriptLine& l, size_t from) {
+// Handle words from `from` on: at parse time (rig null) a number must be a handle number, a name
+// waits for the run; at run time each is find_handle's.
+std::vector<int> handles(const ScriptLine& l, size_t from, const Rig* rig = nullptr) {
   std::vector<int> h;
-  for (size_t i = from; i < l.words.size(); ++i) h.push_back(integer(l.words[i], 0, 1000000000, "handle"));
+  for (size_t i = from; i < l.words.size(); ++i) {
+    char* end = nullptr;
+    std::strtod(l.words[i].c_str(), &end);
+    const bool numeric = end != l.words[i].c_str() && *end == '\0';
+    if (rig) h.push_back(find_handle(*rig, l.words[i]));
+    else if (numeric) integer(l.words[i], 0, 1000000000, "handle");
+  }
   return h;
 }
 
@@ -89,13 +97,13 @@ bool run_weight_command(Document& doc, const ScriptLine& l, const std::function<
     out << c << ": " << r.rows_limited << " vertices limited to " << o.k << " influences";
     if (r.fixed_rows_over_k) out << "; " << r.fixed_rows_over_k << " handle vertices keep more (bind constraints)";
   } else if (c == "weights-normalize") {
-    const NormalizeReport r = doc.weights_normalize(handles(l, 1));
+    const NormalizeReport r = doc.weights_normalize(handles(l, 1, &doc.rig()));
     out << c << ": " << r.rows_scaled << " vertices rescaled";
     if (r.rows_locked_over_one) out << "; " << r.rows_locked_over_one << " with locked weights over 1";
     if (r.rows_without_free_weight) out << "; " << r.rows_without_free_weight << " with no unlocked weight";
   } else if (c == "weights-smooth") {
     const SmoothOptions o = smooth_options(l);
-    doc.weights_smooth(o, handles(l, 4));
+    doc.weights_smooth(o, handles(l, 4, &doc.rig()));
     out << c << ": " << o.iterations << " iterations, factor " << o.factor << (o.cotangent ? ", cotangent" : ", uniform");
   } else if (c == "weights-mirror") {
     const MirrorReport r = doc.weights_mirror(mirror_options(l));

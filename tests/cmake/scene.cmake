@@ -2,6 +2,7 @@
 dfm_test(test_document SOURCES test_document.cpp LIBS dfm_scene)
 dfm_test(test_scene_file SOURCES test_scene_file.cpp LIBS dfm_scene)
 dfm_test(test_script SOURCES test_script.cpp LIBS dfm_scene)
+target_compile_definitions(test_script PRIVATE DFM_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
 # Mesh keys: the document command, hostile files, the script's key-mesh, key_surfaces -> manifold.
 dfm_test(test_key_mesh SOURCES test_key_mesh.cpp LIBS dfm_scene)
 
@@ -15,3 +16,4 @@ target_compile_definitions(test_scene_default PRIVATE DFM_ASSETS_DIR="${PROJECT_
   DFM_MAKE_DEFAULT_SCENE="$<TARGET_FILE:make_default_scene>")
 # Posing by dragging (FAST) through the document and the script.
 dfm_test(test_posing SOURCES test_posing.cpp LIBS dfm_scene dfm_export)
+target_compile_definitions(test_posing PRIVATE DFM_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
