@@ -76,7 +76,7 @@ void solve_fast(const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig, 
                 int iterations, dfm::Pose& pose) {
   const dfm::FastModel model = dfm::fast_model(in.V, in.T.rows() ? in.T : in.F, W);
   const std::vector<dfm::FastConstraint> constraints = dfm::default_fast_constraints(rig, free);
-  dfm::FastSolver solver(model, constraints);
+  dfm::FastSolver solver(model, constraints, dfm::fast_joints(rig));  // solved bones stay on their joints
   solver.set_targets(pose, dfm::fast_targets(constraints, pose));
   std::printf("fast: %s energy, %d handles (%d free), %d rotation clusters; precompute %.3f s (clusters %.3f s, "
               "reduction %.3f s), switch %.2f ms\n",
@@ -153,7 +153,13 @@ int run(const dfm::cli::Args& args) {
   dfm::Pose pose = dfm::evaluate_pose(rig, params);
   if (fast) {
     if (method != dfm::SkinMethod::LBS) throw dfm::cli::UsageError("--fast solves for linear blend skinning: use --method lbs");
-    solve_fast(in, W, rig, dfm::parse_handle_list(rig, free_list), iterations, pose);
+    const std::vector<int> free = dfm::parse_handle_list(rig, free_list);
+    solve_fast(in, W, rig, free, iterations, pose);
+    // The solved transforms through evaluate_pose: a pinned bone below a solved one follows it.
+    const std::vector<dfm::FastConstraint> states = dfm::default_fast_constraints(rig, free);
+    for (int h = 0; h < nh; ++h)
+      if (states[h].state != dfm::HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
+    pose = dfm::evaluate_pose(rig, params);
   }
   const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);
 
