@@ -18,6 +18,7 @@
 #include "core/pose/weight_clusters.h"
 #include "core/rig/rig_io.h"
 #include "core/skin/lbs.h"
+#include "core/util/error.h"
 #include "tests/test_gltf_fixtures.h"
 #include "tests/test_support.h"
 
@@ -196,6 +197,44 @@ TEST_CASE("FAST: fixed handles stay exactly as given; energy never increases", "
   fixed.set_targets(p2, targets);
   fixed.iterate(p2);
   for (int h = 0; h < 3; ++h) CHECK(p2.transforms[h].matrix() == pose.transforms[h].matrix());
+}
+
+TEST_CASE("FAST: joint rows keep two solved handles meeting at their joint, and a free one on a fixed one",
+          "[fast]") {
+  const Tube t;
+  const FastModel model = fast_model(t.mesh.V, t.mesh.F, t.W);
+  std::vector<FastConstraint> c = fixed_free_position(t);
+  // Joints at x = 1 (handles 0 and 1: fixed and free) and x = 3 (handles 1 and 2: free and position).
+  const Vector3d j01(1, 0, 0), j12(3, 0, 0);
+  const std::vector<FastJoint> joints{{1, 0, j01}, {2, 1, j12}};
+  FastSolver with(model, c, joints), without(model, c);
+  Pose pose = identity_pose(3), loose = identity_pose(3);
+  pose.transforms[0] = loose.transforms[0] = Eigen::AngleAxisd(0.3, Vector3d::UnitZ()) * Eigen::Translation3d(0, 0.1, 0);
+  std::vector<Vector3d> targets(3, Vector3d::Zero());
+  targets[2] = Vector3d(3.0, 1.8, 0.3);
+  with.set_targets(pose, targets);
+  without.set_targets(loose, targets);
+  with.iterate(pose, 30);
+  without.iterate(loose, 30);
+  const double gap01 = (pose.transforms[1] * j01 - pose.transforms[0] * j01).norm();
+  const double gap12 = (pose.transforms[2] * j12 - pose.transforms[1] * j12).norm();
+  CHECK(gap01 < 1e-10);
+  CHECK(gap12 < 1e-10);
+  CHECK((pose.transforms[2] * t.anchors[2] - targets[2]).norm() < 1e-10);  // the position row still holds
+  // Without the rows the handles drift apart at the joints: the rows are what holds them.
+  CHECK((loose.transforms[1] * j01 - loose.transforms[0] * j01).norm() + (loose.transforms[2] * j12 - loose.transforms[1] * j12).norm() > 1e-3);
+  // A joint whose child is fixed adds no row (the child follows afterwards): the same solver as none.
+  std::vector<FastConstraint> c2(3);
+  c2[0].state = HandleConstraint::Free;
+  FastSolver child_fixed(model, c2, {{1, 0, j01}}), plain(model, c2);
+  Pose a = identity_pose(3), b = identity_pose(3);
+  a.transforms[1] = b.transforms[1] = Eigen::Affine3d(Eigen::Translation3d(0, 0.5, 0));
+  child_fixed.set_targets(a, targets);
+  plain.set_targets(b, targets);
+  child_fixed.iterate(a, 5);
+  plain.iterate(b, 5);
+  CHECK((a.transforms[0].matrix() - b.transforms[0].matrix()).norm() < 1e-12);
+  CHECK_THROWS_AS(FastSolver(model, c, {{1, 1, j01}}), Error);
 }
 
 TEST_CASE("FAST: translating every constraint by t translates the result by t (7.3.3)", "[fast]") {
