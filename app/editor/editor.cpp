@@ -186,7 +186,7 @@ void Editor::show_opened(Opened what) {
     cam_ = c;
     fit_scene_radius();
   } else {
-    if (what == Opened::NewMesh) cam_.orientation = default_orientation();
+    if (what == Opened::NewMesh) cam_.orientation = default_orientation(), cam_.orthographic = false;
     frame_all();
   }
 }
