@@ -101,29 +101,41 @@ TEST_CASE("playback draws every frame; a job's progress at most 30 Hz, input and
   CHECK(p.next({}, g_clock) == 0.0);
 }
 
-TEST_CASE("the HUD's fps and ms are the real frame figures, scripts and idle redraws included", "[editor][pacing]") {
+// Issue 38: the HUD read "6 fps 37.8 ms" after a transition built (frames paced at 5 Hz while the job
+// ran): two figures that cannot both describe one frame. Both now come from the same frames' drawing
+// times, so fps * ms = 1000 whatever the gaps between frames were.
+TEST_CASE("the HUD's fps and ms describe the same frames: fps = 1000 / ms, gaps not counted", "[editor][pacing]") {
   FrameStats s;
   CHECK(s.fps() == 0.0);
   CHECK(s.ms() == 0.0);
-  // A script: each frame follows a command (a pause), 20 ms to draw: 50 fps, 20 ms.
+  // A script: each frame follows a command that ran for a second, 20 ms to draw: 50 fps, 20 ms.
   double t = 10.0;
   for (int i = 0; i < 5; ++i) {
     s.pause();
-    t += 1.0;  // the command ran for a second
+    t += 1.0;
     s.begin(t);
     t += 0.020;
     s.end(t);
   }
   CHECK(s.ms() == Approx(20.0));
   CHECK(s.fps() == Approx(50.0));
-  // Continuous frames of 10 ms with 15 ms between starts (vsync, events): 66.7 fps, 10 ms.
+  // A job's progress paced at 5 Hz, 37.8 ms a frame (the issue's figures): 26.5 fps, not 5.
+  FrameStats j;
+  for (int i = 0; i < 40; ++i) {
+    j.begin(200.0 + 0.2 * i);
+    j.end(200.0 + 0.2 * i + 0.0378);
+  }
+  CHECK(j.ms() == Approx(37.8));
+  CHECK(j.fps() == Approx(1000.0 / 37.8));
+  // Frames of mixed cost over a window of 10: only the last 10 count, for both figures.
   FrameStats c(10);
   for (int i = 0; i < 30; ++i) {
-    c.begin(100.0 + 0.015 * i);
-    c.end(100.0 + 0.015 * i + 0.010);
+    const double cost = i < 20 ? 0.050 : 0.010;
+    c.begin(100.0 + 0.1 * i);
+    c.end(100.0 + 0.1 * i + cost);
   }
   CHECK(c.ms() == Approx(10.0));
-  CHECK(c.fps() == Approx(1000.0 / 15.0));
+  CHECK(c.fps() * c.ms() == Approx(1000.0));
   CHECK(c.frames() == 30);
   CHECK(c.last_ms() == Approx(10.0));
   // An end without a begin is ignored.

@@ -4,14 +4,18 @@
 // keys and time, weight colours for the Weights panel, and the handle overlays. Expected positions
 // are closed forms of translation-only poses (LBS of a translation: V + sum_j w_j d_j).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "app/editor/scene_view.h"
 #include "core/scene/document.h"
+#include "core/scene/key_surfaces.h"
 #include "tests/mock_render_backend.h"
+#include "tests/key_mesh_test_meshes.h"
 #include "tests/volume_test_meshes.h"
 
 using namespace dfm;
@@ -94,11 +98,30 @@ std::vector<MockRenderBackend::OverlayBatch> batches(const std::vector<MockRende
   return out;
 }
 
-// Handle 0's colour as the overlays show it (HSV hue 0.08, s 0.62, v 0.92, sector 0: (v, t, p)).
-const Vector4f kHandle0(0.92f, 0.92f * (1 - 0.62f * 0.52f), 0.92f * 0.38f, 1.0f);
-// Handle 3's: hue fract(0.08 + 3 * 0.618034) = 0.934102, sector 5, f = 0.604612: (v, p, q).
-const Vector4f kHandle3(0.92f, 0.92f * 0.38f, 0.92f * (1 - 0.62f * 0.604612f), 1.0f);
-const Vector4f kActive(1.0f, 0.85f, 0.30f, 1.0f), kSelected(1.0f, 0.62f, 0.12f, 1.0f);
+// HSV (hue in degrees) to RGB by the closed form f(n) = v - v s max(0, min(k, 4 - k, 1)),
+// k = (n + hue / 60) mod 6: r = f(5), g = f(3), b = f(1).
+Vector4f hsv(double hue, double s, double v) {
+  auto f = [&](double n) {
+    const double k = std::fmod(n + hue / 60.0, 6.0);
+    return float(v - v * s * std::max(0.0, std::min({k, 4.0 - k, 1.0})));
+  };
+  return Vector4f(f(5), f(3), f(1), 1.0f);
+}
+// The hue (degrees) of an RGB colour.
+double hue_of(const float* c) {
+  const double r = c[0], g = c[1], b = c[2], mx = std::max({r, g, b}), mn = std::min({r, g, b});
+  if (mx - mn < 1e-9) return -1;  // grey: no hue
+  double h = mx == r ? std::fmod((g - b) / (mx - mn), 6.0) : mx == g ? (b - r) / (mx - mn) + 2 : (r - g) / (mx - mn) + 4;
+  h *= 60.0;
+  return h < 0 ? h + 360 : h;
+}
+// Handle colours as the overlays show them: golden-ratio steps over the hues outside the selection's
+// band [10, 70) degrees, s 0.62, v 0.92. Handle 0: 70 + 0.08 * 300 = 94 degrees; handle 3:
+// fract(0.08 + 3 * 0.618034) = 0.934102 of the way, 70 + 280.23 = 350.23 degrees.
+const Vector4f kHandle0 = hsv(70 + 0.08 * 300, 0.62, 0.92);
+const Vector4f kHandle3 = hsv(70 + 0.934102 * 300, 0.62, 0.92);
+// The selection: an orange body, outlined in white.
+const Vector4f kSelected(1.0f, 0.52f, 0.05f, 1.0f), kOutline(1, 1, 1, 1);
 
 }  // namespace
 
@@ -433,15 +456,28 @@ TEST_CASE("scene view: handle overlays by selection and FAST state", "[editor][s
   REQUIRE_FALSE(gpu.lines.front().vertices.empty());
   for (const auto& v : gpu.lines.front().vertices) REQUIRE(v.position[1] == -1.0f);
 
-  // Point handles (14 px): free colour by index, active and selected in their own.
+  // Point handles (14 px): colour by index; selected ones (active or not) in the selection's orange,
+  // over a 21 px white outline drawn first.
   const auto pts = batches(gpu.points, 14.0f);
   REQUIRE(pts.size() == 1);
   REQUIRE(pts[0].vertices.size() == 3);
   const float* p0 = pts[0].vertices[0].position;
   REQUIRE((p0[0] == 0.5f && p0[1] == 0 && p0[2] == 0));
   require_color(pts[0].vertices[0].color, kHandle0);
-  require_color(pts[0].vertices[1].color, kActive);
+  require_color(pts[0].vertices[1].color, kSelected);
   require_color(pts[0].vertices[2].color, kSelected);
+  const auto outlines = batches(gpu.points, 21.0f);
+  REQUIRE(outlines.size() == 1);
+  REQUIRE(outlines[0].vertices.size() == 2);
+  for (const auto& v : outlines[0].vertices) require_color(v.color, kOutline);
+  REQUIRE(outlines[0].vertices[0].position[0] == -0.5f);  // handle 1
+  REQUIRE(outlines[0].vertices[1].position[1] == 0.5f);   // handle 2
+  auto index_of = [&](const std::vector<MockRenderBackend::OverlayBatch>& all, float size) {
+    for (size_t i = 0; i < all.size(); ++i)
+      if (all[i].size == size) return int(i);
+    return -1;
+  };
+  REQUIRE(index_of(gpu.points, 21.0f) < index_of(gpu.points, 14.0f));  // under the handles
   // The bone (5 px): from its first joint in its colour to its tip in half of it; joints as dots.
   const auto bones = batches(gpu.lines, 5.0f);
   REQUIRE(bones.size() == 1);
@@ -452,7 +488,27 @@ TEST_CASE("scene view: handle overlays by selection and FAST state", "[editor][s
   const auto joints = batches(gpu.points, 8.0f);
   REQUIRE(joints.size() == 1);
   REQUIRE(joints[0].vertices.size() == 2);
-  for (const auto& v : joints[0].vertices) require_color(v.color, Vector4f(0.92f, 0.92f, 0.95f, 1));
+  for (const auto& v : joints[0].vertices) require_color(v.color, Vector4f(0.70f, 0.72f, 0.76f, 1));
+  // No outline line while no bone is selected; a selected bone gets a 10 px white one under it.
+  REQUIRE(batches(gpu.lines, 10.0f).empty());
+  doc.set_selection(Selection{{3}, -1});
+  scene.sync(doc, s);
+  gpu.clear_draws();
+  scene.draw(doc, cam, s);
+  const auto bone_sel = batches(gpu.lines, 5.0f);
+  REQUIRE(bone_sel.size() == 1);
+  require_color(bone_sel[0].vertices[0].color, kSelected);
+  const auto bone_outline = batches(gpu.lines, 10.0f);
+  REQUIRE(bone_outline.size() == 1);
+  REQUIRE(bone_outline[0].vertices.size() == 2);
+  for (int k = 0; k < 3; ++k) {
+    REQUIRE(bone_outline[0].vertices[0].position[k] == bone_sel[0].vertices[0].position[k]);
+    REQUIRE(bone_outline[0].vertices[1].position[k] == bone_sel[0].vertices[1].position[k]);
+  }
+  for (const auto& v : bone_outline[0].vertices) require_color(v.color, kOutline);
+  REQUIRE(index_of(gpu.lines, 10.0f) < index_of(gpu.lines, 5.0f));
+  require_color(batches(gpu.points, 14.0f)[0].vertices[1].color, hsv(70 + 0.698034 * 300, 0.62, 0.92));  // handle 1 again
+  doc.set_selection(Selection{{1, 2}, -1});
   // FAST marks (6 px): pinned dark, free white, position-constrained none; a bone's at its tip.
   const auto marks = batches(gpu.points, 6.0f);
   REQUIRE(marks.size() == 1);
@@ -561,4 +617,163 @@ TEST_CASE("scene view: a shape-space preview shows until the time, the document 
   scene.sync(doc, s);
   REQUIRE_FALSE(scene.showing_preview());
   REQUIRE(same(gpu.geometry, gpu.skins.back()->output));
+}
+
+// Issue 38 (5): a selected handle's orange and white outline are colours no handle has: every
+// handle's hue keeps out of the band around the selection's, and handles stay told apart.
+TEST_CASE("scene view: handle colours keep out of the selection's hue band", "[editor][scene_view]") {
+  const double sel_hue = hue_of(kSelected.data());
+  REQUIRE(sel_hue >= 10.0);
+  REQUIRE(sel_hue < 70.0);
+  for (int h = 0; h < 500; ++h) {
+    const Eigen::Vector3f c = dfm::editor::handle_color(h);
+    const float shown[3] = {std::pow(c.x(), 1 / 2.2f), std::pow(c.y(), 1 / 2.2f), std::pow(c.z(), 1 / 2.2f)};
+    const double hue = hue_of(shown);
+    INFO("handle " << h << " hue " << hue);
+    REQUIRE(hue >= 0);  // never grey or white (the outline's colour)
+    REQUIRE((hue < 10.0 - 1e-3 || hue >= 70.0 - 1e-3));
+    const double d = std::min(std::abs(hue - sel_hue), 360 - std::abs(hue - sel_hue));
+    REQUIRE(d >= 19.5);  // the band starts 19.7 degrees below the selection's hue
+    if (h > 0) {  // neighbours in the outliner differ visibly
+      const Eigen::Vector3f p = dfm::editor::handle_color(h - 1);
+      REQUIRE((p - c).norm() > 0.05f);
+    }
+  }
+}
+
+namespace {
+
+// Syncs until the manifold's worker (a transition) has landed.
+void sync_until_built(SceneView& scene, const Document& doc, const ViewSettings& s) {
+  scene.sync(doc, s);
+  for (int i = 0; i < 6000 && scene.manifold_building(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    scene.sync(doc, s);
+  }
+  REQUIRE_FALSE(scene.manifold_building());
+  scene.sync(doc, s);
+}
+
+}  // namespace
+
+// Issue 38 (4): keyed at 0 on the rigged octahedron and at 1 on a torus (a transition joins them), the
+// rig is drawn fully over its own mesh, fades through the transition and is gone over the torus.
+TEST_CASE("scene view: rig overlays fade over a transition and hide over another mesh", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  doc.set_key(0.0);
+  doc.key_mesh(test::torus(Vector3d::Zero(), 1.0, 0.35, 12, 8), "key-torus.obj", 1.0);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const view::Camera cam;
+  const ViewSettings s;
+  auto handle_alphas = [&](double t) {
+    doc.set_time(t);
+    sync_until_built(scene, doc, s);
+    REQUIRE(scene.last_error().empty());
+    REQUIRE(scene.showing_slice());
+    gpu.clear_draws();
+    scene.draw(doc, cam, s);
+    std::vector<float> a;
+    for (const auto& b : batches(gpu.points, 14.0f))
+      for (const auto& v : b.vertices) a.push_back(v.color[3]);
+    return a;
+  };
+  // The rigged key: every handle opaque.
+  std::vector<float> a = handle_alphas(0.0);
+  REQUIRE(a.size() == 3);
+  for (float x : a) REQUIRE(x == 1.0f);
+  REQUIRE(scene.overlay_opacity() == 1.0f);
+  // Half way through the transition: half faded.
+  a = handle_alphas(0.5);
+  REQUIRE(a.size() == 3);
+  for (float x : a) REQUIRE(x == Approx(0.5f));
+  // On the torus: nothing of the rig is drawn (no handles, no lines but the grid).
+  a = handle_alphas(1.0);
+  REQUIRE(a.empty());
+  REQUIRE(scene.overlay_opacity() == 0.0f);
+  for (const auto& b : gpu.lines) REQUIRE(b.depth_test);  // only the grid
+  // The torus shown has the torus's vertices, welded (the general pass draws a soup).
+  REQUIRE(scene.display_vertex_count() == 12 * 8);
+}
+
+// Issue 38 (6): the HUD counts a slice's welded vertices, not the soup's three corners a face.
+TEST_CASE("scene view: a general-pass slice counts its welded vertices", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  doc.set_key(0.0);
+  doc.translate_handle(0, Vector3d(0.2, 0.3, 0));
+  doc.set_key(1.0);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  ViewSettings s;
+  s.slice_axis = SliceAxis::X;  // the sweep: always the general pass
+  for (double f : {0.2, 0.5, 0.8}) {
+    s.sweep_value = f;
+    scene.sync(doc, s);
+    REQUIRE(scene.showing_slice());
+    REQUIRE_FALSE(scene.slice_from_cache());
+    const AnimationManifold m = document_manifold(doc);
+    const double lo = m.V.col(0).minCoeff(), hi = m.V.col(0).maxCoeff();
+    const ManifoldSlice ref = slice_manifold(m, SliceAxis::X, lo + f * (hi - lo));
+    INFO("sweep " << f);
+    REQUIRE(ref.mesh.num_vertices() > 0);
+    REQUIRE(scene.display_face_count() == ref.mesh.num_faces());
+    REQUIRE(scene.display_vertex_count() == ref.mesh.num_vertices());
+    REQUIRE(scene.display_vertex_count() < 3 * scene.display_face_count());
+  }
+  // A key's time shows the key's own 6 vertices, whichever pass draws it.
+  s.slice_axis = SliceAxis::T;
+  for (double t : {0.0, 1.0, 0.5}) {
+    doc.set_time(t);
+    scene.sync(doc, s);
+    REQUIRE(scene.display_vertex_count() == 6);
+  }
+}
+
+// Issue 38 (6): "Frame all" fits the handles too (the default scene's ear points lie outside the
+// surface), and the Transform panel reports the pose on display, not the last edited one.
+TEST_CASE("scene view: framing covers the handles; the shown pose follows the animation", "[editor][scene_view]") {
+  Document doc;
+  make_bound(doc);
+  doc.add_point(Vector3d(0.0, 3.0, 0.5));  // far above the octahedron (|y| <= 1)
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const ViewSettings s;
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.surface_bounds().contains(Vector3d(0.0, 3.0, 0.5)));
+  REQUIRE(scene.framing_bounds().contains(Vector3d(0.0, 3.0, 0.5)));
+  REQUIRE(scene.framing_bounds().contains(scene.surface_bounds()));
+
+  Document anim;
+  make_bound(anim);
+  anim.set_key(0.0);
+  anim.rotate_handle(0, Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4, Vector3d::UnitZ())));
+  anim.set_key(1.0);
+  SceneView view(gpu);
+  anim.set_time(0.5);
+  view.sync(anim, s);
+  REQUIRE(view.showing_slice());
+  const double shown = Eigen::AngleAxisd(view.shown_pose(anim).transforms[0].linear()).angle();
+  const double edited = Eigen::AngleAxisd(anim.pose().transforms[0].linear()).angle();
+  REQUIRE(shown * 180 / M_PI == Approx(22.5).epsilon(1e-9));
+  REQUIRE(edited * 180 / M_PI == Approx(45.0).epsilon(1e-9));
+  // Editing the pose shows it (and the panel then reports it).
+  anim.translate_handle(1, Vector3d(0, 0, 0.1));
+  view.sync(anim, s);
+  REQUIRE_FALSE(view.showing_slice());
+  REQUIRE(Eigen::AngleAxisd(view.shown_pose(anim).transforms[0].linear()).angle() * 180 / M_PI == Approx(45.0));
+}
+
+// Issue 38 (7): an empty document (a file that failed to open at start-up) still draws the grid.
+TEST_CASE("scene view: the grid shows without a surface", "[editor][scene_view]") {
+  Document doc;
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  const ViewSettings s;
+  scene.sync(doc, s);
+  scene.draw(doc, view::Camera{}, s);
+  REQUIRE_FALSE(gpu.lines.empty());
+  REQUIRE(gpu.lines.front().depth_test);
+  REQUIRE(gpu.lines.front().vertices.size() > 8);
 }

@@ -15,6 +15,7 @@
 #include "app/editor/frame_pacing.h"
 #include "app/editor/gizmo.h"
 #include "app/editor/scene_view.h"
+#include "app/editor/view_model.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
 #include "render/gl_backend.h"
@@ -40,11 +41,7 @@ enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
 enum class PaintTarget { Mask, Region };
 
 struct ShapeSpacePanel;
-
-struct Rect {
-  double x = 0, y = 0, w = 1, h = 1;
-  bool contains(double px, double py) const { return px >= x && py >= y && px < x + w && py < y + h; }
-};
+class ItemFlow;
 
 // The Weights panel's weight tools: their settings and the handles locked for normalize and smooth
 // (UI state: the document commands take them as arguments; weight_tools_panel.cpp).
@@ -165,7 +162,7 @@ class Editor {
   void start_bind();
   bool save_scene_as(const std::string& path);  // false: failed, reported in the UI
   void save_posed(const std::string& path);
-  void draw_inbetween_choice();  // the timeline's in-between combo
+  void draw_inbetween_choice(ItemFlow& flow);  // the timeline's in-between combo (theme.h's ItemFlow)
   void save_frames(const std::string& pattern, int count);
   // Timeline > Key mesh...: Document::key_mesh_file at the time the button was pressed (errors: popup).
   void key_mesh_file(const std::string& path, double t);
@@ -209,6 +206,11 @@ class Editor {
   int bone_chain_parent_ = -1;
   Rect viewport_;
   bool viewport_hovered_ = false;
+  double timeline_h_ = 118;  // the timeline's height (its toolbar wraps to more rows on narrow windows)
+  double frame_rate_ = 24;   // the timeline shows time as frames at this rate (and seconds)
+  // The panels for the window's current size (view_model.h's layout_panels): draw_ui lays them out, and
+  // framing before the first frame fits the scene into the viewport they leave.
+  PanelLayout panel_layout() const;
 
   // gestures
   enum class Drag { None, Orbit, Pan, Handle, Gizmo, Paint, Timeline, Key } drag_ = Drag::None;

@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "app/editor/editor.h"
+#include "app/editor/theme.h"
 
 #include "core/anim/frame_sequence.h"
 #include "core/anim/slice.h"
@@ -22,8 +23,6 @@
 
 namespace dfm::editor {
 namespace {
-
-constexpr float kLeftW = 250, kRightW = 300, kTimelineH = 118;
 
 void help_marker(const char* text) {
   ImGui::SameLine();
@@ -46,32 +45,40 @@ ImU32 to_u32(const Eigen::Vector3f& linear) {
 
 }  // namespace
 
+PanelLayout Editor::panel_layout() const {
+  int w = 0, h = 0;
+  glfwGetWindowSize(window_, &w, &h);
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  // Before the first frame ImGui has no font size yet: the default font's menu bar height.
+  const float top = std::max(ImGui::GetFrameHeight(), 21.0f * scale);
+  return layout_panels(w, h, top, timeline_h_, scale);
+}
+
 void Editor::draw_ui() {
-  const ImGuiViewport* vp = ImGui::GetMainViewport();
   draw_menu_bar();
-  const float top = ImGui::GetFrameHeight();
-  const float W = vp->Size.x, H = vp->Size.y;
+  const PanelLayout l = panel_layout();
   const ImGuiWindowFlags fixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                  ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBringToFrontOnFocus;
-  ImGui::SetNextWindowPos(ImVec2(0, top));
-  ImGui::SetNextWindowSize(ImVec2(kLeftW, H - top));
+  auto place = [](const Rect& r) {
+    ImGui::SetNextWindowPos(ImVec2(float(r.x), float(r.y)));
+    ImGui::SetNextWindowSize(ImVec2(float(r.w), float(r.h)));
+  };
+  place(l.left);
   ImGui::Begin("##left", nullptr, fixed);
   draw_left_panel();
   ImGui::End();
 
-  ImGui::SetNextWindowPos(ImVec2(W - kRightW, top));
-  ImGui::SetNextWindowSize(ImVec2(kRightW, H - top));
+  place(l.right);
   ImGui::Begin("##right", nullptr, fixed);
   draw_right_panel();
   ImGui::End();
 
-  ImGui::SetNextWindowPos(ImVec2(kLeftW, H - kTimelineH));
-  ImGui::SetNextWindowSize(ImVec2(W - kLeftW - kRightW, kTimelineH));
-  ImGui::Begin("##timeline", nullptr, fixed);
+  place(l.timeline);
+  ImGui::Begin("##timeline", nullptr, fixed | ImGuiWindowFlags_NoScrollbar);
   draw_timeline();
   ImGui::End();
 
-  viewport_ = Rect{kLeftW, top, std::max(1.0f, W - kLeftW - kRightW), std::max(1.0f, H - top - kTimelineH)};
+  viewport_ = l.viewport;
   draw_viewport_hud();
 
   if (files_.draw()) {
@@ -227,23 +234,39 @@ void Editor::draw_outliner() {
   ImGui::TextDisabled("OUTLINER");
   const Rig& rig = doc_.rig();
   const auto& sel = doc_.selection().handles;
-  ImGui::BeginChild("outliner", ImVec2(0, 0), true);
+  ImGui::BeginChild("outliner", ImVec2(0, 0), true, ImGuiWindowFlags_HorizontalScrollbar);
+  const bool fast = doc_.posing().fast;
+  const std::vector<HandleConstraint> states = doc_.handle_states();
   auto row = [&](int h) {
     const bool is_sel = std::find(sel.begin(), sel.end(), h) != sel.end();
     ImGui::PushID(h);
     const ImVec2 p = ImGui::GetCursorScreenPos();
     const float sz = ImGui::GetTextLineHeight();
-    ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(p.x + sz - 4, p.y + sz - 2),
-                                              to_u32(handle_color(h)), 2.0f);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const Eigen::Vector4f sel_body = selection_style().body, sel_line = selection_style().outline;
+    // The swatch is the handle's viewport colour; selected, the viewport's selection look (body, outline).
+    dl->AddRectFilled(ImVec2(p.x, p.y + 2), ImVec2(p.x + sz - 4, p.y + sz - 2),
+                      is_sel ? ImGui::GetColorU32(ImVec4(sel_body.x(), sel_body.y(), sel_body.z(), 1)) : to_u32(handle_color(h)),
+                      2.0f);
+    if (is_sel)
+      dl->AddRect(ImVec2(p.x - 1, p.y + 1), ImVec2(p.x + sz - 3, p.y + sz - 1),
+                  ImGui::GetColorU32(ImVec4(sel_line.x(), sel_line.y(), sel_line.z(), 1)), 2.0f, 0, 1.5f);
+    // FAST's state as the viewport marks it: a dark centre pinned, a white one free.
+    const HandleConstraint state = fast ? states[h] : HandleConstraint::Position;
+    if (state != HandleConstraint::Position)
+      dl->AddCircleFilled(ImVec2(p.x + 0.5f * (sz - 4), p.y + 0.5f * sz), 0.18f * sz,
+                          state == HandleConstraint::Fixed ? IM_COL32(20, 20, 26, 255) : IM_COL32(255, 255, 255, 255));
     ImGui::Dummy(ImVec2(sz - 2, sz));
     ImGui::SameLine();
-    const std::string label = doc_.posing().fast
-                                  ? handle_name(rig, h) + "  [" + constraint_state_name(doc_.handle_states()[h]) + "]"
-                                  : handle_name(rig, h);
+    // Number (what scripts take), name and, where the row has room, FAST's state in words.
+    std::string label = outliner_label(doc_, h, true);
+    if (ImGui::CalcTextSize(label.c_str()).x > ImGui::GetContentRegionAvail().x) label = outliner_label(doc_, h, false);
     if (ImGui::Selectable(label.c_str(), is_sel)) select_handle(h, ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl);
+    if (fast && ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s: %s (FAST)", outliner_label(doc_, h, false).c_str(), constraint_state_name(state));
     if (ImGui::BeginPopupContextItem("ctx")) {
       static char buf[128];
-      if (ImGui::IsWindowAppearing()) std::snprintf(buf, sizeof buf, "%s", label.c_str());
+      if (ImGui::IsWindowAppearing()) std::snprintf(buf, sizeof buf, "%s", handle_name(rig, h).c_str());
       ImGui::SetNextItemWidth(180);
       if (ImGui::InputText("Name", buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue)) {
         doc_.rename_handle(h, buf);
@@ -317,11 +340,12 @@ void Editor::draw_view_section() {
   if (ImGui::RadioButton("Perspective", persp)) cam_.orthographic = false;
   ImGui::SameLine();
   if (ImGui::RadioButton("Ortho", !persp)) cam_.orthographic = true;
-  ImGui::Checkbox("Wireframe", &wireframe_);
-  ImGui::SameLine();
-  ImGui::Checkbox("Grid", &show_grid_);
-  ImGui::SameLine();
-  ImGui::Checkbox("Handles", &show_handles_);
+  ItemFlow flow;
+  for (auto [label, value] : {std::pair<const char*, bool*>{"Wireframe", &wireframe_}, {"Grid", &show_grid_},
+                              {"Handles", &show_handles_}}) {
+    flow.next(ItemFlow::check_width(label));
+    ImGui::Checkbox(label, value);
+  }
   const float bw = (ImGui::GetContentRegionAvail().x - 3 * ImGui::GetStyle().ItemSpacing.x) / 4;
   int i = 0;
   for (auto p : {view::ViewPreset::Front, view::ViewPreset::Right, view::ViewPreset::Top, view::ViewPreset::Iso}) {
@@ -358,12 +382,13 @@ void Editor::draw_bind_section() {
   if (!can) ImGui::EndDisabled();
   if (doc_.has_weights()) {
     const BindStats& s = doc_.bind_stats();
-    ImGui::TextDisabled("%d handles, %d tets, %.2f s", doc_.num_handles(), s.tets, s.seconds);
+    text_disabled_wrapped("%d handles, %d tets, %.2f s", doc_.num_handles(), s.tets, s.seconds);
     for (const auto& n : s.notes) ImGui::TextWrapped("- %s", n.c_str());
-    if (bind_frames_ > 0)
-      ImGui::TextDisabled("UI while binding: %d frames, max %.0f ms", bind_frames_, bind_frame_max_ms_);
+    if (bind_frames_ > 0) text_disabled_wrapped("UI while binding: %d frames, max %.0f ms", bind_frames_, bind_frame_max_ms_);
   } else {
-    ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.35f, 1), "%s", doc_.weights_note().c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.75f, 0.35f, 1));
+    ImGui::TextWrapped("%s", doc_.weights_note().c_str());
+    ImGui::PopStyleColor();
   }
   int m = static_cast<int>(doc_.method());
   const char* methods[] = {"LBS", "DQS", "Stretch/twist bones"};
@@ -373,13 +398,12 @@ void Editor::draw_bind_section() {
 
 void Editor::draw_weights_section() {
   int v = static_cast<int>(weight_view_);
-  ImGui::RadioButton("Off", &v, 0);
-  ImGui::SameLine();
-  ImGui::RadioButton("Selected", &v, 1);
-  ImGui::SameLine();
-  ImGui::RadioButton("All", &v, 2);
-  ImGui::SameLine();
-  ImGui::RadioButton("Mask", &v, 3);
+  ItemFlow flow;
+  int i = 0;
+  for (const char* label : {"Off", "Selected", "All", "Mask"}) {
+    flow.next(ItemFlow::check_width(label));
+    ImGui::RadioButton(label, &v, i++);
+  }
   weight_view_ = static_cast<WeightView>(v);
   if (weight_view_ == WeightView::Selected) {
     // Colour bar legend for the turbo map.
@@ -397,7 +421,7 @@ void Editor::draw_weights_section() {
     ImGui::TextDisabled("0");
     ImGui::SameLine(w - 8);
     ImGui::TextDisabled("1");
-    if (doc_.selection().handles.empty()) ImGui::TextDisabled("select a handle to see its weights");
+    if (doc_.selection().handles.empty()) text_disabled_wrapped("select a handle to see its weights");
   }
   if (picked_vertex_ >= 0 && picked_vertex_ < doc_.surface().num_vertices()) {
     ImGui::Text("Vertex %d", picked_vertex_);
@@ -438,18 +462,26 @@ std::string Editor::hud_text() const {
 }
 
 void Editor::draw_viewport_hud() {
-  ImDrawList* dl = ImGui::GetForegroundDrawList();
-  const ImVec2 o(float(viewport_.x) + 10, float(viewport_.y) + 8);
-  dl->AddText(o, IM_COL32(200, 204, 212, 220), hud_text().c_str());
-  if (!status_.empty())
-    dl->AddText(ImVec2(o.x, float(viewport_.y + viewport_.h) - 24),
-                status_error_ ? IM_COL32(255, 120, 110, 255) : IM_COL32(170, 176, 186, 220), status_.c_str());
-  float y = o.y + 18;
-  if (!view_->last_error().empty())
-    dl->AddText(ImVec2(o.x, y), IM_COL32(255, 150, 110, 255), view_->last_error().c_str()), y += 18;
+  // Everything here stays inside the viewport: lines wrap at its width and are clipped to it.
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const ImVec2 lo(float(viewport_.x), float(viewport_.y)), hi(float(viewport_.x + viewport_.w), float(viewport_.y + viewport_.h));
+  dl->PushClipRect(lo, hi, false);
+  ImFont* font = ImGui::GetFont();
+  const float size = ImGui::GetFontSize(), wrap = std::max(40.0f, hi.x - lo.x - 20);
+  float y = lo.y + 8;
+  auto line = [&](float at_y, ImU32 color, const std::string& text) {
+    dl->AddText(font, size, ImVec2(lo.x + 10, at_y), color, text.c_str(), nullptr, wrap);
+    return ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap).y;
+  };
+  y += line(y, IM_COL32(200, 204, 212, 220), hud_text()) + 4;
+  if (!view_->last_error().empty()) y += line(y, IM_COL32(255, 150, 110, 255), view_->last_error()) + 4;
   // A transition builds on a worker: say so (the pose or rest shows until it lands).
-  if (view_->manifold_building())
-    dl->AddText(ImVec2(o.x, y), IM_COL32(140, 215, 240, 255), view_->manifold_progress().c_str());
+  if (view_->manifold_building()) line(y, IM_COL32(140, 215, 240, 255), view_->manifold_progress());
+  if (!status_.empty()) {
+    const float h = ImGui::CalcTextSize(status_.c_str(), nullptr, false, wrap).y;
+    line(hi.y - h - 8, status_error_ ? IM_COL32(255, 120, 110, 255) : IM_COL32(170, 176, 186, 220), status_);
+  }
+  dl->PopClipRect();
 }
 
 void Editor::draw_quit_prompt() {

@@ -9,57 +9,81 @@
 #include <filesystem>
 
 #include "app/editor/editor.h"
+#include "app/editor/theme.h"
+#include "render/overlay_geometry.h"
 
 namespace dfm::editor {
 
-// Transport, keys, the in-between of the current interval, time and speed, and the sweep axis.
+// Transport, keys, the in-between of the current interval, time (frame and seconds at the frame
+// rate) and speed, the sweep axis and the key count: laid out in rows that wrap on a narrow window
+// (ItemFlow), the timeline growing to hold them from the next frame on.
 void Editor::draw_timeline_toolbar() {
+  ItemFlow flow;
+  flow.next(60);
   if (ImGui::Button(playing_ ? "Pause" : "Play", ImVec2(60, 0))) playing_ = !playing_;
-  ImGui::SameLine();
+  flow.next(ItemFlow::check_width("Loop"));
   ImGui::Checkbox("Loop", &loop_);
-  ImGui::SameLine();
+  flow.next(ItemFlow::button_width("Key (K)"));
   if (ImGui::Button("Key (K)")) doc_.set_key(doc_.time());
-  ImGui::SameLine();
+  flow.next(ItemFlow::button_width("Key mesh..."));
   if (ImGui::Button("Key mesh...")) {
     // The same file dialog as File > Open; the pick lands in Editor::draw_ui -> key_mesh_file.
     key_mesh_time_ = doc_.time();
-    char title[64];
-    std::snprintf(title, sizeof title, "Key mesh at t = %.3f", key_mesh_time_);
-    files_.show(FilePanel::Mode::Open, title, "key-mesh");
+    files_.show(FilePanel::Mode::Open, "Key mesh at " + format_time(key_mesh_time_, frame_rate_), "key-mesh");
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Key a whole mesh (any surface file, any connectivity) at the current time;\n"
                       "the animation passes through it (a transition joins other connectivities)");
-  ImGui::SameLine();
+  flow.next(ItemFlow::button_width("Delete key"));
   const int at = doc_.key_at(doc_.time());
   if (at < 0) ImGui::BeginDisabled();
   if (ImGui::Button("Delete key")) doc_.delete_key(at);
   if (at < 0) ImGui::EndDisabled();
-  ImGui::SameLine();
-  draw_inbetween_choice();
-  ImGui::SameLine();
-  float t = float(doc_.time());
-  ImGui::SetNextItemWidth(70);
-  if (ImGui::DragFloat("##time", &t, 0.01f, 0.0f, 0.0f, "t %.3f")) doc_.set_time(std::max(0.0f, t));
-  ImGui::SameLine();
+  draw_inbetween_choice(flow);
+  // Time as animation tools show it: a frame at the frame rate, and seconds.
+  float frame = float(time_to_frame(doc_.time(), frame_rate_));
+  const bool whole = std::abs(frame - std::round(frame)) < 0.05f;
+  flow.next(96);
+  ImGui::SetNextItemWidth(96);
+  if (ImGui::DragFloat("##frame", &frame, 0.2f, 0.0f, 0.0f, whole ? "frame %.0f" : "frame %.1f"))
+    doc_.set_time(std::max(0.0, double(frame) / frame_rate_));
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Current frame (drag or type; the ruler scrubs too)");
+  char secs[32];
+  std::snprintf(secs, sizeof secs, "%.3f s", display_value(doc_.time(), 3));
+  flow.next(ImGui::CalcTextSize(secs).x);
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextDisabled("%s", secs);
+  flow.next(64);
+  float fps = float(frame_rate_);
+  ImGui::SetNextItemWidth(64);
+  if (ImGui::DragFloat("##fps", &fps, 0.1f, 1.0f, 240.0f, "%.0f fps", ImGuiSliderFlags_AlwaysClamp)) frame_rate_ = fps;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Frame rate: frames a second of animation time");
+  flow.next(56);
   float speed = float(play_speed_);
   ImGui::SetNextItemWidth(56);
   if (ImGui::DragFloat("##speed", &speed, 0.01f, 0.05f, 8.0f, "x%.2f")) play_speed_ = speed;
-  ImGui::SameLine();
-  ImGui::TextDisabled("|");
-  ImGui::SameLine();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Playback speed");
   const char* axes[] = {"t", "x", "y", "z"};
   int sweep = slice_axis_ == SliceAxis::T ? 0 : static_cast<int>(slice_axis_) + 1;
-  ImGui::SetNextItemWidth(60);
+  const float combo_w = 44;
+  flow.next(combo_w + ImGui::GetStyle().ItemInnerSpacing.x + ImGui::CalcTextSize("Slice").x);
+  ImGui::SetNextItemWidth(combo_w);
   if (ImGui::Combo("Slice", &sweep, axes, 4)) slice_axis_ = sweep == 0 ? SliceAxis::T : static_cast<SliceAxis>(sweep - 1);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("t: the animation at a time; x, y, z: the sweep through time along that axis");
   if (slice_axis_ != SliceAxis::T) {
-    ImGui::SameLine();
+    flow.next(120);
     float sv = float(sweep_value_);
     ImGui::SetNextItemWidth(120);
     if (ImGui::SliderFloat("##sweep", &sv, 0.0f, 1.0f, "%.2f")) sweep_value_ = sv;
   }
-  ImGui::SameLine();
-  ImGui::TextDisabled("%d key(s)", int(doc_.keys().size()));
+  char keys[32];
+  std::snprintf(keys, sizeof keys, "%d key%s", int(doc_.keys().size()), doc_.keys().size() == 1 ? "" : "s");
+  flow.next(ImGui::CalcTextSize(keys).x);
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextDisabled("%s", keys);
+  // Room for the toolbar's rows and a ruler of at least 56 px (applied by the next frame's layout).
+  const ImGuiStyle& st = ImGui::GetStyle();
+  timeline_h_ = flow.rows() * ImGui::GetFrameHeightWithSpacing() + 2 * st.WindowPadding.y + 56 * ImGui::GetIO().FontGlobalScale;
 }
 
 void Editor::draw_timeline() {
@@ -82,14 +106,15 @@ void Editor::draw_timeline() {
   auto x_of = [&](double time) { return p0.x + pad + float((time - t0) / (t1 - t0)) * (w - 2 * pad); };
   auto t_of = [&](float x) { return t0 + (t1 - t0) * double(x - p0.x - pad) / double(w - 2 * pad); };
   dl->AddRectFilled(p0, ImVec2(p0.x + w, p0.y + h), IM_COL32(24, 25, 28, 255), 3.0f);
-  double step = std::pow(10.0, std::floor(std::log10((t1 - t0) / 5.0)));
-  for (double m : {2.0, 5.0})  // at most about ten labelled ticks
-    if ((t1 - t0) / step > 10.0) step *= m == 2.0 ? 2.0 : 2.5;
-  for (double s = std::ceil(t0 / step) * step; s <= t1 + 1e-9; s += step) {
-    const float x = x_of(s);
+  // Ticks on whole frames (1, 2 or 5 times a power of ten), labelled with the frame number, about
+  // one per 60 px.
+  const double frames = std::max(1e-9, (t1 - t0) * frame_rate_);
+  const double fstep = std::max(1.0, gl::nice_spacing(frames, std::max(2, int(w / 60))));
+  for (double f = std::ceil(t0 * frame_rate_ / fstep) * fstep; f <= t1 * frame_rate_ + 1e-6; f += fstep) {
+    const float x = x_of(f / frame_rate_);
     dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p0.y + 8), IM_COL32(110, 114, 122, 255));
     char lab[16];
-    std::snprintf(lab, sizeof lab, "%g", std::round(s / step) * step);
+    std::snprintf(lab, sizeof lab, "%.0f", f);
     dl->AddText(ImVec2(x + 3, p0.y + 1), IM_COL32(130, 134, 142, 255), lab);
   }
   if (keys.size() >= 2)  // the animated span
@@ -119,7 +144,7 @@ void Editor::draw_timeline() {
     const float x = std::clamp(mx, p0.x + pad, p0.x + w - pad);
     dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p0.y + h), IM_COL32(255, 210, 90, 160));
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-      const double nt = std::max(0.0, std::round(t_of(x) * 100.0) / 100.0);  // snap to 0.01
+      const double nt = std::max(0.0, std::round(t_of(x) * frame_rate_) / frame_rate_);  // snap to whole frames
       if (drag_key_ >= 0 && drag_key_ < int(keys.size()) && std::abs(nt - keys[drag_key_].time) > 1e-9) {
         try {
           doc_.move_key(drag_key_, nt);
@@ -156,26 +181,39 @@ void Editor::draw_timeline() {
   dl->AddTriangleFilled(ImVec2(xt - 5, p0.y), ImVec2(xt + 5, p0.y), ImVec2(xt, p0.y + 6), IM_COL32(90, 160, 255, 255));
   if (hover_key >= 0) {
     const SceneKey& k = doc_.keys()[hover_key];
+    const std::string next_join =
+        hover_key + 1 < int(doc_.keys().size()) ? interval_join_label(interval_join(doc_, hover_key)) : "(the last key)";
     if (k.is_mesh())
-      ImGui::SetTooltip("mesh key %d at t = %.3f: %s\n%d vertices, %d triangles\nin-between to the next key: %s\n"
+      ImGui::SetTooltip("mesh key %d at %s: %s\n%d vertices, %d triangles\nto the next key: %s\n"
                         "(drag to move, right-click to delete)",
-                        hover_key, k.time, std::filesystem::path(k.mesh_path).filename().string().c_str(),
-                        k.mesh.num_vertices(), k.mesh.num_faces(), inbetween_method_name(k.inbetween));
+                        hover_key, format_time(k.time, frame_rate_).c_str(),
+                        std::filesystem::path(k.mesh_path).filename().string().c_str(), k.mesh.num_vertices(),
+                        k.mesh.num_faces(), next_join.c_str());
     else
-      ImGui::SetTooltip("key %d at t = %.3f\nin-between to the next key: %s\n(drag to move, right-click to delete)",
-                        hover_key, k.time, inbetween_method_name(k.inbetween));
+      ImGui::SetTooltip("key %d at %s\nto the next key: %s\n(drag to move, right-click to delete)", hover_key,
+                        format_time(k.time, frame_rate_).c_str(), next_join.c_str());
   }
 }
 
-// The in-between of the key interval holding the current time (one undo step per change).
-void Editor::draw_inbetween_choice() {
-  const auto& keys = doc_.keys();
-  int k = -1;
-  for (size_t i = 0; i + 1 < keys.size(); ++i)
-    if (keys[i].time <= doc_.time() + 1e-9) k = int(i);
-  if (k >= 0 && doc_.time() > keys.back().time + 1e-9) k = -1;  // past the last key: no interval
+// The in-between of the key interval holding the current time (one undo step per change); a
+// transition (the keys' meshes differ) has no choice: it says so instead.
+void Editor::draw_inbetween_choice(ItemFlow& flow) {
+  const int k = interval_at(doc_, doc_.time());
+  const int last = static_cast<int>(doc_.keys().size()) - 1;
+  const IntervalJoin join = k >= 0 && k < last ? interval_join(doc_, k) : IntervalJoin::Handles;
+  if (k >= 0 && join == IntervalJoin::Transition) {
+    const char* text = interval_join_label(join);
+    flow.next(ImGui::CalcTextSize(text).x);
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextColored(ImVec4(0.45f, 0.80f, 0.78f, 1.0f), "%s", text);  // the mesh keys' teal
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("These two keys have different meshes: the animation passes from one to the other by a\n"
+                        "transition (Southern 2008), and the rig's handles do not apply to its in-betweens.");
+    return;
+  }
   const char* names[] = {"handles", "ARAP", "linear"};
-  int m = k >= 0 ? static_cast<int>(keys[k].inbetween) : 0;
+  int m = k >= 0 ? static_cast<int>(doc_.keys()[k].inbetween) : 0;
+  flow.next(86);
   if (k < 0) ImGui::BeginDisabled();
   ImGui::SetNextItemWidth(86);
   if (ImGui::Combo("##inbetween", &m, names, 3)) doc_.set_key_inbetween(k, static_cast<InbetweenMethod>(m));

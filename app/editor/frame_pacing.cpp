@@ -35,14 +35,8 @@ void FrameStats::begin(double now) {
 void FrameStats::end(double now) {
   if (!open_) return;
   open_ = false;
-  const double cost = 1000.0 * (now - start_);
-  const double interval = have_last_ && !paused_ ? 1000.0 * (start_ - last_start_) : cost;
-  cost_.push_back(cost);
-  interval_.push_back(std::max(interval, cost));
-  while (static_cast<int>(cost_.size()) > window_) cost_.pop_front(), interval_.pop_front();
-  last_start_ = start_;
-  have_last_ = true;
-  paused_ = false;
+  cost_.push_back(1000.0 * (now - start_));
+  while (static_cast<int>(cost_.size()) > window_) cost_.pop_front();
   ++frames_;
 }
 
@@ -51,8 +45,8 @@ double FrameStats::ms() const {
 }
 
 double FrameStats::fps() const {
-  const double sum = std::accumulate(interval_.begin(), interval_.end(), 0.0);
-  return sum > 0 ? 1000.0 * interval_.size() / sum : 0.0;
+  const double m = ms();
+  return m > 0 ? 1000.0 / m : 0.0;
 }
 
 }  // namespace dfm::editor

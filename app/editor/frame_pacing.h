@@ -48,16 +48,18 @@ class FramePacer {
   bool progress_pending_ = false;  // a job's progress changed and is not drawn yet
 };
 
-// The HUD's figures over the last `window` frames: ms = the mean time to draw a frame (UI, scene,
-// swap), fps = frames drawn per second where frames follow one another, a frame after a pause
-// (the loop slept, or a script command ran) counting as its own drawing time.
+// The HUD's figures over the last `window` frames, both from the same frames: ms = the mean time to
+// draw a frame (UI, scene, swap), fps = 1000 / ms, the rate the editor draws at while it draws on (a
+// playback, a drag). The time between frames is not counted: an idle editor sleeps, and while a job
+// runs frames are paced on purpose (FramePacer), which says nothing about the drawing's speed.
 class FrameStats {
  public:
   explicit FrameStats(int window = 60) : window_(window) {}
   void begin(double now);
   void end(double now);
-  // The next frame does not follow straight on from the last one.
-  void pause() { paused_ = true; }
+  // The next frame does not follow on from the last one (kept for the loop's calls: the figures
+  // count drawing time only, so a pause changes nothing).
+  void pause() {}
   double ms() const;
   double fps() const;
   int frames() const { return frames_; }
@@ -66,9 +68,9 @@ class FrameStats {
 
  private:
   int window_;
-  std::deque<double> cost_, interval_;  // milliseconds
-  double start_ = 0, last_start_ = 0;
-  bool have_last_ = false, paused_ = true, open_ = false;
+  std::deque<double> cost_;  // milliseconds
+  double start_ = 0;
+  bool open_ = false;
   int frames_ = 0;
 };
 

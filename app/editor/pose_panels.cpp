@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include "app/editor/editor.h"
+#include "app/editor/theme.h"
 #include "core/pose/fast_rig.h"
 #include "core/rig/rig.h"
 
@@ -20,29 +21,48 @@ void Editor::draw_transform_section() {
   const int h = sel.front();
   const Rig& rig = doc_.rig();
   const HandleRef r = handle_ref(rig, h);
-  ImGui::Text("%s  (%s)", handle_name(rig, h).c_str(), handle_kind_name(r.kind));
-  Pose pose = doc_.pose();
+  ImGui::TextWrapped("%d  %s  (%s)", h, handle_name(rig, h).c_str(), handle_kind_name(r.kind));
+  // The values of the pose on display: over the animation that is the key poses interpolated at the
+  // current time (what the viewport shows), not the pose last edited.
+  const Pose pose = view_->shown_pose(doc_);
+  const bool animated = view_->showing_slice() && slice_axis_ == SliceAxis::T && doc_.keys().size() >= 2;
+  if (animated) text_disabled_wrapped("the animation at %s", format_time(doc_.time(), frame_rate_).c_str());
   if (h < pose.size()) {
     const Eigen::Affine3d& T = pose.transforms[h];
     const Eigen::Vector3d pivot = doc_.handle_pivot(h);
-    // Typed values: world offset of the pivot and rotation (axis-angle) of this handle's transform.
+    const float label_w = ImGui::CalcTextSize("Rotate").x + ImGui::GetStyle().ItemSpacing.x;
+    auto label = [&](const char* text) {
+      ImGui::AlignTextToFramePadding();
+      ImGui::TextUnformatted(text);
+      ImGui::SameLine(label_w + ImGui::GetStyle().WindowPadding.x);
+      ImGui::SetNextItemWidth(-1);
+    };
+    // Typed values: world offset of the pivot and rotation (axis-angle) of this handle's transform,
+    // shown as the fields print them (no -0.000); a drag moves by the change from what is shown.
     const Eigen::Vector3d offset = T * pivot - pivot;
-    float t[3] = {float(offset.x()), float(offset.y()), float(offset.z())};
-    ImGui::SetNextItemWidth(-1);
+    const Eigen::Vector3d shown(display_value(offset.x(), 3), display_value(offset.y(), 3), display_value(offset.z(), 3));
+    float t[3] = {float(shown.x()), float(shown.y()), float(shown.z())};
+    label("Move");
     if (ImGui::DragFloat3("##move", t, 0.002f * float(cam_.scene_radius), 0, 0, "%.3f")) {
       if (ImGui::IsItemActivated()) doc_.begin_gesture();
-      doc_.translate_handle(h, Eigen::Vector3d(t[0], t[1], t[2]) - offset);
+      doc_.translate_handle(h, Eigen::Vector3d(t[0], t[1], t[2]) - shown);
     }
     if (ImGui::IsItemDeactivated()) doc_.end_gesture();
-    ImGui::TextDisabled("translation (world)");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Translation of the handle's pivot, world x y z");
     if (r.kind != HandleKind::CageVertex) {
       Eigen::AngleAxisd aa(T.linear());
       static float deg[3] = {0, 0, 0};
-      ImGui::SetNextItemWidth(-1);
+      label("Rotate");
       ImGui::InputFloat3("##rot", deg, "%.1f");
-      ImGui::TextDisabled("rotation now: %.1f deg about (%.2f %.2f %.2f)", aa.angle() * 180 / M_PI, aa.axis().x(),
-                          aa.axis().y(), aa.axis().z());
-      if (ImGui::Button("Apply rotation (XYZ degrees)", ImVec2(-1, 0))) {
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Degrees about world x, y, z (applied z * y * x)");
+      const double angle = display_value(aa.angle() * 180 / M_PI, 1);
+      if (angle == 0.0) {
+        text_disabled_wrapped("rotation now: none");
+      } else {
+        text_disabled_wrapped("rotation now: %.1f deg about (%.2f, %.2f, %.2f)", angle, display_value(aa.axis().x(), 2),
+                              display_value(aa.axis().y(), 2), display_value(aa.axis().z(), 2));
+      }
+      if (ImGui::Button("Apply rotation", ImVec2(-1, 0))) {
         const Eigen::Quaterniond q = Eigen::AngleAxisd(deg[2] * M_PI / 180, Eigen::Vector3d::UnitZ()) *
                                      Eigen::AngleAxisd(deg[1] * M_PI / 180, Eigen::Vector3d::UnitY()) *
                                      Eigen::AngleAxisd(deg[0] * M_PI / 180, Eigen::Vector3d::UnitX());
@@ -55,15 +75,15 @@ void Editor::draw_transform_section() {
 
 void Editor::draw_posing_section() {
   PosingSettings p = doc_.posing();
-  if (ImGui::Checkbox("Drag solves the free handles (FAST)", &p.fast)) doc_.set_posing(p);
+  if (ImGui::Checkbox("Drag solves the free handles", &p.fast)) doc_.set_posing(p);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Jacobson 2013 ch. 7: handles not pinned get the transforms that keep the shape as rigid\n"
-                      "as possible; a point you drag keeps its position and gets its rotation solved.");
-  if (!doc_.has_weights()) ImGui::TextDisabled("bind first: FAST solves with the weights");
+    ImGui::SetTooltip("FAST (Jacobson 2013 ch. 7): handles not pinned get the transforms that keep the shape as\n"
+                      "rigid as possible; a point you drag keeps its position and gets its rotation solved.");
+  if (!doc_.has_weights()) text_disabled_wrapped("bind first: FAST solves with the weights");
   static int iterations = p.iterations;
   if (!ImGui::IsAnyItemActive()) iterations = p.iterations;
-  ImGui::SetNextItemWidth(-110);
-  ImGui::SliderInt("iterations/frame", &iterations, 1, 50);
+  ImGui::SetNextItemWidth(-1);
+  ImGui::SliderInt("##iterations", &iterations, 1, 50, "%d iterations a frame");
   if (ImGui::IsItemDeactivatedAfterEdit()) p.iterations = iterations, doc_.set_posing(p);
 
   const auto& sel = doc_.selection().handles;
@@ -71,12 +91,13 @@ void Editor::draw_posing_section() {
     const int h = sel.front();
     const std::vector<HandleConstraint> states = doc_.handle_states();
     int s = static_cast<int>(states[h]);
-    ImGui::Text("%s is", handle_name(doc_.rig(), h).c_str());
-    bool changed = ImGui::RadioButton("pinned", &s, static_cast<int>(HandleConstraint::Fixed));
-    ImGui::SameLine();
-    changed |= ImGui::RadioButton("position", &s, static_cast<int>(HandleConstraint::Position));
-    ImGui::SameLine();
-    changed |= ImGui::RadioButton("free", &s, static_cast<int>(HandleConstraint::Free));
+    ImGui::TextWrapped("%d  %s is", h, handle_name(doc_.rig(), h).c_str());
+    bool changed = false;
+    ItemFlow flow;
+    for (HandleConstraint c : {HandleConstraint::Fixed, HandleConstraint::Position, HandleConstraint::Free}) {
+      flow.next(ItemFlow::check_width(constraint_state_name(c)));
+      changed |= ImGui::RadioButton(constraint_state_name(c), &s, static_cast<int>(c));
+    }
     if (changed) doc_.set_handle_state(h, static_cast<HandleConstraint>(s));
     const HandleRef r = handle_ref(doc_.rig(), h);
     if (r.kind == HandleKind::Bone && ImGui::Button("IK chain to this bone's tip", ImVec2(-1, 0))) {
@@ -91,13 +112,13 @@ void Editor::draw_posing_section() {
   }
   const FastSolveReport& f = doc_.last_fast_solve();
   if (f.iterations > 0) {
-    ImGui::TextDisabled("last solve: %d iterations, %.1f us each", f.iterations, 1e6 * f.iterate_seconds / f.iterations);
-    ImGui::TextDisabled("%d rotation clusters, energy %.3g", f.clusters, f.energy);
+    text_disabled_wrapped("last solve: %d iterations, %.1f us each", f.iterations, 1e6 * f.iterate_seconds / f.iterations);
+    text_disabled_wrapped("%d rotation clusters, energy %.3g", f.clusters, f.energy);
   }
   static double precompute = 0, switched = 0;
   if (f.precomputed) precompute = f.precompute_seconds;
   if (f.switched) switched = f.switch_seconds;
-  if (precompute > 0) ImGui::TextDisabled("precompute %.2f s, last switch %.2f ms", precompute, 1e3 * switched);
+  if (precompute > 0) text_disabled_wrapped("precompute %.2f s, last switch %.2f ms", precompute, 1e3 * switched);
 }
 
 }  // namespace dfm::editor

@@ -9,12 +9,14 @@
 #include "app/editor/manifold_builder.h"
 #include "app/editor/interval_prefetch.h"
 #include "app/editor/slice_cache.h"
+#include "app/editor/view_model.h"
 #include "core/anim/interpolate.h"
 #include "core/anim/interval_slice.h"
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
+#include "core/anim/slice_table.h"
 #include "core/mesh/mesh_info.h"
 #include "core/rig/forward_kinematics.h"
 #include "core/skin/skin.h"
@@ -24,7 +26,10 @@ namespace dfm::editor {
 
 Eigen::Vector3f handle_color(int handle) {
   // Golden-ratio hue steps give well separated colours for any count; fixed saturation and value.
-  const double h = std::fmod(0.08 + 0.618033988749895 * handle, 1.0) * 6.0;
+  // Hues skip the band around the selection's orange (view_model.h), so a selected handle stands out.
+  const double band = kSelectionHueHi - kSelectionHueLo;
+  const double deg = std::fmod(kSelectionHueHi + std::fmod(0.08 + 0.618033988749895 * handle, 1.0) * (360.0 - band), 360.0);
+  const double h = deg / 60.0;
   const double s = 0.62, v = 0.92;
   const int i = static_cast<int>(h) % 6;
   const double f = h - std::floor(h);
@@ -127,6 +132,7 @@ void SceneView::sync(const Document& doc, const ViewSettings& s) {
   surface_requested_ = false;
   if (content || time_changed || settings_changed || sel_changed || !colors_valid_) update_colors(doc, s);
   update_handles(doc, s);
+  overlay_opacity_ = showing_slice_ && s.slice_axis == SliceAxis::T ? rig_overlay_opacity(doc, doc.time()) : 1.0f;
   synced_revision_ = doc.revision();
   synced_time_ = doc.time();
   synced_settings_ = s;
@@ -306,7 +312,9 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
     const int tris = d.slice->slice(axis, value);
     gpu_.show_geometry(d.slice->output());
     display_closed_ = false;  // a triangle soup: no edges to check
-    display_count_ = 3 * tris;
+    display_count_ = -1;  // welded on demand (display_vertex_count), not the soup's 3 corners a face
+    general_axis_ = axis;
+    general_value_ = value;
     display_faces_ = tris;
     d.shown_slot = -1;
   }
@@ -345,6 +353,57 @@ void SceneView::update_skin(const Document& doc) {
   d.skin_revision = doc.revision();
 }
 
+namespace {
+
+// The vertices slice_manifold(m, axis, value) has, counted by its own rule (core/anim/slice.cpp): one
+// per manifold edge a kept triangle's corner lies on, or per vertex when it lies on one; triangles
+// the weld collapses are dropped. Only the keys, no positions or normals: the HUD asks every frame.
+int welded_slice_vertex_count(const AnimationManifold& m, SliceAxis axis_e, double c) {
+  const int axis = static_cast<int>(axis_e);
+  const bool on_plane_above = slice_on_plane_is_above(m, axis_e, c);
+  const auto [first, last] = slice_tet_range(m, axis_e, c);
+  const auto& table = slice_table();
+  auto key_of = [](int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  };
+  std::vector<std::uint64_t> keys;
+  for (int k = first; k < last; ++k) {
+    int g[4];
+    double s[4];
+    int mask = 0;
+    for (int i = 0; i < 4; ++i) {
+      g[i] = m.T(k, i);
+      s[i] = m.V(g[i], axis) - c;
+      mask |= (on_plane_above ? s[i] >= 0.0 : s[i] > 0.0) << i;
+    }
+    const SliceCase& sc = table[mask];
+    for (int tri = 0; tri < sc.num_triangles; ++tri) {
+      std::uint64_t key[3];
+      for (int j = 0; j < 3; ++j) {
+        const auto& e = kSliceEdges[sc.triangles[tri][j]];
+        const int a = e[0], b = e[1];
+        key[j] = s[a] == 0.0 ? key_of(g[a], g[a]) : s[b] == 0.0 ? key_of(g[b], g[b]) : key_of(g[a], g[b]);
+      }
+      if (key[0] == key[1] || key[1] == key[2] || key[0] == key[2]) continue;
+      keys.insert(keys.end(), key, key + 3);
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  return static_cast<int>(std::unique(keys.begin(), keys.end()) - keys.begin());
+}
+
+}  // namespace
+
+int SceneView::display_vertex_count() const {
+  if (display_count_ < 0) {
+    display_count_ = deformer_->has_manifold
+                         ? welded_slice_vertex_count(deformer_->builder.manifold(), general_axis_, general_value_)
+                         : 0;
+  }
+  return display_count_;
+}
+
 bool SceneView::slice_from_cache() const { return showing_slice_ && deformer_->shown_slot >= 0; }
 int SceneView::intervals_built() const { return deformer_->interval_policy.builds(); }
 double SceneView::interval_build_ms() const { return deformer_->interval_build_ms; }
@@ -352,6 +411,25 @@ int SceneView::vertex_time_count() const { return static_cast<int>(deformer_->in
 
 bool SceneView::manifold_building() const { return deformer_->builder.busy(); }
 std::string SceneView::manifold_progress() const { return deformer_->builder.progress_text(); }
+
+Eigen::AlignedBox3d SceneView::framing_bounds() const {
+  Eigen::AlignedBox3d b = bounds_;
+  for (const Eigen::MatrixXd* P : {&handle_pos_, &joint_pos_})
+    for (int i = 0; i < P->rows(); ++i) b.extend(Eigen::Vector3d(P->row(i)));
+  return b;
+}
+
+Pose SceneView::shown_pose(const Document& doc) const {
+  // A time slice shows the animation: the interpolated key poses at the time (as update_handles draws).
+  const KeyTrack& track = deformer_->builder.track();
+  if (showing_slice_ && synced_settings_.slice_axis == SliceAxis::T && track.size() >= 2) {
+    try {
+      return sample_track(track, doc.time());
+    } catch (...) {
+    }
+  }
+  return doc.pose();
+}
 
 void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
   colors_valid_ = true;
@@ -423,11 +501,14 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
                                     : gl::SurfaceColorMode::Scalar;
   style.isolines = s.weight_view == WeightView::Selected ? 10.0f : 0.0f;
   style.cull_back_faces = display_closed_;
-  if (s.grid && !bounds_.isEmpty()) {
-    const double diag = bounds_.diagonal().norm();
+  if (s.grid) {
+    // No surface (an empty document, a file that failed to open): a grid about the origin, 2 units wide.
+    const Eigen::AlignedBox3d b = bounds_.isEmpty() ? Eigen::AlignedBox3d(Eigen::Vector3d(-1, 0, -1), Eigen::Vector3d(1, 0, 1))
+                                                    : bounds_;
+    const double diag = b.diagonal().norm();
     const double spacing = gl::nice_spacing(2.5 * diag, 24);
-    const Eigen::Vector3d c = bounds_.center();
-    gpu_.draw_lines(cam, gl::grid_lines(c.x(), c.z(), bounds_.min().y(), 1.6 * diag, spacing), 1.0f, true);
+    const Eigen::Vector3d c = b.center();
+    gpu_.draw_lines(cam, gl::grid_lines(c.x(), c.z(), b.min().y(), 1.6 * diag, spacing), 1.0f, true);
   }
   gpu_.draw_surface(cam, style);
   if (s.handles) draw_overlays(doc, cam, s);
@@ -446,42 +527,53 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
 }
 
 void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s) {
+  (void)s;
+  // Over a surface that is not the rigged mesh (a transition, a key of other triangles) the rig fades.
+  const float alpha = overlay_opacity_;
+  if (alpha < 0.02f) return;
   const Rig& rig = doc.rig();
   const auto& sel = doc.selection().handles;
   auto selected = [&](int h) { return std::find(sel.begin(), sel.end(), h) != sel.end(); };
-  auto active = [&](int h) { return !sel.empty() && sel.front() == h; };
-  const Eigen::Vector4f sel_color(1.0f, 0.62f, 0.12f, 1.0f), act_color(1.0f, 0.85f, 0.30f, 1.0f);
-  auto color_of = [&](int h, float alpha) -> Eigen::Vector4f {
-    if (active(h)) return act_color;
+  const SelectionStyle& style = selection_style();
+  auto faded = [&](Eigen::Vector4f c) { return c.w() *= alpha, c; };
+  const Eigen::Vector4f sel_color = faded(style.body), outline = faded(style.outline);
+  auto color_of = [&](int h) -> Eigen::Vector4f {
     if (selected(h)) return sel_color;
     Eigen::Vector3f c = handle_color(h);
     // Overlays are not gamma-corrected: lift the linear colour back for display.
-    return Eigen::Vector4f(std::pow(c.x(), 1 / 2.2f), std::pow(c.y(), 1 / 2.2f), std::pow(c.z(), 1 / 2.2f), alpha);
+    return faded(Eigen::Vector4f(std::pow(c.x(), 1 / 2.2f), std::pow(c.y(), 1 / 2.2f), std::pow(c.z(), 1 / 2.2f), 1.0f));
   };
-  std::vector<gl::OverlayVertex> lines, thin, pts, small_pts;
+  // Selected handles get an outline: the same line or point, wider, in the outline colour, drawn under.
+  std::vector<gl::OverlayVertex> lines, thin, pts, small_pts, outline_lines, outline_pts, outline_small;
   const int np = num_point_handles(rig);
   // Pseudo-edges between point handles.
   for (const auto& [a, b] : rig.pseudo_edges)
     if (a >= 0 && b >= 0 && a < np && b < np) {
-      thin.push_back(gl::overlay_vertex(handle_pos_.row(a), Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f)));
-      thin.push_back(gl::overlay_vertex(handle_pos_.row(b), Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f)));
+      thin.push_back(gl::overlay_vertex(handle_pos_.row(a), faded(Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f))));
+      thin.push_back(gl::overlay_vertex(handle_pos_.row(b), faded(Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f))));
     }
   // Bones: a thick line from parent joint to child joint, joints as small dots.
   for (int i = 0; i < rig.skeleton.num_bones(); ++i) {
     const Bone& b = rig.skeleton.bones[i];
     const int h = np + i;
-    const Eigen::Vector4f c = color_of(h, 1.0f);
+    const Eigen::Vector4f c = color_of(h);
     lines.push_back(gl::overlay_vertex(handle_pos_.row(h), c));  // its own transform's first joint
-    lines.push_back(gl::overlay_vertex(joint_pos_.row(b.b), Eigen::Vector4f(0.5f * c.head<3>().x(), 0.5f * c.y(), 0.5f * c.z(), 1.0f)));
+    lines.push_back(gl::overlay_vertex(joint_pos_.row(b.b), Eigen::Vector4f(0.5f * c.x(), 0.5f * c.y(), 0.5f * c.z(), c.w())));
+    if (selected(h)) {
+      outline_lines.push_back(gl::overlay_vertex(handle_pos_.row(h), outline));
+      outline_lines.push_back(gl::overlay_vertex(joint_pos_.row(b.b), outline));
+    }
   }
-  for (int j = 0; j < joint_pos_.rows(); ++j)
-    small_pts.push_back(gl::overlay_vertex(joint_pos_.row(j), doc.selection().joint == j
-                                                                  ? act_color
-                                                                  : Eigen::Vector4f(0.92f, 0.92f, 0.95f, 1.0f)));
+  const Eigen::Vector4f joint_color = faded(Eigen::Vector4f(0.70f, 0.72f, 0.76f, 1.0f));
+  for (int j = 0; j < joint_pos_.rows(); ++j) {
+    const bool sel_joint = doc.selection().joint == j;
+    small_pts.push_back(gl::overlay_vertex(joint_pos_.row(j), sel_joint ? sel_color : joint_color));
+    if (sel_joint) outline_small.push_back(gl::overlay_vertex(joint_pos_.row(j), outline));
+  }
   // Cages: wireframe through the (posed) cage vertices.
   int h0 = np + rig.skeleton.num_bones();
   for (const Cage& c : rig.cages) {
-    const Eigen::Vector4f wire(0.55f, 0.85f, 0.95f, 0.85f);
+    const Eigen::Vector4f wire = faded(Eigen::Vector4f(0.55f, 0.85f, 0.95f, 0.85f));
     auto edge = [&](int a, int b) {
       thin.push_back(gl::overlay_vertex(handle_pos_.row(h0 + a), wire));
       thin.push_back(gl::overlay_vertex(handle_pos_.row(h0 + b), wire));
@@ -489,17 +581,27 @@ void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, cons
     for (int f = 0; f < c.mesh.F.rows(); ++f)
       for (int k = 0; k < 3; ++k) edge(c.mesh.F(f, k), c.mesh.F(f, (k + 1) % 3));
     for (int e = 0; e < c.edges.rows(); ++e) edge(c.edges(e, 0), c.edges(e, 1));
-    for (int v = 0; v < c.mesh.num_vertices(); ++v)
+    for (int v = 0; v < c.mesh.num_vertices(); ++v) {
       small_pts.push_back(gl::overlay_vertex(handle_pos_.row(h0 + v), selected(h0 + v) ? sel_color : wire));
+      if (selected(h0 + v)) outline_small.push_back(gl::overlay_vertex(handle_pos_.row(h0 + v), outline));
+    }
     h0 += c.mesh.num_vertices();
   }
-  for (int i = 0; i < np; ++i) pts.push_back(gl::overlay_vertex(handle_pos_.row(i), color_of(i, 1.0f)));
+  auto point = [&](int h) {
+    pts.push_back(gl::overlay_vertex(handle_pos_.row(h), color_of(h)));
+    if (selected(h)) outline_pts.push_back(gl::overlay_vertex(handle_pos_.row(h), outline));
+  };
+  for (int i = 0; i < np; ++i) point(i);
   for (size_t r = 0; r < rig.regions.size(); ++r, ++h0)
-    if (!rig.regions[r].vertices.empty()) pts.push_back(gl::overlay_vertex(handle_pos_.row(h0), color_of(h0, 1.0f)));
+    if (!rig.regions[r].vertices.empty()) point(h0);
+  const float bone_w = 5.0f, small_sz = 8.0f, point_sz = 14.0f;
   gpu_.draw_lines(cam, thin, 1.5f, false);
-  gpu_.draw_lines(cam, lines, 5.0f, false);
-  gpu_.draw_points(cam, small_pts, 8.0f, false);
-  gpu_.draw_points(cam, pts, 14.0f, false);
+  if (!outline_lines.empty()) gpu_.draw_lines(cam, outline_lines, bone_w + style.line_extra, false);
+  gpu_.draw_lines(cam, lines, bone_w, false);
+  if (!outline_small.empty()) gpu_.draw_points(cam, outline_small, small_sz + style.point_extra, false);
+  gpu_.draw_points(cam, small_pts, small_sz, false);
+  if (!outline_pts.empty()) gpu_.draw_points(cam, outline_pts, point_sz + style.point_extra, false);
+  gpu_.draw_points(cam, pts, point_sz, false);
   // FAST states on the handles (bones: at the tip IK drags): a dark centre is pinned, a white one free.
   if (doc.posing().fast) {
     std::vector<gl::OverlayVertex> marks;
@@ -509,8 +611,8 @@ void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, cons
       const HandleRef r = handle_ref(rig, k);
       const Eigen::Vector3d at = r.kind == HandleKind::Bone ? Eigen::Vector3d(joint_pos_.row(rig.skeleton.bones[r.index].b))
                                                             : Eigen::Vector3d(handle_pos_.row(k));
-      marks.push_back(gl::overlay_vertex(at, states[k] == HandleConstraint::Fixed ? Eigen::Vector4f(0.08f, 0.08f, 0.1f, 1.0f)
-                                                                                 : Eigen::Vector4f(1.0f, 1.0f, 1.0f, 1.0f)));
+      marks.push_back(gl::overlay_vertex(at, faded(states[k] == HandleConstraint::Fixed ? Eigen::Vector4f(0.08f, 0.08f, 0.1f, 1.0f)
+                                                                                       : Eigen::Vector4f(1.0f, 1.0f, 1.0f, 1.0f))));
     }
     gpu_.draw_points(cam, marks, 6.0f, false);
   }

@@ -51,7 +51,8 @@ class SceneView {
   // Posed vertices are read back from the GPU on first use after a change.
   const Eigen::MatrixXd& display_vertices();
   const Eigen::MatrixXi& display_faces();
-  int display_vertex_count() const { return display_count_; }
+  // Welded vertices (a general-pass slice is a triangle soup on the GPU: counted by the slice's weld).
+  int display_vertex_count() const;
   int display_face_count() const { return display_faces_; }
   // The time slice on display came from the interval cache (an interpolation), not the general pass.
   bool slice_from_cache() const;
@@ -59,6 +60,9 @@ class SceneView {
   double interval_build_ms() const;  // ...and the time spent building them (CPU topology + upload)
   int vertex_time_count() const;  // distinct vertex times of the current manifold
   bool showing_slice() const { return showing_slice_; }
+  // The pose the viewport shows: on a time slice the key poses interpolated at the document's time,
+  // else the document's pose (the Transform panel reports this one).
+  Pose shown_pose(const Document& doc) const;
   // Shows the current pose (skinned) instead of the manifold slice until the time changes, as a pose
   // edit after a scrub does.
   void show_pose();
@@ -69,10 +73,16 @@ class SceneView {
   bool showing_preview() const { return showing_preview_; }
   bool display_is_rest() const { return display_is_rest_; }
   Eigen::AlignedBox3d surface_bounds() const { return bounds_; }
+  // What "Frame all" fits: the surface's bounds and every handle and joint as displayed (handles such
+  // as the default scene's ear points lie outside the surface).
+  Eigen::AlignedBox3d framing_bounds() const;
   // Handle glyph positions as displayed (posed when posing), rows in handle order; joints separately.
   const Eigen::MatrixXd& handle_positions() const { return handle_pos_; }
   const Eigen::MatrixXd& joint_positions() const { return joint_pos_; }
   const std::string& last_error() const { return error_; }
+  // How opaque the rig overlays are drawn (0: hidden): below 1 over a surface that is not the rigged
+  // mesh (a transition's in-betweens, a mesh key of other triangles); rig_overlay_opacity, view_model.h.
+  float overlay_opacity() const { return overlay_opacity_; }
   // The animation manifold is building on its worker thread (a transition), and what it is doing.
   bool manifold_building() const;
   std::string manifold_progress() const;
@@ -97,7 +107,11 @@ class SceneView {
   bool showing_slice_ = false;
   bool showing_preview_ = false;
   bool display_closed_ = false;  // the displayed surface is closed and outward: cull its back faces
-  int display_count_ = 0, display_faces_ = 0;
+  mutable int display_count_ = 0;  // -1: a general-pass slice, counted when asked
+  int display_faces_ = 0;
+  SliceAxis general_axis_ = SliceAxis::T;
+  double general_value_ = 0;
+  float overlay_opacity_ = 1.0f;  // rig_overlay_opacity over the animation (view_model.h)
   // is_closed_outward of the document's surface, for the rest and posed display (cached: it sorts edges).
   struct ClosedCache {
     std::uint64_t revision = ~0ull;

@@ -1,5 +1,7 @@
 #include "app/editor/theme.h"
 
+#include <cstdarg>
+
 #include <imgui.h>
 
 namespace dfm::editor {
@@ -58,6 +60,36 @@ void apply_theme(float scale) {
   c[ImGuiCol_PlotLines] = accent;
   s.ScaleAllSizes(scale);
   ImGui::GetIO().FontGlobalScale = scale;
+}
+
+void text_disabled_wrapped(const char* fmt, ...) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  va_list args;
+  va_start(args, fmt);
+  ImGui::TextWrappedV(fmt, args);
+  va_end(args);
+  ImGui::PopStyleColor();
+}
+
+ItemFlow::ItemFlow() {
+  cursor_.avail = ImGui::GetContentRegionAvail().x;
+  cursor_.spacing = ImGui::GetStyle().ItemSpacing.x;
+}
+
+void ItemFlow::next(float width) {
+  const int row = cursor_.place(width);
+  if (!first_ && row == row_) ImGui::SameLine();
+  first_ = false;
+  row_ = row;
+}
+
+float ItemFlow::button_width(const char* label) {
+  return ImGui::CalcTextSize(label, nullptr, true).x + 2 * ImGui::GetStyle().FramePadding.x;
+}
+
+float ItemFlow::check_width(const char* label) {
+  const float text = ImGui::CalcTextSize(label, nullptr, true).x;
+  return ImGui::GetFrameHeight() + (text > 0 ? ImGui::GetStyle().ItemInnerSpacing.x + text : 0.0f);
 }
 
 }  // namespace dfm::editor

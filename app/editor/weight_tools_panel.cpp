@@ -10,6 +10,7 @@
 #include <imgui.h>
 
 #include "app/editor/editor.h"
+#include "app/editor/theme.h"
 #include "core/rig/rig.h"
 
 namespace dfm::editor {
@@ -130,9 +131,11 @@ void locks_and_report(const Document& doc, WeightToolsUi& ui) {
                      ImGuiSliderFlags_Logarithmic);
   const auto report = doc.weights_report(ui.report_threshold);
   if (report.empty()) {
-    ImGui::TextDisabled("every handle reaches it somewhere");
+    text_disabled_wrapped("every handle reaches it somewhere");
   } else {
-    ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.35f, 1), "%d handle(s) move nothing:", int(report.size()));
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.75f, 0.35f, 1));
+    ImGui::TextWrapped("%d handle(s) move nothing:", int(report.size()));
+    ImGui::PopStyleColor();
     for (const ZeroWeightHandle& z : report) ImGui::BulletText("%d %s (max %.2g)", z.handle, z.name.c_str(), z.max_weight);
   }
 }
@@ -142,7 +145,7 @@ void locks_and_report(const Document& doc, WeightToolsUi& ui) {
 void Editor::draw_weight_tools_section() {
   WeightToolsUi& ui = weight_tools_;
   if (!doc_.has_weights()) {
-    ImGui::TextDisabled("bind first: the tools edit the bind's weights");
+    text_disabled_wrapped("bind first: the tools edit the bind's weights");
     return;
   }
   ui.locked = valid_locks(ui.locked, doc_.num_handles());

@@ -1,3 +1,7 @@
+# What the panels show, as plain data (app/editor/view_model): layout, labels, the in-between of a
+# transition interval, the rig's fade over other meshes.
+dfm_test(test_editor_view_model SOURCES test_editor_view_model.cpp ${PROJECT_SOURCE_DIR}/app/editor/view_model.cpp
+         LIBS dfm_core)
 # The editor's CPU logic: camera and picking (core/view), and the gizmo, built from its sources so a
 # half-written GL pass in render/ never blocks these tests.
 dfm_test(test_camera SOURCES test_camera.cpp LIBS dfm_view)
