@@ -755,4 +755,7 @@ TEST_CASE("scene view: the grid shows without a surface", "[editor][scene_view]"
   REQUIRE_FALSE(gpu.lines.empty());
   REQUIRE(gpu.lines.front().depth_test);
   REQUIRE(gpu.lines.front().vertices.size() > 8);
+  // ...and framing fits that grid (the floor of the 2-unit box about the origin).
+  REQUIRE(scene.framing_bounds().contains(Vector3d(0.9, 0, -0.9)));
+  REQUIRE(scene.framing_bounds().contains(Vector3d(-0.9, 0, 0.9)));
 }

@@ -299,9 +299,8 @@ int main(int argc, char** argv) {
     cam.target = {0, 0, 0};
     doc.set_camera(cam);
     doc.set_selection({});
-    dfm::PosingSettings posing;
-    posing.fast = true;  // posing by dragging is the editor's default (FAST solves once bound)
-    doc.set_posing(posing);
+    // FAST stays off as in every other document (issue 38): the Posing panel turns it on when a handle
+    // is made free or pinned, or by its checkbox.
     doc.save_scene((out / "default.scene.json").string());
     std::printf("default scene: %d vertices, %d faces, %d handles -> %s\n", surface.num_vertices(),
                 surface.num_faces(), doc.num_handles(), (out / "default.scene.json").string().c_str());

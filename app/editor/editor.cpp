@@ -110,6 +110,7 @@ Editor::Editor(const EditorOptions& opts)
   view_ = std::make_unique<SceneView>(*gpu_);
   shape_space_ = std::make_unique<ShapeSpacePanel>();
   last_autosave_ = std::chrono::steady_clock::now();
+  cam_.orientation = default_orientation();  // an empty document shows its grid from above, not edge-on
 }
 
 Editor::~Editor() {
@@ -147,6 +148,7 @@ bool is_mesh_extension(const std::string& ext) {
 }  // namespace
 
 void Editor::open_file(const std::string& path) {
+  if (const std::string why = unopenable_reason(path); !why.empty()) throw Error(why);  // e.g. a .glb
   const std::string ext = file_extension(path);
   if (ends_with(path, ".json")) {
     doc_.load_scene(path);
@@ -201,7 +203,6 @@ void Editor::open_any(const std::string& path) {
   }
   pending_open_.clear();
   try {
-    if (const std::string why = unopenable_reason(path); !why.empty()) throw Error(why);
     open_file(path);
     files_.add_recent(path);
     status("opened " + path + (new_document && ext != "json" ? " (a new document)" : ""));

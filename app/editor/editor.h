@@ -140,6 +140,8 @@ class Editor {
   void draw_weights_section();
   void draw_transform_section();
   void draw_posing_section();  // pose_panels.cpp
+  // --ui panels=weights:posing: the right panel's sections to show open (the others closed).
+  bool panel_ui_option(const std::string& key, const std::string& value);
   // shape_space_panel.cpp: the Shape space panel (Alexa 2002, ch. 5) and its --ui options.
   void draw_shape_space_section();
   bool shape_space_ui_option(const std::string& key, const std::string& value);
@@ -208,6 +210,7 @@ class Editor {
   bool viewport_hovered_ = false;
   double timeline_h_ = 118;  // the timeline's height (its toolbar wraps to more rows on narrow windows)
   double frame_rate_ = 24;   // the timeline shows time as frames at this rate (and seconds)
+  int open_sections_ = -1;   // --ui panels: a bit per right-panel section to open at the next frame
   // The panels for the window's current size (view_model.h's layout_panels): draw_ui lays them out, and
   // framing before the first frame fits the scene into the viewport they leave.
   PanelLayout panel_layout() const;

@@ -141,7 +141,7 @@ void Editor::apply_ui_options(const std::string& spec) {
     if (eq == std::string::npos) throw Error("--ui: expected key=value, got '" + item + "'");
     const std::string k = item.substr(0, eq), v = item.substr(eq + 1);
     auto bad = [&]() { return Error("--ui: bad value '" + v + "' for " + k); };
-    if (shape_space_ui_option(k, v)) {
+    if (shape_space_ui_option(k, v) || panel_ui_option(k, v)) {
     } else if (k == "tool") {
       if (v == "select") tool_ = Tool::Select;
       else if (v == "point") tool_ = Tool::PlacePoint;
@@ -184,7 +184,7 @@ void Editor::apply_ui_options(const std::string& spec) {
     } else if (k == "vertex") {
       picked_vertex_ = std::atoi(v.c_str());
     } else {
-      throw Error("--ui: unknown key '" + k + "' (tool, weights, wireframe, ortho, grid, handles, preset, sweep, vertex, cursor, frame)");
+      throw Error("--ui: unknown key '" + k + "' (tool, weights, wireframe, ortho, grid, handles, preset, sweep, vertex, cursor, frame, panels)");
     }
   }
 }

@@ -326,13 +326,41 @@ void Editor::draw_outliner() {
   ImGui::EndChild();
 }
 
+namespace {
+constexpr const char* kSections[] = {"view", "bind", "weights", "transform", "posing"};
+}  // namespace
+
 void Editor::draw_right_panel() {
-  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) draw_view_section();
-  if (ImGui::CollapsingHeader("Bind", ImGuiTreeNodeFlags_DefaultOpen)) draw_bind_section();
-  if (ImGui::CollapsingHeader("Weights", ImGuiTreeNodeFlags_DefaultOpen)) draw_weights_section();
-  if (ImGui::CollapsingHeader("Transform", ImGuiTreeNodeFlags_DefaultOpen)) draw_transform_section();
-  if (ImGui::CollapsingHeader("Posing", ImGuiTreeNodeFlags_DefaultOpen)) draw_posing_section();
+  // --ui panels=...: the sections it names open, the others closed (once).
+  auto header = [&](const char* label, int index) {
+    if (open_sections_ >= 0) ImGui::SetNextItemOpen((open_sections_ >> index) & 1, ImGuiCond_Always);
+    return ImGui::CollapsingHeader(label, ImGuiTreeNodeFlags_DefaultOpen);
+  };
+  if (header("View", 0)) draw_view_section();
+  if (header("Bind", 1)) draw_bind_section();
+  if (header("Weights", 2)) draw_weights_section();
+  if (header("Transform", 3)) draw_transform_section();
+  if (header("Posing", 4)) draw_posing_section();
+  open_sections_ = -1;
   draw_shape_space_section();  // its own header (closed by default)
+}
+
+bool Editor::panel_ui_option(const std::string& key, const std::string& value) {
+  if (key != "panels") return false;
+  int mask = 0;
+  for (size_t pos = 0; pos <= value.size();) {
+    size_t end = value.find(':', pos);
+    if (end == std::string::npos) end = value.size();
+    const std::string name = value.substr(pos, end - pos);
+    pos = end + 1;
+    if (name.empty()) continue;
+    const auto it = std::find(std::begin(kSections), std::end(kSections), name);
+    if (it == std::end(kSections))
+      throw Error("--ui: panels takes view, bind, weights, transform and posing joined by ':', got '" + name + "'");
+    mask |= 1 << int(it - std::begin(kSections));
+  }
+  open_sections_ = mask;
+  return true;
 }
 
 void Editor::draw_view_section() {

@@ -59,8 +59,10 @@ void Editor::draw_transform_section() {
       if (angle == 0.0) {
         text_disabled_wrapped("rotation now: none");
       } else {
-        text_disabled_wrapped("rotation now: %.1f deg about (%.2f, %.2f, %.2f)", angle, display_value(aa.axis().x(), 2),
-                              display_value(aa.axis().y(), 2), display_value(aa.axis().z(), 2));
+        // Two lines: a narrow panel wraps at spaces, and the axis has none to break at.
+        text_disabled_wrapped("rotation now: %.1f deg", angle);
+        text_disabled_wrapped("about (%.2f, %.2f, %.2f)", display_value(aa.axis().x(), 2), display_value(aa.axis().y(), 2),
+                              display_value(aa.axis().z(), 2));
       }
       if (ImGui::Button("Apply rotation", ImVec2(-1, 0))) {
         const Eigen::Quaterniond q = Eigen::AngleAxisd(deg[2] * M_PI / 180, Eigen::Vector3d::UnitZ()) *
@@ -98,7 +100,15 @@ void Editor::draw_posing_section() {
       flow.next(ItemFlow::check_width(constraint_state_name(c)));
       changed |= ImGui::RadioButton(constraint_state_name(c), &s, static_cast<int>(c));
     }
-    if (changed) doc_.set_handle_state(h, static_cast<HandleConstraint>(s));
+    if (changed) {
+      // A handle's state only matters to FAST: choosing one turns FAST on (one undo step), as the IK
+      // chain does; FAST is off by default in every document.
+      PosingSettings q = doc_.posing();
+      q.fast = true;
+      q.states = states;
+      q.states[h] = static_cast<HandleConstraint>(s);
+      doc_.set_posing(q);
+    }
     const HandleRef r = handle_ref(doc_.rig(), h);
     if (r.kind == HandleKind::Bone && ImGui::Button("IK chain to this bone's tip", ImVec2(-1, 0))) {
       PosingSettings q = doc_.posing();

@@ -11,6 +11,7 @@
 #include "app/editor/slice_cache.h"
 #include "app/editor/view_model.h"
 #include "core/anim/interpolate.h"
+#include "core/scene/key_surfaces.h"
 #include "core/anim/interval_slice.h"
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
@@ -23,6 +24,12 @@
 #include "core/skin/stbs.h"
 
 namespace dfm::editor {
+
+namespace {
+// No surface (an empty document, a file that failed to open): the grid lies about the origin, 2 units
+// wide, and framing fits it.
+const Eigen::AlignedBox3d kEmptyBox(Eigen::Vector3d(-1, 0, -1), Eigen::Vector3d(1, 0, 1));
+}  // namespace
 
 Eigen::Vector3f handle_color(int handle) {
   // Golden-ratio hue steps give well separated colours for any count; fixed saturation and value.
@@ -416,7 +423,7 @@ Eigen::AlignedBox3d SceneView::framing_bounds() const {
   Eigen::AlignedBox3d b = bounds_;
   for (const Eigen::MatrixXd* P : {&handle_pos_, &joint_pos_})
     for (int i = 0; i < P->rows(); ++i) b.extend(Eigen::Vector3d(P->row(i)));
-  return b;
+  return b.isEmpty() ? kEmptyBox : b;
 }
 
 Pose SceneView::shown_pose(const Document& doc) const {
@@ -424,7 +431,7 @@ Pose SceneView::shown_pose(const Document& doc) const {
   const KeyTrack& track = deformer_->builder.track();
   if (showing_slice_ && synced_settings_.slice_axis == SliceAxis::T && track.size() >= 2) {
     try {
-      return sample_track(track, doc.time());
+      return animation_pose(doc, doc.time());
     } catch (...) {
     }
   }
@@ -465,7 +472,7 @@ void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
     // A time slice shows the animation: the handles follow it (the interpolated key poses).
     const Deformer& d = *deformer_;
     const KeyTrack& track = d.builder.track();
-    pose = showing_slice_ && s.slice_axis == SliceAxis::T && track.size() >= 2 ? sample_track(track, doc.time()) : doc.pose();
+    pose = showing_slice_ && s.slice_axis == SliceAxis::T && track.size() >= 2 ? animation_pose(doc, doc.time()) : doc.pose();
   } catch (...) {
   }
   const bool posed = !display_is_rest_ && pose.size() == n;
@@ -502,9 +509,7 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
   style.isolines = s.weight_view == WeightView::Selected ? 10.0f : 0.0f;
   style.cull_back_faces = display_closed_;
   if (s.grid) {
-    // No surface (an empty document, a file that failed to open): a grid about the origin, 2 units wide.
-    const Eigen::AlignedBox3d b = bounds_.isEmpty() ? Eigen::AlignedBox3d(Eigen::Vector3d(-1, 0, -1), Eigen::Vector3d(1, 0, 1))
-                                                    : bounds_;
+    const Eigen::AlignedBox3d b = bounds_.isEmpty() ? kEmptyBox : bounds_;
     const double diag = b.diagonal().norm();
     const double spacing = gl::nice_spacing(2.5 * diag, 24);
     const Eigen::Vector3d c = b.center();

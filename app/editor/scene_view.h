@@ -74,7 +74,7 @@ class SceneView {
   bool display_is_rest() const { return display_is_rest_; }
   Eigen::AlignedBox3d surface_bounds() const { return bounds_; }
   // What "Frame all" fits: the surface's bounds and every handle and joint as displayed (handles such
-  // as the default scene's ear points lie outside the surface).
+  // as the default scene's ear points lie outside the surface); with neither, the grid drawn then.
   Eigen::AlignedBox3d framing_bounds() const;
   // Handle glyph positions as displayed (posed when posing), rows in handle order; joints separately.
   const Eigen::MatrixXd& handle_positions() const { return handle_pos_; }

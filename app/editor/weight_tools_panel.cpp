@@ -25,8 +25,13 @@ std::vector<int> valid_locks(std::vector<int> locked, int num_handles) {
 using RunTool = std::function<void(const char* what, const std::function<std::string()>& tool)>;
 
 constexpr float kButtonW = 96;
-// The width left on this line for one more item before a right-aligned button.
-float fill() { return std::max(40.0f, ImGui::GetContentRegionAvail().x - kButtonW - ImGui::GetStyle().ItemSpacing.x); }
+// A row of settings then its button fits one line on a wide panel; on a narrow one (under 280 px) the
+// settings take the whole line and the button the next, so no slider's text is cut.
+bool roomy() { return ImGui::GetContentRegionAvail().x >= 280.0f; }
+// The width left on this line for one more item before a right-aligned button (wide) or the line's end.
+float fill(bool wide) {
+  return std::max(40.0f, ImGui::GetContentRegionAvail().x - (wide ? kButtonW + ImGui::GetStyle().ItemSpacing.x : 0.0f));
+}
 
 // A combo without an arrow (the panel is narrow).
 void small_combo(const char* id, int& value, const char* const* items, int count) {
@@ -37,13 +42,14 @@ void small_combo(const char* id, int& value, const char* const* items, int count
 }
 
 void limit_smooth_normalize(Document& doc, WeightToolsUi& ui, const RunTool& run) {
+  const bool wide = roomy();
   char buf[160];
   ImGui::SetNextItemWidth(70);
   ImGui::SliderInt("##k", &ui.limit_k, 1, std::max(1, std::min(doc.num_handles(), 8)), "k %d");
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(fill());
+  ImGui::SetNextItemWidth(fill(wide));
   ImGui::SliderFloat("##radius", &ui.limit_radius, 0.0f, 5.0f, "radius %.1f");
-  ImGui::SameLine();
+  if (wide) ImGui::SameLine();
   if (ImGui::Button("Limit total", ImVec2(-1, 0)))
     run("Limit total", [&] {
       const LimitReport r = doc.weights_limit({ui.limit_k, ui.limit_radius});
@@ -56,9 +62,9 @@ void limit_smooth_normalize(Document& doc, WeightToolsUi& ui, const RunTool& run
   ImGui::SetNextItemWidth(70);
   ImGui::SliderInt("##iter", &ui.smooth_iterations, 1, 20, "%d x");
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(fill());
+  ImGui::SetNextItemWidth(fill(wide));
   ImGui::SliderFloat("##factor", &ui.smooth_factor, 0.05f, 1.0f, "factor %.2f");
-  ImGui::SameLine();
+  if (wide) ImGui::SameLine();
   if (ImGui::Button("Smooth", ImVec2(-1, 0)))
     run("Smooth", [&] {
       doc.weights_smooth({ui.smooth_iterations, ui.smooth_factor, ui.smooth_cotangent}, ui.locked);
@@ -80,12 +86,13 @@ void limit_smooth_normalize(Document& doc, WeightToolsUi& ui, const RunTool& run
 }
 
 void mirror(Document& doc, WeightToolsUi& ui, const RunTool& run) {
+  const bool wide = roomy();
   static const char* const axes[] = {"x", "y", "z"};
   static const char* const modes[] = {"+ to -", "- to +", "flip"};
   ImGui::SetNextItemWidth(28);
   small_combo("##axis", ui.mirror_axis, axes, 3);
   ImGui::SameLine();
-  const float w = fill(), offset_w = 52;
+  const float w = fill(wide), offset_w = 52;
   ImGui::SetNextItemWidth(offset_w);
   ImGui::InputFloat("##offset", &ui.mirror_offset, 0, 0, "%.3f");
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The plane: axis = this offset.");
@@ -93,7 +100,7 @@ void mirror(Document& doc, WeightToolsUi& ui, const RunTool& run) {
   ImGui::SetNextItemWidth(std::max(40.0f, w - offset_w - ImGui::GetStyle().ItemSpacing.x));
   small_combo("##mode", ui.mirror_mode, modes, 3);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("+ to -: the positive side copied onto the other; flip: both sides swap.");
-  ImGui::SameLine();
+  if (wide) ImGui::SameLine();
   if (ImGui::Button("Mirror", ImVec2(-1, 0)))
     run("Mirror", [&] {
       MirrorOptions o;
