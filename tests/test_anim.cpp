@@ -158,3 +158,49 @@ TEST_CASE("baking samples every key and the in-betweens", "[anim]") {
   auto bad_skin = [&](const Pose&) { return Eigen::MatrixXd::Zero(++n, 3).eval(); };
   REQUIRE_THROWS_AS(bake_layers(track, 0, bad_skin), Error);
 }
+
+// Between keys a bone turns about its own first joint and its child stays on its end (issue 38, 3): the
+// keys' parameters are interpolated, then forward kinematics places the bones. Interpolating the
+// evaluated transforms instead blends the translation part linearly and slides the joint.
+TEST_CASE("pose parameters interpolate in each handle's own frame: joints stay joined", "[anim]") {
+  Rig rig;
+  rig.skeleton.joints.resize(3, 3);
+  rig.skeleton.joints << 1, 0, 0,  //
+      2, 0, 0,                    //
+      3, 0, 0;
+  rig.skeleton.bones = {{0, 1, -1, "upper"}, {1, 2, 0, "lower"}};
+  rig.points.push_back({Eigen::Vector3d(0, 2, 0), "p"});
+  const PoseParams a = rest_pose_params(rig);
+  PoseParams b = a;
+  b.bone_rotation[0] = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  b.point_rotation[0] = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
+  b.point_translation[0] = Eigen::Vector3d(0, 0, 1);
+  const PoseParams mid = interpolate_pose_params(rig, a, b, 0.5);
+  CHECK(mid.bone_rotation[0].angularDistance(Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()))) <
+        1e-12);
+  CHECK((mid.point_translation[0] - Eigen::Vector3d(0, 0, 0.5)).norm() < 1e-15);
+  const Pose p = evaluate_pose(rig, mid);
+  // Point handle 0: turned 45 degrees about x about itself, moved half way.
+  const Eigen::Vector3d q(0, 2, 0), x = q + Eigen::Vector3d(0, 1, 0);
+  CHECK((p.transforms[0] * q - Eigen::Vector3d(0, 2, 0.5)).norm() < 1e-12);
+  CHECK((p.transforms[0] * x - Eigen::Vector3d(0, 2 + std::sqrt(0.5), 0.5 + std::sqrt(0.5))).norm() < 1e-12);
+  // Both bones turned 45 degrees about z through joint (1, 0, 0): the joint stays, the elbow and tip move
+  // on the circle.
+  const double c = std::sqrt(0.5);
+  for (int bone : {1, 2}) {
+    const Eigen::Affine3d& T = p.transforms[bone];
+    CHECK((T * Eigen::Vector3d(1, 0, 0) - Eigen::Vector3d(1, 0, 0)).norm() < 1e-12);
+    CHECK((T * Eigen::Vector3d(2, 0, 0) - Eigen::Vector3d(1 + c, c, 0)).norm() < 1e-12);
+    CHECK((T * Eigen::Vector3d(3, 0, 0) - Eigen::Vector3d(1 + 2 * c, 2 * c, 0)).norm() < 1e-12);
+  }
+  // The evaluated transforms blended instead: R45 j + (j - R90 j) / 2 leaves the joint j = (1, 0, 0)
+  // by 1 - cos 45 degrees = 0.29.
+  const Pose blended = interpolate_pose(evaluate_pose(rig, a), evaluate_pose(rig, b), 0.5);
+  CHECK((blended.transforms[1] * Eigen::Vector3d(1, 0, 0) - Eigen::Vector3d(1, 0, 0)).norm() ==
+        Approx(1 - c).epsilon(1e-9));
+  // The ends are the keys, and mismatched parameters are refused.
+  CHECK(interpolate_pose_params(rig, a, b, 1.0).bone_rotation[0].angularDistance(b.bone_rotation[0]) < 1e-15);
+  PoseParams bad = b;
+  bad.bone_rotation.pop_back();
+  CHECK_THROWS_WITH(interpolate_pose_params(rig, a, bad, 0.5), Catch::Contains("bone rotations"));
+}

@@ -3,13 +3,15 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
+
 #include "core/anim/bake.h"
-#include "core/anim/interpolate.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
 #include "core/scene/document.h"
@@ -184,9 +186,10 @@ TEST_CASE("frames between pose keys are the teddy's mesh: save-posed, save-frame
   REQUIRE(got.num_vertices() == rest.num_vertices());
   REQUIRE(got.F == rest.F);
 
-  // The reference: the two baked layers around t = 0.5 (each the keys' pose interpolated to its time,
-  // skinned by LBS written out here), and each vertex on the straight segment between its two copies
-  // at the fraction the time gives.
+  // The reference: the two baked layers around t = 0.5, and each vertex on the straight segment
+  // between its two copies at the fraction the time gives. At time t the upper arm and what hangs from
+  // it have turned 45 t degrees about z through the arm's first joint (the keys' bone rotation
+  // interpolated in its own frame), everything else is at rest; skinned by LBS written out here.
   std::vector<double> layer_times = bake_times(pose_key_track(d), d.inbetweens());
   const auto hi = std::upper_bound(layer_times.begin(), layer_times.end(), 0.5);
   REQUIRE(hi != layer_times.begin());
@@ -194,12 +197,25 @@ TEST_CASE("frames between pose keys are the teddy's mesh: save-posed, save-frame
   const double t0 = *(hi - 1), t1 = *hi;
   REQUIRE(t0 < 0.5);
   const Eigen::MatrixXd& W = d.weights();
+  const Skeleton& sk = d.rig().skeleton;
+  const int np = static_cast<int>(d.rig().points.size()), arm = 5 - np;
+  REQUIRE(sk.bones[arm].name == "l_upper_arm");
+  const Eigen::Vector3d shoulder = sk.joints.row(sk.bones[arm].a).transpose();
+  auto turns = [&](int bone) {
+    for (int b = bone; b >= 0; b = sk.bones[b].parent)
+      if (b == arm) return true;
+    return false;
+  };
   auto lbs = [&](double t) {
-    const Pose pose = sample_track(pose_key_track(d), t);
+    const Eigen::Affine3d R = Eigen::Translation3d(shoulder) *
+                              Eigen::AngleAxisd(t * M_PI / 4, Eigen::Vector3d::UnitZ()) * Eigen::Translation3d(-shoulder);
     Eigen::MatrixXd P = Eigen::MatrixXd::Zero(rest.num_vertices(), 3);
     for (int i = 0; i < rest.num_vertices(); ++i)
-      for (int j = 0; j < pose.size(); ++j)
-        P.row(i) += W(i, j) * (pose.transforms[j] * Eigen::Vector3d(rest.V.row(i).transpose())).transpose();
+      for (int j = 0; j < W.cols(); ++j) {
+        const bool turned = j >= np && j - np < sk.num_bones() && turns(j - np);
+        const Eigen::Vector3d v = rest.V.row(i).transpose();
+        P.row(i) += W(i, j) * (turned ? Eigen::Vector3d(R * v) : v).transpose();
+      }
     return P;
   };
   const Eigen::MatrixXd P0 = lbs(t0), P1 = lbs(t1);

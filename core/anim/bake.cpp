@@ -23,12 +23,17 @@ std::vector<double> bake_times(const KeyTrack& track, int inbetweens) {
 
 BakedLayers bake_layers(const KeyTrack& track, int inbetweens, const SkinFunction& skin,
                         const BakeProgress& progress) {
+  return bake_layers(bake_times(track, inbetweens), [&](double t) { return sample_track(track, t); }, skin, progress);
+}
+
+BakedLayers bake_layers(const std::vector<double>& times, const std::function<Pose(double)>& pose_at,
+                        const SkinFunction& skin, const BakeProgress& progress) {
   BakedLayers out;
-  out.times = bake_times(track, inbetweens);
+  out.times = times;
   const int total = static_cast<int>(out.times.size());
   out.positions.reserve(total);
   for (int i = 0; i < total; ++i) {
-    Eigen::MatrixXd P = skin(sample_track(track, out.times[i]));
+    Eigen::MatrixXd P = skin(pose_at(out.times[i]));
     if (P.cols() != 3 || (i > 0 && P.rows() != out.positions[0].rows()))
       throw Error("bake: skinning at time " + std::to_string(out.times[i]) + " gave " +
                   std::to_string(P.rows()) + " x " + std::to_string(P.cols()) + " positions, expected " +

@@ -24,6 +24,11 @@ struct BakedLayers {
 // The layer times: every key, plus `inbetweens` evenly spaced times strictly inside each interval.
 std::vector<double> bake_times(const KeyTrack& track, int inbetweens);
 
+// Skins pose_at(t) at each of `times` (strictly increasing). Throws dfm::Error on a skin result whose
+// size changes between layers, or cancellation.
+BakedLayers bake_layers(const std::vector<double>& times, const std::function<Pose(double)>& pose_at,
+                        const SkinFunction& skin, const BakeProgress& progress = {});
+
 // Samples the track (rotation-aware, see interpolate.h) at bake_times and skins each pose.
 // Throws dfm::Error on an empty track, inbetweens < 0, a skin result whose size changes between
 // layers, or cancellation.

@@ -50,6 +50,58 @@ Pose interpolate_pose(const Pose& a, const Pose& b, double u) {
   return out;
 }
 
+namespace {
+
+template <class T, class Blend>
+std::vector<T> blend_each(const std::vector<T>& a, const std::vector<T>& b, const char* what, Blend blend) {
+  if (a.size() != b.size())
+    throw Error(std::string("cannot interpolate pose parameters: ") + what + " " + std::to_string(a.size()) +
+                " and " + std::to_string(b.size()));
+  std::vector<T> out;
+  out.reserve(a.size());
+  for (size_t i = 0; i < a.size(); ++i) out.push_back(blend(a[i], b[i]));
+  return out;
+}
+
+}  // namespace
+
+PoseParams interpolate_pose_params(const Rig& rig, const PoseParams& a, const PoseParams& b, double u) {
+  const auto slerp = [u](const Eigen::Quaterniond& p, const Eigen::Quaterniond& q) {
+    return p.normalized().slerp(u, q.normalized());  // the short arc
+  };
+  const auto lerp = [u](const Eigen::Vector3d& p, const Eigen::Vector3d& q) -> Eigen::Vector3d {
+    return (1.0 - u) * p + u * q;
+  };
+  const auto affine = [u](const Eigen::Affine3d& p, const Eigen::Affine3d& q) { return interpolate_affine(p, q, u); };
+  PoseParams out;
+  out.bone_rotation = blend_each(a.bone_rotation, b.bone_rotation, "bone rotations", slerp);
+  out.bone_translation = blend_each(a.bone_translation, b.bone_translation, "bone translations", lerp);
+  out.point_translation = blend_each(a.point_translation, b.point_translation, "point translations", lerp);
+  out.point_rotation = blend_each(a.point_rotation, b.point_rotation, "point rotations", slerp);
+  out.cage_translation = blend_each(a.cage_translation, b.cage_translation, "cage translations", lerp);
+  out.region_transform = blend_each(a.region_transform, b.region_transform, "region transforms", affine);
+  if (!a.bone_twist_stretch.empty() || !b.bone_twist_stretch.empty()) {
+    const std::vector<BoneTwistStretch> rest(rig.skeleton.num_bones());
+    out.bone_twist_stretch =
+        blend_each(a.bone_twist_stretch.empty() ? rest : a.bone_twist_stretch,
+                   b.bone_twist_stretch.empty() ? rest : b.bone_twist_stretch, "bone twists",
+                   [u](const BoneTwistStretch& p, const BoneTwistStretch& q) {
+                     return BoneTwistStretch{(1.0 - u) * p.twist + u * q.twist, (1.0 - u) * p.stretch + u * q.stretch};
+                   });
+  }
+  if (!a.solved.empty() || !b.solved.empty()) {
+    const Pose own_a = evaluate_handle_parameters(rig, a), own_b = evaluate_handle_parameters(rig, b);
+    std::map<int, Eigen::Affine3d> ends;
+    for (const auto* m : {&a.solved, &b.solved})
+      for (const auto& [h, T] : *m) ends[h] = T;
+    for (const auto& [h, unused] : ends) {
+      if (h < 0 || h >= own_a.size() || h >= own_b.size()) continue;  // evaluate_pose ignores these too
+      out.solved[h] = affine(own_a.transforms[h], own_b.transforms[h]);
+    }
+  }
+  return out;
+}
+
 Pose sample_track(const KeyTrack& track, double time) {
   const KeyTrack::Locus at = track.locate(time);
   const auto& keys = track.keys();

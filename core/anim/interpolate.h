@@ -7,6 +7,7 @@
 
 #include "core/anim/keyframes.h"
 #include "core/rig/pose.h"
+#include "core/rig/pose_params.h"
 
 namespace dfm {
 
@@ -24,6 +25,16 @@ Eigen::Affine3d interpolate_affine(const Eigen::Affine3d& a, const Eigen::Affine
 
 // Handle by handle; the poses must have the same size (dfm::Error otherwise).
 Pose interpolate_pose(const Pose& a, const Pose& b, double u);
+
+// The pose parameters (what a key holds, pose_params.h) a fraction u in [0,1] of the way from a to b:
+// each rotation slerped in its own frame (a bone's in its parent's, about its first joint; a point's
+// about the point), translations, twist and stretch blended linearly, region transforms and FAST's
+// solved transforms by interpolate_affine (a handle solved in one key only takes, in the other, the
+// transform its parameters give: evaluate_handle_parameters). evaluate_pose of the result keeps every
+// joint joined between keys, which interpolate_pose of the evaluated transforms does not: blending the
+// translation part linearly moves the pivot of a rotation, so a bone turning about its first joint
+// would leave it. Throws dfm::Error when a and b do not fit the rig.
+PoseParams interpolate_pose_params(const Rig& rig, const PoseParams& a, const PoseParams& b, double u);
 
 // The pose of a track at any time (clamped to the first/last key outside the track).
 // Throws dfm::Error on an empty track or a reflecting transform in a key used.

@@ -42,6 +42,18 @@ KeyTrack pose_key_track(const Document& doc) {
   return track;
 }
 
+Pose animation_pose(const Document& doc, double t) {
+  std::vector<const SceneKey*> keys;
+  for (const SceneKey& k : doc.keys())
+    if (!k.is_mesh()) keys.push_back(&k);
+  if (keys.empty()) throw Error("the animation has no pose key");
+  size_t i = 0;  // the last key at or before t (the first when t is before it)
+  while (i + 1 < keys.size() && keys[i + 1]->time <= t) ++i;
+  if (t <= keys[i]->time || i + 1 == keys.size()) return evaluate_pose(doc.rig(), keys[i]->params);
+  const double u = (t - keys[i]->time) / (keys[i + 1]->time - keys[i]->time);
+  return evaluate_pose(doc.rig(), interpolate_pose_params(doc.rig(), keys[i]->params, keys[i + 1]->params, u));
+}
+
 namespace {
 
 // The key surfaces with the rig's in-betweens inside each run of pose keys; key[i]: where key i landed.
@@ -71,9 +83,9 @@ std::vector<KeySurface> baked_key_surfaces(const Document& doc, std::vector<int>
     KeyTrack track;
     for (int k = i; k < j; ++k) track.set({keys[k].time, poses[k]});
     // Twist/stretch is per key and not part of a Pose, so the animation skins without it.
-    const BakedLayers layers = bake_layers(track, doc.inbetweens(), [&](const Pose& p) {
-      return skin(doc.method(), binding, p, {}).V;
-    });
+    const BakedLayers layers =
+        bake_layers(bake_times(track, doc.inbetweens()), [&](double t) { return animation_pose(doc, t); },
+                    [&](const Pose& p) { return skin(doc.method(), binding, p, {}).V; });
     int k = i;
     for (size_t l = 0; l < layers.times.size(); ++l) {
       const bool at_key = k < j && layers.times[l] == keys[k].time;
@@ -132,7 +144,7 @@ BakedLayers baked_pose_frames(const Document& doc, int count) {
   const auto skin_pose = [&](const Pose& p) { return skin(doc.method(), binding, p, {}).V; };
   for (int i = 0; i < count; ++i) {
     out.times.push_back(i + 1 == count ? track.end() : track.start() + (track.end() - track.start()) * i / (count - 1));
-    out.positions.push_back(skin_pose(sample_track(track, out.times.back())));
+    out.positions.push_back(skin_pose(animation_pose(doc, out.times.back())));
   }
   return out;
 }

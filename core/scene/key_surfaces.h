@@ -3,9 +3,9 @@
 // through them: the one place the editor's view, the script (save-posed, save-frames) and the UI's
 // saves turn keys into a manifold.
 //
-// Consecutive pose keys are baked as always (bake_layers with doc.inbetweens(), skinned with the
-// document's method and weights: one layer per key plus the in-betweens inside each interval of two
-// pose keys); a mesh key contributes its own mesh at its time. build_manifold_sequence then joins
+// Consecutive pose keys are baked (bake_layers at bake_times with doc.inbetweens(), each layer the
+// animation_pose skinned with the document's method and weights: one layer per key plus the
+// in-betweens inside each interval of two pose keys); a mesh key contributes its own mesh at its time. build_manifold_sequence then joins
 // neighbours with the same triangle list by the exact prism build and the others by a transition.
 #include <functional>
 #include <vector>
@@ -23,6 +23,12 @@ std::vector<KeySurface> key_surfaces(const Document& doc);
 
 // The pose keys as a track (their times and evaluated poses), mesh keys left out.
 KeyTrack pose_key_track(const Document& doc);
+
+// The pose the animation has at time t: between two pose keys (mesh keys left out) their parameters
+// interpolated (interpolate_pose_params: rotations in their own frames) and evaluated by forward
+// kinematics, so every bone stays on its parent's end between keys; a key's own pose at its time;
+// the first or last key's before or after them. Throws dfm::Error without pose keys.
+Pose animation_pose(const Document& doc, double t);
 
 // The pose keys as frames of the surface's one connectivity (for `deform compress`), skinned with the
 // document's method and weights. count = 0: the keys plus doc.inbetweens() in-betweens inside each
