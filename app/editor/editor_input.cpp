@@ -138,15 +138,17 @@ void Editor::tool_select(bool clicked, bool released) {
     const Eigen::MatrixXd& P = view_->handle_positions();
     const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
     Grab g;
-    // Points, cage vertices and regions by their glyph; joints; then bones by their segment.
-    int best = view::pick_projected_point(cam_, P, m, 9);
+    // Points, cage vertices and regions by their glyph; joints; then bones by their segment. Only what
+    // is drawn: not with Handles off, nor over a mesh the rig does not apply to (overlays hidden).
+    const bool rig_shown = show_handles_ && view_->overlay_opacity() >= kMinOverlayOpacity;
+    int best = rig_shown ? view::pick_projected_point(cam_, P, m, 9) : -1;
     if (best >= np && best < np + nb) best = -1;  // a bone's row is its first joint: pick bones by segment
     if (best >= 0) g = {Grab::Handle, best};
-    if (g.kind == Grab::None) {
+    if (g.kind == Grab::None && rig_shown) {
       const int j = view::pick_projected_point(cam_, view_->joint_positions(), m, 7);
       if (j >= 0) g = {Grab::Joint, j};
     }
-    if (g.kind == Grab::None && nb > 0) {
+    if (g.kind == Grab::None && nb > 0 && rig_shown) {
       std::vector<std::pair<int, int>> segs;
       for (const Bone& b : rig.skeleton.bones) segs.emplace_back(b.a, b.b);
       const int b = view::pick_projected_segment(cam_, view_->joint_positions(), segs, m, 6);
@@ -337,7 +339,8 @@ void Editor::tool_pose(bool clicked, bool released) {
   const Eigen::Vector2d m = mouse_in_viewport();
   const auto& sel = doc_.selection().handles;
   const Eigen::MatrixXd& P = view_->handle_positions();
-  if (sel.empty() || sel.front() >= P.rows()) {
+  const bool rig_shown = show_handles_ && view_->overlay_opacity() >= kMinOverlayOpacity;
+  if (sel.empty() || sel.front() >= P.rows() || !rig_shown) {  // no gizmo on a handle that is not drawn
     if (clicked) tool_select(true, false);  // click selects a handle to pose
     if (drag_ == Drag::Handle) {            // but posing never drags rest positions
       doc_.end_gesture();

@@ -535,7 +535,7 @@ void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, cons
   (void)s;
   // Over a surface that is not the rigged mesh (a transition, a key of other triangles) the rig fades.
   const float alpha = overlay_opacity_;
-  if (alpha < 0.02f) return;
+  if (alpha < kMinOverlayOpacity) return;
   const Rig& rig = doc.rig();
   const auto& sel = doc.selection().handles;
   auto selected = [&](int h) { return std::find(sel.begin(), sel.end(), h) != sel.end(); };

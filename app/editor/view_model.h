@@ -55,6 +55,8 @@ bool key_is_rigged(const Document& doc, int k);
 // surface shown is the rigged mesh, 0 at a key of another connectivity, and inside a transition a
 // linear fade from the rigged key's end (1) to the other's (0).
 float rig_overlay_opacity(const Document& doc, double t);
+// Below this opacity the overlays are not drawn at all, and the handles cannot be picked.
+constexpr float kMinOverlayOpacity = 0.02f;
 
 // The outliner's row for handle h: its number (what scripts take), its name and, when FAST is on and
 // `with_state`, its state, e.g. "5  l_upper_arm  [pinned]" (a narrow outliner marks the state on the

@@ -25,9 +25,9 @@ std::vector<int> valid_locks(std::vector<int> locked, int num_handles) {
 using RunTool = std::function<void(const char* what, const std::function<std::string()>& tool)>;
 
 constexpr float kButtonW = 96;
-// A row of settings then its button fits one line on a wide panel; on a narrow one (under 280 px) the
+// A row of settings then its button fits one line on a wide panel; on a narrow one (under 266 px) the
 // settings take the whole line and the button the next, so no slider's text is cut.
-bool roomy() { return ImGui::GetContentRegionAvail().x >= 280.0f; }
+bool roomy() { return ImGui::GetContentRegionAvail().x >= 266.0f; }  // k 70 + "radius 1.0" 84 + button 96 + spacing
 // The width left on this line for one more item before a right-aligned button (wide) or the line's end.
 float fill(bool wide) {
   return std::max(40.0f, ImGui::GetContentRegionAvail().x - (wide ? kButtonW + ImGui::GetStyle().ItemSpacing.x : 0.0f));
