@@ -516,7 +516,7 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
     gpu_.draw_lines(cam, gl::grid_lines(c.x(), c.z(), b.min().y(), 1.6 * diag, spacing), 1.0f, true);
   }
   gpu_.draw_surface(cam, style);
-  if (s.handles) draw_overlays(doc, cam, s);
+  if (s.handles) draw_overlays(doc, cam);
   // Per-frame extras, grouped by width.
   for (size_t i = 0; i < extra_line_widths_.size();) {
     size_t j = i;
@@ -531,8 +531,7 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
   extra_points_.clear();
 }
 
-void SceneView::draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s) {
-  (void)s;
+void SceneView::draw_overlays(const Document& doc, const view::Camera& cam) {
   // Over a surface that is not the rigged mesh (a transition, a key of other triangles) the rig fades.
   const float alpha = overlay_opacity_;
   if (alpha < kMinOverlayOpacity) return;

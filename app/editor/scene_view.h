@@ -97,7 +97,7 @@ class SceneView {
   bool surface_closed(const Document& doc);
   void show_rest(const TriMesh& rest, bool closed);
   void update_handles(const Document& doc, const ViewSettings& s);
-  void draw_overlays(const Document& doc, const view::Camera& cam, const ViewSettings& s);
+  void draw_overlays(const Document& doc, const view::Camera& cam);
 
   gl::RenderBackend& gpu_;
   std::unique_ptr<Deformer> deformer_;
