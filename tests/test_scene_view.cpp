@@ -487,6 +487,20 @@ TEST_CASE("scene view: handle overlays by selection and FAST state", "[editor][s
   for (const auto& v : bone_outline[0].vertices) require_color(v.color, kOutline);
   REQUIRE(index_of(gpu.lines, 10.0f) < index_of(gpu.lines, 5.0f));
   require_color(batches(gpu.points, 14.0f)[0].vertices[1].color, hsv(70 + 0.698034 * 300, 0.62, 0.92));  // handle 1 again
+  // A selected joint (the bone's tip): the selection's orange over a 15 px outline; the other stays grey.
+  doc.set_selection(Selection{{}, 1});
+  scene.sync(doc, s);
+  gpu.clear_draws();
+  scene.draw(doc, cam, s);
+  const auto sel_joints = batches(gpu.points, 8.0f);
+  REQUIRE(sel_joints.size() == 1);
+  require_color(sel_joints[0].vertices[0].color, Vector4f(0.70f, 0.72f, 0.76f, 1));
+  require_color(sel_joints[0].vertices[1].color, kSelected);
+  const auto joint_outline = batches(gpu.points, 15.0f);
+  REQUIRE(joint_outline.size() == 1);
+  REQUIRE(joint_outline[0].vertices.size() == 1);
+  REQUIRE(joint_outline[0].vertices[0].position[2] == 0.8f);
+  require_color(joint_outline[0].vertices[0].color, kOutline);
   doc.set_selection(Selection{{1, 2}, -1});
   // FAST marks (6 px): pinned dark, free white, position-constrained none; a bone's at its tip.
   const auto marks = batches(gpu.points, 6.0f);
