@@ -9,6 +9,7 @@
 #include "core/bind/cholesky.h"
 #include "core/bind/monotone_groups.h"
 #include "core/util/error.h"
+#include "core/util/hash.h"
 
 namespace dfm {
 namespace {
@@ -94,14 +95,10 @@ JointSolve solve_joint_reduced(const Eigen::SparseMatrix<double>& H, const Eigen
   return out;
 }
 
+// The active sets' bytes, concatenated (fixed sizes, so positions are unambiguous): a repeat detector.
 std::uint64_t hash_of(const std::vector<std::vector<char>>& active) {
-  std::uint64_t h = 1469598103934665603ull;
-  std::uint64_t base = 0;
-  for (const auto& a : active) {
-    for (size_t c = 0; c < a.size(); ++c)
-      if (a[c]) h = (h ^ (base + c + 0x9e3779b97f4a7c15ull)) * 1099511628211ull;
-    base += a.size();
-  }
+  std::uint64_t h = kFnv1aBasis;
+  for (const auto& a : active) h = fnv1a(h, a.data(), a.size());
   return h;
 }
 

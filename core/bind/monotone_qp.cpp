@@ -8,6 +8,7 @@
 #include "core/bind/cholesky.h"
 #include "core/bind/monotone_groups.h"
 #include "core/util/error.h"
+#include "core/util/hash.h"
 
 namespace dfm {
 namespace {
@@ -44,12 +45,7 @@ Eigen::VectorXd solve_reduced(const Eigen::SparseMatrix<double>& H, const Eigen:
   return x;
 }
 
-std::uint64_t hash_of(const std::vector<char>& active) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (size_t c = 0; c < active.size(); ++c)
-    if (active[c]) h = (h ^ (c + 0x9e3779b97f4a7c15ull)) * 1099511628211ull;
-  return h;
-}
+std::uint64_t hash_of(const std::vector<char>& active) { return fnv1a(kFnv1aBasis, active.data(), active.size()); }
 
 }  // namespace
 
