@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <unistd.h>
 #include <fstream>
 #include <sstream>
@@ -393,6 +394,74 @@ TEST_CASE("a mesh key round-trips; version 1 files (pose keys only) still load")
   spit(old_path, o.dump(1));
   Document h;
   CHECK_THROWS_WITH(h.load_scene(old_path), Catch::Contains("bind_settings.monotone"));
+}
+
+TEST_CASE("bind settings compare and save the robust volume's segmentation and cut") {
+  // Every field takes part in ==: change one at a time from the defaults.
+  const BindSettings base;
+  const std::vector<std::function<void(BindSettings&)>> changes = {
+      [](BindSettings& b) { b.volume.tetgen_switches = "pq1.2Y"; },
+      [](BindSettings& b) { b.volume.robust = VolumeOptions::Robust::Never; },
+      [](BindSettings& b) { b.volume.segmentation = VolumeOptions::Segmentation::Threshold; },
+      [](BindSettings& b) { b.volume.cut.gamma = 3.0; },
+      [](BindSettings& b) { b.volume.cut.sigma = 0.25; },
+      [](BindSettings& b) { b.volume.cut.surface_factor = 0.5; },
+      [](BindSettings& b) { b.max_influences = 4; },
+      [](BindSettings& b) { b.monotone = true; }};
+  for (size_t i = 0; i < changes.size(); ++i) {
+    BindSettings b;
+    changes[i](b);
+    CAPTURE(i);
+    CHECK_FALSE(b == base);
+    CHECK(b == b);
+  }
+
+  TempDir tmp;
+  const std::string path = tmp / "seg.scene.json";
+  Document d;
+  d.set_surface(test::octahedron(), "octa.obj");
+  d.add_point({0.1, 0.2, 0.3}, "ear");
+  BindSettings bs;
+  bs.volume.segmentation = VolumeOptions::Segmentation::Threshold;
+  bs.volume.cut.gamma = 3.5;
+  bs.volume.cut.sigma = 0.125;
+  bs.volume.cut.surface_factor = 0.75;
+  d.set_bind_settings(bs);
+  d.save_scene(path);
+  Document e;
+  e.load_scene(path);
+  CHECK(e.bind_settings().volume.segmentation == VolumeOptions::Segmentation::Threshold);
+  CHECK(e.bind_settings().volume.cut.gamma == 3.5);
+  CHECK(e.bind_settings().volume.cut.sigma == 0.125);
+  CHECK(e.bind_settings().volume.cut.surface_factor == 0.75);
+
+  // Scenes from before these were saved load with the defaults (Cut; gamma 2, sigma 0.4, factor 0).
+  json o = json::parse(slurp(path));
+  o["bind_settings"].erase("segmentation");
+  o["bind_settings"].erase("cut");
+  spit(path, o.dump(1));
+  Document f;
+  f.load_scene(path);
+  CHECK(f.bind_settings().volume.segmentation == VolumeOptions::Segmentation::Cut);
+  CHECK(f.bind_settings().volume.cut.gamma == 2.0);
+  CHECK(f.bind_settings().volume.cut.sigma == 0.4);
+  CHECK(f.bind_settings().volume.cut.surface_factor == 0.0);
+
+  // Bad values are refused, naming the field.
+  json bad = o;
+  bad["bind_settings"]["segmentation"] = "otsu";
+  spit(path, bad.dump(1));
+  Document g;
+  CHECK_THROWS_WITH(g.load_scene(path), Catch::Contains("bind_settings.segmentation"));
+  bad = o;
+  bad["bind_settings"]["cut"] = {{"gamma", 1.0}, {"sigma", 0.0}, {"surface_factor", 0.0}};
+  spit(path, bad.dump(1));
+  Document h;
+  CHECK_THROWS_WITH(h.load_scene(path), Catch::Contains("bind_settings.cut"));
+  bad["bind_settings"]["cut"].erase("surface_factor");
+  spit(path, bad.dump(1));
+  Document k;
+  CHECK_THROWS_WITH(k.load_scene(path), Catch::Contains("surface_factor"));
 }
 
 TEST_CASE("a missing scene file is an error naming it") {

@@ -22,6 +22,9 @@ struct VolumeOptions {
   // Threshold keeps those with winding number > 1/2 (Eq. 8.7).
   enum class Segmentation { Cut, Threshold } segmentation = Segmentation::Cut;
   GraphCutOptions cut;
+  bool operator==(const VolumeOptions& o) const {
+    return tetgen_switches == o.tetgen_switches && robust == o.robust && segmentation == o.segmentation && cut == o.cut;
+  }
 };
 
 // A piece of the volume (connected component of its tets, numbered in order of first vertex) that no

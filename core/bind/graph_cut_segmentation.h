@@ -26,6 +26,9 @@ struct GraphCutOptions {
   // input surface free to cut along, so thin parts bounded by facets are never shaved off for the sake
   // of a smaller boundary.
   double surface_factor = 0.0;
+  bool operator==(const GraphCutOptions& o) const {
+    return gamma == o.gamma && sigma == o.sigma && surface_factor == o.surface_factor;
+  }
 };
 
 // w: #T winding numbers (integral averages per tet). volume: #T tet volumes weighting the data term

@@ -14,8 +14,7 @@ bool Camera::operator==(const Camera& o) const {
   return position == o.position && target == o.target && up == o.up && fov_deg == o.fov_deg && ortho == o.ortho;
 }
 bool BindSettings::operator==(const BindSettings& o) const {
-  return volume.tetgen_switches == o.volume.tetgen_switches && volume.robust == o.volume.robust &&
-         max_influences == o.max_influences && monotone == o.monotone;
+  return volume == o.volume && max_influences == o.max_influences && monotone == o.monotone;
 }
 bool BindStats::operator==(const BindStats& o) const {
   return seconds == o.seconds && tet_vertices == o.tet_vertices && tets == o.tets && notes == o.notes;

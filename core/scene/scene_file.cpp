@@ -99,6 +99,10 @@ const char* robust_name(VolumeOptions::Robust r) {
   return "auto";
 }
 
+const char* segmentation_name(VolumeOptions::Segmentation s) {
+  return s == VolumeOptions::Segmentation::Threshold ? "threshold" : "cut";
+}
+
 // ---- reading ---------------------------------------------------------------------------------------
 
 // A mesh key's surface: shapes, indices and finite coordinates. Whether it can key a transition
@@ -282,6 +286,28 @@ void read_posing(const SceneReader& R, const json& j, SceneData& s) {
            std::to_string(num_handles(s.rig)) + " handles");
 }
 
+// Optional (scenes from before they were saved keep the defaults): the robust volume's segmentation.
+void read_volume_segmentation(const SceneReader& R, const json& bs, VolumeOptions& v) {
+  if (bs.contains("segmentation")) {
+    const std::string seg = R.string(bs["segmentation"], "bind_settings.segmentation");
+    if (seg == "cut") v.segmentation = VolumeOptions::Segmentation::Cut;
+    else if (seg == "threshold") v.segmentation = VolumeOptions::Segmentation::Threshold;
+    else R.fail("'bind_settings.segmentation' must be cut or threshold");
+  }
+  if (!bs.contains("cut")) return;
+  const json& cut = bs["cut"];
+  if (!cut.is_object()) R.fail("'bind_settings.cut' must be an object");
+  const auto read = [&](const char* key, double& out) {
+    out = R.number(R.field(cut, key, "bind_settings.cut"), std::string("bind_settings.cut.") + key);
+  };
+  read("gamma", v.cut.gamma);
+  read("sigma", v.cut.sigma);
+  read("surface_factor", v.cut.surface_factor);
+  // The graph cut's own ranges (graph_cut_segmentation.h), checked here so a bad file fails on load.
+  if (!(v.cut.gamma >= 0) || !(v.cut.sigma > 0) || !(v.cut.surface_factor >= 0))
+    R.fail("'bind_settings.cut' needs gamma >= 0, sigma > 0 and surface_factor >= 0");
+}
+
 void read_bind_settings(const SceneReader& R, const json& j, BindSettings& out) {
   const json& bs = R.field(j, "bind_settings", "scene");
   out.volume.tetgen_switches = R.string(R.field(bs, "tetgen_switches", "bind_settings"), "bind_settings.tetgen_switches");
@@ -294,6 +320,7 @@ void read_bind_settings(const SceneReader& R, const json& j, BindSettings& out) 
       static_cast<int>(R.integer(R.field(bs, "max_influences", "bind_settings"), "bind_settings.max_influences", 0, 1 << 20));
   // Optional: scenes from before monotone weights bind without them.
   out.monotone = bs.contains("monotone") && R.boolean(bs["monotone"], "bind_settings.monotone");
+  read_volume_segmentation(R, bs, out.volume);
 }
 
 // The bind's weights (empty, or #surface vertices x #handles) and statistics.
@@ -399,7 +426,11 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   j["bind_settings"] = {{"tetgen_switches", s.bind_settings.volume.tetgen_switches},
                         {"robust", robust_name(s.bind_settings.volume.robust)},
                         {"max_influences", s.bind_settings.max_influences},
-                        {"monotone", s.bind_settings.monotone}};
+                        {"monotone", s.bind_settings.monotone},
+                        {"segmentation", segmentation_name(s.bind_settings.volume.segmentation)},
+                        {"cut", {{"gamma", s.bind_settings.volume.cut.gamma},
+                                 {"sigma", s.bind_settings.volume.cut.sigma},
+                                 {"surface_factor", s.bind_settings.volume.cut.surface_factor}}}};
   j["weights"] = blob.add(s.weights);
   j["bind_stats"] = {{"seconds", s.bind_stats.seconds},
                      {"tet_vertices", s.bind_stats.tet_vertices},
