@@ -162,6 +162,26 @@ TEST_CASE("baking samples every key and the in-betweens", "[anim]") {
 // Between keys a bone turns about its own first joint and its child stays on its end (issue 38, 3): the
 // keys' parameters are interpolated, then forward kinematics places the bones. Interpolating the
 // evaluated transforms instead blends the translation part linearly and slides the joint.
+TEST_CASE("a bake stopped by its progress callback throws Cancelled; a failure is not one", "[anim]") {
+  KeyTrack track;
+  track.set({0.0, one(Eigen::Affine3d::Identity())});
+  track.set({1.0, one(rot_z(90))});
+  const auto skin = [](const Pose& p) { return Eigen::MatrixXd(p.transforms[0].translation().transpose()); };
+  REQUIRE_THROWS_AS(bake_layers(track, 3, skin, [](int done, int) { return done < 2; }), Cancelled);
+  int n = 0;
+  const auto bad_skin = [&](const Pose&) { return Eigen::MatrixXd::Zero(++n, 3).eval(); };
+  bool cancelled = false, failed = false;
+  try {
+    bake_layers(track, 3, bad_skin);
+  } catch (const Cancelled&) {
+    cancelled = true;
+  } catch (const Error&) {
+    failed = true;
+  }
+  CHECK(failed);
+  CHECK_FALSE(cancelled);
+}
+
 TEST_CASE("pose parameters interpolate in each handle's own frame: joints stay joined", "[anim]") {
   Rig rig;
   rig.skeleton.joints.resize(3, 3);

@@ -163,6 +163,39 @@ TEST_CASE("bind reports progress in order and can be cancelled", "[bind]") {
   REQUIRE_THROWS_WITH(bind_surface(box, rig, o), "cancelled");
 }
 
+TEST_CASE("a cancelled bind throws dfm::Cancelled from every stage, monotone included", "[bind]") {
+  const TriMesh box = test::box_mesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
+  Rig rig;
+  rig.points.push_back({Eigen::Vector3d(0.3, 0.5, 0.5), "a"});
+  rig.points.push_back({Eigen::Vector3d(0.7, 0.5, 0.5), "b"});
+  rig.points.push_back({Eigen::Vector3d(0.5, 0.3, 0.5), "c"});
+  for (const std::string stage : {"meshing", "assembly", "factorization", "solve", "monotone"}) {
+    CAPTURE(stage);
+    BindOptions o;
+    o.volume.tetgen_switches = "pq1.414a0.01";
+    o.bbw.monotone = true;
+    std::atomic<bool> cancel{false};
+    o.cancel = &cancel;
+    o.progress = [&](const std::string& s, double) {
+      if (s == stage) cancel = true;
+    };
+    REQUIRE_THROWS_AS(bind_surface(box, rig, o), Cancelled);
+  }
+  // A failure (a handle outside the surface) is an Error, not a Cancelled.
+  Rig outside;
+  outside.points.push_back({Eigen::Vector3d(5, 5, 5), "far"});
+  bool cancelled = false, failed = false;
+  try {
+    bind_surface(box, outside);
+  } catch (const Cancelled&) {
+    cancelled = true;
+  } catch (const Error&) {
+    failed = true;
+  }
+  CHECK(failed);
+  CHECK_FALSE(cancelled);
+}
+
 TEST_CASE("hand.mesh + hand.tgf bind as given (20 bones)", "[bind][data]") {
   DFM_DATA_OR_SKIP(mesh_path, "hand.mesh");
   DFM_DATA_OR_SKIP(tgf_path, "hand.tgf");

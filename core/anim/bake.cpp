@@ -39,7 +39,7 @@ BakedLayers bake_layers(const std::vector<double>& times, const std::function<Po
                   std::to_string(P.rows()) + " x " + std::to_string(P.cols()) + " positions, expected " +
                   (i > 0 ? std::to_string(out.positions[0].rows()) : std::string("#V")) + " x 3");
     out.positions.push_back(std::move(P));
-    if (progress && !progress(i + 1, total)) throw Error("bake cancelled");
+    if (progress && !progress(i + 1, total)) throw Cancelled("bake cancelled");
   }
   return out;
 }

@@ -13,7 +13,7 @@ namespace dfm {
 
 // Pose -> #V x 3 posed vertex positions (e.g. LBS of the rest mesh with bound weights).
 using SkinFunction = std::function<Eigen::MatrixXd(const Pose&)>;
-// Called after each layer with (done, total); return false to cancel (bake then throws dfm::Error).
+// Called after each layer with (done, total); return false to cancel (bake then throws dfm::Cancelled).
 using BakeProgress = std::function<bool(int done, int total)>;
 
 struct BakedLayers {

@@ -127,7 +127,7 @@ AnimationManifold build_manifold_sequence(const std::vector<KeySurface>& keys, c
       local.transitions += ts;
       i += 1;
     }
-    if (progress && !progress(i, m - 1)) throw Error("animation manifold build cancelled");
+    if (progress && !progress(i, m - 1)) throw Cancelled("animation manifold build cancelled");
   }
   local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats) *stats = local;

@@ -99,7 +99,7 @@ Eigen::MatrixXd solve_weights(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T
                 "exact_partition_of_unity");
   const CholmodBlockCacheScope release_cache;
   auto progress = [&](const char* stage, double f) {
-    if (opts.qp.cancel && opts.qp.cancel->load()) throw Error("cancelled");
+    if (opts.qp.cancel && opts.qp.cancel->load()) throw Cancelled();
     if (opts.progress) opts.progress(stage, f);
   };
   const bool multilevel = !opts.exact_partition_of_unity && opts.multilevel_min_vertices > 0 &&

@@ -27,7 +27,7 @@ inline BoxQPOptions bbw_qp_defaults() {
 
 struct BbwOptions {
   // tolerance: KKT residual in weight units (box_qp_kkt_residual / exact_pou_kkt_residual); cancel:
-  // throws dfm::Error("cancelled") when set; the sweeps of each bounded solve.
+  // throws dfm::Cancelled when set; the sweeps of each bounded solve.
   BoxQPOptions qp = bbw_qp_defaults();
   bool exact_partition_of_unity = false;
   // Ch. 5: no local extrema away from the handles (bbw_monotone.h); default mode only (not with

@@ -141,7 +141,7 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
   if (H.rows() != n || X0.rows() != n || X0.cols() != m) throw Error("exact partition of unity: inconsistent sizes");
   ExactPouResult res;
   auto check_cancel = [&] {
-    if (cancel && cancel->load()) throw Error("cancelled");
+    if (cancel && cancel->load()) throw Cancelled();
   };
   Status st(n, m);
   Eigen::MatrixXd x = X0;

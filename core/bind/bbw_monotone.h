@@ -12,7 +12,7 @@
 namespace dfm {
 
 // sys: the renumbered free system (order_free_system); X: its bounded solutions (#free x #handles),
-// replaced by the monotone ones. Fills stats.monotone_*. Throws dfm::Error("cancelled") on cancel.
+// replaced by the monotone ones. Fills stats.monotone_*. Throws dfm::Cancelled on cancel.
 void solve_monotone(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T, const Eigen::VectorXi& b,
                     const Eigen::MatrixXd& bc, const FreeSystem& sys, const BbwOptions& opts, Eigen::MatrixXd& X,
                     BbwStats& stats);

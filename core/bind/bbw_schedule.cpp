@@ -94,6 +94,13 @@ void BoundedSolves::order_by_support() {
   std::stable_sort(x0_order_.begin(), x0_order_.end(), [&](int a, int c) { return support[a] > support[c]; });
 }
 
+// Records a thread's error (a cancellation by its type) and wakes the others. Called with the lock held.
+void BoundedSolves::fail(const std::exception& e) {
+  if (dynamic_cast<const Cancelled*>(&e)) cancelled_ = true;
+  errors_.push_back(e.what());
+  cv_.notify_all();
+}
+
 // The next handle to solve and its start (false: none left, or give up). Called with the lock held.
 bool BoundedSolves::next_handle(std::unique_lock<std::mutex>& lock, int& j, bool& coarse_start, bool smallest_first) {
   auto first_untaken = [&](const std::vector<int>& order) {
@@ -110,8 +117,7 @@ bool BoundedSolves::next_handle(std::unique_lock<std::mutex>& lock, int& j, bool
   for (;;) {
     if (abandon_ || !errors_.empty()) return false;
     if (cancelled()) {
-      errors_.push_back("cancelled");
-      cv_.notify_all();
+      fail(Cancelled());
       return false;
     }
     if ((j = first_untaken(coarse_solved_)) >= 0) return coarse_start = true, true;
@@ -130,8 +136,7 @@ bool BoundedSolves::next_handle(std::unique_lock<std::mutex>& lock, int& j, bool
         order_by_support();
       } catch (const std::exception& e) {
         lock.lock();
-        errors_.push_back(e.what());
-        cv_.notify_all();
+        fail(e);
         return false;
       }
       lock.lock();
@@ -203,14 +208,12 @@ void BoundedSolves::solver_main(bool smallest_first) {
         solve_one(j, coarse, x_start);
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(mu_);
-        errors_.push_back(e.what());
-        cv_.notify_all();
+        fail(e);
       }
     }
   } catch (const std::exception& e) {  // outside a handle's solve (memory): leave, reported by run()
     std::lock_guard<std::mutex> lock(mu_);
-    errors_.push_back(e.what());
-    cv_.notify_all();
+    fail(e);
   }
 }
 
@@ -256,8 +259,8 @@ Eigen::MatrixXd BoundedSolves::run(const FreeSystem& sys, Eigen::MatrixXd X0, Ei
   }
   stats.multilevel_seconds = coarse_seconds_;
   if (!errors_.empty()) {
-    const bool was_cancelled = std::find(errors_.begin(), errors_.end(), "cancelled") != errors_.end();
-    throw Error(was_cancelled ? "cancelled" : "bind: " + errors_.front());
+    if (cancelled_) throw Cancelled();
+    throw Error("bind: " + errors_.front());
   }
   Eigen::MatrixXd X(nf, m_);
   stats.converged = true;

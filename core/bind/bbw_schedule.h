@@ -9,6 +9,7 @@
 // has no weights for (it could not be built, failed, or was too slow) start from the bound-free solution.
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -35,7 +36,7 @@ class BoundedSolves {
   // Solves 0 <= x_j <= 1 for every handle on sys (renumbered by order_free_system). X0: the bound-free
   // solutions, or empty when a coarse level runs (computed here if it ends before every handle started).
   // Returns #free x #handles; start: each handle's starting point. Fills stats' solve fields; throws
-  // dfm::Error("cancelled") or the first solve's error.
+  // dfm::Cancelled or the first solve's error.
   Eigen::MatrixXd run(const FreeSystem& sys, Eigen::MatrixXd X0, Eigen::MatrixXd& start, BbwStats& stats);
 
  private:
@@ -80,6 +81,8 @@ class BoundedSolves {
   std::vector<char> taken_;
   bool x0_ready_ = false, x0_busy_ = false;
   std::vector<std::string> errors_;
+  bool cancelled_ = false;           // one of errors_ is a Cancelled
+  void fail(const std::exception& e);
   int finished_ = 0;
 };
 

@@ -15,7 +15,7 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 void check_cancel(const BindOptions& opts) {
-  if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
+  if (opts.cancel && opts.cancel->load()) throw Cancelled();
 }
 
 // Meshing takes the first 30% of the progress bar when it runs, the weights the rest.

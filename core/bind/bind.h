@@ -26,7 +26,7 @@ struct BindOptions {
   // (stage, fraction of the whole bind in [0, 1]); stages: "meshing", "assembly", "factorization",
   // "solve", "monotone" (BbwOptions::monotone), "mapping", "done". May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
-  const std::atomic<bool>* cancel = nullptr;  // throws dfm::Error("cancelled") soon after it is set
+  const std::atomic<bool>* cancel = nullptr;  // throws dfm::Cancelled soon after it is set
 };
 
 struct BindReport {

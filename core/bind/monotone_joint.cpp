@@ -128,7 +128,7 @@ MonotoneJointResult solve_monotone_joint(const Eigen::SparseMatrix<double>& H, c
   bool add_only = false;
   std::vector<MonotoneGroups> gr(m);
   for (;;) {
-    if (cancel && cancel->load()) throw Error("cancelled");
+    if (cancel && cancel->load()) throw Cancelled();
     int conflicts = 0;
     for (int j = 0; j < m; ++j) {
       gr[j] = make_monotone_groups(nf, problems[j], active[j]);

@@ -72,7 +72,7 @@ MonotoneQPResult solve_monotone_qp(const Eigen::SparseMatrix<double>& H, const E
   std::set<std::uint64_t> seen;
   bool add_only = false;
   for (;;) {
-    if (cancel && cancel->load()) throw Error("cancelled");
+    if (cancel && cancel->load()) throw Cancelled();
     const MonotoneGroups gr = make_monotone_groups(nf, p, active);
     res.x = solve_reduced(H, g, gr);
     ++res.iterations;

@@ -34,7 +34,7 @@ struct MonotoneQPResult {
 };
 
 // x0: a start whose ordering picks the first active set (e.g. the bounded biharmonic weights), or empty.
-// tolerance: on multipliers, in weight units. Throws dfm::Error("cancelled") when cancel is set.
+// tolerance: on multipliers, in weight units. Throws dfm::Cancelled when cancel is set.
 MonotoneQPResult solve_monotone_qp(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g,
                                    const MonotoneProblem& problem, const Eigen::VectorXd& x0, double tolerance,
                                    const std::atomic<bool>* cancel = nullptr, int max_iterations = 10);

@@ -349,7 +349,7 @@ struct BoxQpSolve {
   BoxQPResult result(bool done);
 
   void check_cancel() const {
-    if (opts.cancel && opts.cancel->load()) throw Error("cancelled");
+    if (opts.cancel && opts.cancel->load()) throw Cancelled();
   }
   void status_from_position();
   void solve_face(Eigen::VectorXd& out);

@@ -33,7 +33,7 @@ OrderedLower ordered_lower(const Eigen::SparseMatrix<double>& H, std::vector<int
 
 struct BoxQPOptions {
   double tolerance = 1e-6;     // KKT residual to stop at (see box_qp_kkt_residual)
-  const std::atomic<bool>* cancel = nullptr;  // polled once per iteration; throws dfm::Error("cancelled")
+  const std::atomic<bool>* cancel = nullptr;  // polled once per iteration; throws dfm::Cancelled
   // H's lower triangle in a fill-reducing order (ordered_lower), shared by every face solve of every QP
   // on H (and by concurrent solver threads). Null: built once per call with an AMD ordering.
   const OrderedLower* ordered = nullptr;

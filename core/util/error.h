@@ -11,6 +11,13 @@ class Error : public std::runtime_error {
   explicit Error(const std::string& msg) : std::runtime_error(msg) {}
 };
 
+// The user stopped the work (a cancel flag, or a progress callback returning false): not a failure.
+// Thrown by bind, bake and the animation manifold's build; callers tell it from an error by its type.
+class Cancelled : public Error {
+ public:
+  explicit Cancelled(const std::string& msg = "cancelled") : Error(msg) {}
+};
+
 // "path:line: problem" (line <= 0 omits it).
 inline Error file_error(const std::string& path, long line, const std::string& problem) {
   std::ostringstream s;
