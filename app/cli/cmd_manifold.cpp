@@ -37,7 +37,7 @@ const char* kUsage =
     "  vertices (the prism build's own in-between); handles needs the editor's pose keys.\n"
     "  --sequence writes N slices on t evenly spaced over the animation as PREFIX0000.obj, ...\n"
     "  (PREFIX ending in .ply, .off or .stl picks that format)\n"
-    "  --strip renders those N frames side by side on the GPU slicer (needs a display: xvfb-run).\n"
+    "  --strip renders those N frames side by side (transitions on the GPU slicer; needs a display: xvfb-run).\n"
     "  --stats prints the build (prism / transition slabs, Steiner points, seconds per stage: conform,\n"
     "  field, delaunay, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
     "  closedness, volume.";
@@ -68,7 +68,8 @@ void print_sequence_stats(const dfm::SequenceStats& s) {
             << "\ntotal seconds: " << s.seconds << "\n";
 }
 
-// N frames of the GPU slice (slice shader -> transform feedback -> surface pass) side by side.
+// N frames side by side: between keys of one connectivity the keys' mesh (manifold_frame), in a
+// transition the GPU slice (slice shader -> transform feedback -> surface pass).
 void render_strip(const dfm::AnimationManifold& M, int frames, const std::string& png) {
   namespace gl = dfm::gl;
   namespace view = dfm::view;
@@ -93,9 +94,13 @@ void render_strip(const dfm::AnimationManifold& M, int frames, const std::string
   const double t0 = M.times.front(), t1 = M.times.back();
   for (int i = 0; i < frames; ++i) {
     const double t = dfm::frame_time(t0, t1, i, frames);
-    const int n = slicer.slice(dfm::SliceAxis::T, t);
     glViewport(i * w, 0, w, h);
-    surface.set_geometry(slicer.output().id(), 3 * n, 0, 0);
+    if (dfm::prism_slab_at(M, t) >= 0) {  // the keys' own mesh, as --sequence writes it
+      surface.upload_mesh(dfm::manifold_frame(M, t).mesh);
+    } else {  // a transition: the GPU slicer
+      const int n = slicer.slice(dfm::SliceAxis::T, t);
+      surface.set_geometry(slicer.output().id(), 3 * n, 0, 0);
+    }
     surface.draw(cam, gl::SurfaceStyle{});
   }
   glFinish();
