@@ -1,5 +1,6 @@
 // Animation manifolds: build, the derived slice table, CPU slicing, the .tet4 file (core/anim).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -357,6 +358,26 @@ TEST_CASE("arm: identical keys slice to the keyframe, moving keys to closed posi
       require_on_edges(M, s, axis, c);
     }
   }
+}
+
+TEST_CASE("welded_slice_vertex_count: the slice's own vertex count, without building it", "[manifold]") {
+  const TriMesh cube = unit_cube();
+  Eigen::MatrixXd V1 = cube.V, V2 = cube.V;
+  V1.col(0).array() += 1.0;
+  V2.col(0) = 2.0 * cube.V.col(0);
+  const AnimationManifold M = build_manifold(std::vector<Eigen::MatrixXd>{cube.V, V1, V2}, cube.F, {0, 1, 3});
+  // At a layer's time the slice is the layer: the cube's 8 corners.
+  for (double t : {0.0, 1.0, 3.0}) REQUIRE(welded_slice_vertex_count(M, SliceAxis::T, t) == 8);
+  REQUIRE(welded_slice_vertex_count(M, SliceAxis::T, 3.5) == 0);  // outside the animation
+  for (SliceAxis axis : {SliceAxis::T, SliceAxis::X, SliceAxis::Y, SliceAxis::Z})
+    for (double c : {0.1, 0.5, 0.99, 1.5, 2.9}) {
+      const ManifoldSlice s = slice_manifold(M, axis, c);
+      INFO("axis " << slice_axis_name(axis) << " at " << c);
+      REQUIRE(welded_slice_vertex_count(M, axis, c) == s.mesh.num_vertices());
+      // Welded: no two of the slice's vertices lie on one manifold edge.
+      std::set<std::array<int, 2>> edges(s.edges.begin(), s.edges.end());
+      REQUIRE(static_cast<int>(edges.size()) == s.mesh.num_vertices());
+    }
 }
 
 TEST_CASE("tet4 files round-trip exactly and reject malformed input with a line number", "[manifold]") {

@@ -31,47 +31,6 @@ namespace {
 const Eigen::AlignedBox3d kEmptyBox(Eigen::Vector3d(-1, 0, -1), Eigen::Vector3d(1, 0, 1));
 }  // namespace
 
-Eigen::Vector3f handle_color(int handle) {
-  // Golden-ratio hue steps give well separated colours for any count; fixed saturation and value.
-  // Hues skip the band around the selection's orange (view_model.h), so a selected handle stands out.
-  const double band = kSelectionHueHi - kSelectionHueLo;
-  const double deg = std::fmod(kSelectionHueHi + std::fmod(0.08 + 0.618033988749895 * handle, 1.0) * (360.0 - band), 360.0);
-  const double h = deg / 60.0;
-  const double s = 0.62, v = 0.92;
-  const int i = static_cast<int>(h) % 6;
-  const double f = h - std::floor(h);
-  const double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
-  double r = 0, g = 0, b = 0;
-  switch (i) {
-    case 0: r = v, g = t, b = p; break;
-    case 1: r = q, g = v, b = p; break;
-    case 2: r = p, g = v, b = t; break;
-    case 3: r = p, g = q, b = v; break;
-    case 4: r = t, g = p, b = v; break;
-    default: r = v, g = p, b = q; break;
-  }
-  // sRGB-ish -> linear, since the surface shader applies display gamma.
-  return Eigen::Vector3f(std::pow(r, 2.2), std::pow(g, 2.2), std::pow(b, 2.2));
-}
-
-std::vector<Eigen::Vector4f> blend_handle_colors(const Eigen::MatrixXd& W) {
-  std::vector<Eigen::Vector3f> colors(W.cols());
-  for (int j = 0; j < W.cols(); ++j) colors[j] = handle_color(j);
-  std::vector<Eigen::Vector4f> out(W.rows(), Eigen::Vector4f(0, 0, 0, 1));
-  for (int i = 0; i < W.rows(); ++i) {
-    Eigen::Vector3f c = Eigen::Vector3f::Zero();
-    double sum = 0;
-    for (int j = 0; j < W.cols(); ++j) {
-      const double w = std::max(0.0, W(i, j));
-      c += static_cast<float>(w) * colors[j];
-      sum += w;
-    }
-    if (sum > 0) c /= static_cast<float>(sum);
-    out[i] = Eigen::Vector4f(c.x(), c.y(), c.z(), 1.0f);
-  }
-  return out;
-}
-
 // Posing and slicing on the GPU (through the backend): the skin pass writes the posed surface (LBS/DQS/STBS in the vertex
 // shader) and, with two or more keys, the slice pass cuts the animation manifold at the current time.
 // The manifold is built on the CPU exactly as the saved frames are (key_surfaces: same track,
@@ -360,52 +319,10 @@ void SceneView::update_skin(const Document& doc) {
   d.skin_revision = doc.revision();
 }
 
-namespace {
-
-// The vertices slice_manifold(m, axis, value) has, counted by its own rule (core/anim/slice.cpp): one
-// per manifold edge a kept triangle's corner lies on, or per vertex when it lies on one; triangles
-// the weld collapses are dropped. Only the keys, no positions or normals: the HUD asks every frame.
-int welded_slice_vertex_count(const AnimationManifold& m, SliceAxis axis_e, double c) {
-  const int axis = static_cast<int>(axis_e);
-  const bool on_plane_above = slice_on_plane_is_above(m, axis_e, c);
-  const auto [first, last] = slice_tet_range(m, axis_e, c);
-  const auto& table = slice_table();
-  auto key_of = [](int a, int b) {
-    if (a > b) std::swap(a, b);
-    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-  };
-  std::vector<std::uint64_t> keys;
-  for (int k = first; k < last; ++k) {
-    int g[4];
-    double s[4];
-    int mask = 0;
-    for (int i = 0; i < 4; ++i) {
-      g[i] = m.T(k, i);
-      s[i] = m.V(g[i], axis) - c;
-      mask |= (on_plane_above ? s[i] >= 0.0 : s[i] > 0.0) << i;
-    }
-    const SliceCase& sc = table[mask];
-    for (int tri = 0; tri < sc.num_triangles; ++tri) {
-      std::uint64_t key[3];
-      for (int j = 0; j < 3; ++j) {
-        const auto& e = kSliceEdges[sc.triangles[tri][j]];
-        const int a = e[0], b = e[1];
-        key[j] = s[a] == 0.0 ? key_of(g[a], g[a]) : s[b] == 0.0 ? key_of(g[b], g[b]) : key_of(g[a], g[b]);
-      }
-      if (key[0] == key[1] || key[1] == key[2] || key[0] == key[2]) continue;
-      keys.insert(keys.end(), key, key + 3);
-    }
-  }
-  std::sort(keys.begin(), keys.end());
-  return static_cast<int>(std::unique(keys.begin(), keys.end()) - keys.begin());
-}
-
-}  // namespace
-
 int SceneView::display_vertex_count() const {
   if (display_count_ < 0) {
     display_count_ = deformer_->has_manifold
-                         ? welded_slice_vertex_count(deformer_->builder.manifold(), general_axis_, general_value_)
+                         ? dfm::welded_slice_vertex_count(deformer_->builder.manifold(), general_axis_, general_value_)
                          : 0;
   }
   return display_count_;
@@ -426,10 +343,11 @@ Eigen::AlignedBox3d SceneView::framing_bounds() const {
   return b.isEmpty() ? kEmptyBox : b;
 }
 
-Pose SceneView::shown_pose(const Document& doc) const {
-  // A time slice shows the animation: the interpolated key poses at the time (as update_handles draws).
-  const KeyTrack& track = deformer_->builder.track();
-  if (showing_slice_ && synced_settings_.slice_axis == SliceAxis::T && track.size() >= 2) {
+Pose SceneView::shown_pose(const Document& doc) const { return pose_on_screen(doc, synced_settings_.slice_axis); }
+
+Pose SceneView::pose_on_screen(const Document& doc, SliceAxis axis) const {
+  // A time slice shows the animation: the key poses interpolated at the time (core's animation_pose).
+  if (showing_slice_ && axis == SliceAxis::T && deformer_->builder.track().size() >= 2) {
     try {
       return animation_pose(doc, doc.time());
     } catch (...) {
@@ -464,42 +382,6 @@ void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
   gpu_.set_surface_data(data);
 }
 
-void SceneView::update_handles(const Document& doc, const ViewSettings& s) {
-  const Rig& rig = doc.rig();
-  const int n = num_handles(rig);
-  Pose pose;
-  try {
-    // A time slice shows the animation: the handles follow it (the interpolated key poses).
-    const Deformer& d = *deformer_;
-    const KeyTrack& track = d.builder.track();
-    pose = showing_slice_ && s.slice_axis == SliceAxis::T && track.size() >= 2 ? animation_pose(doc, doc.time()) : doc.pose();
-  } catch (...) {
-  }
-  const bool posed = !display_is_rest_ && pose.size() == n;
-  auto X = [&](int h, const Eigen::Vector3d& p) -> Eigen::Vector3d {
-    return posed ? Eigen::Vector3d(pose.transforms[h] * p) : p;
-  };
-  handle_pos_.resize(n, 3);
-  int h = 0;
-  for (const PointHandle& p : rig.points) handle_pos_.row(h) = X(h, p.position), ++h;
-  // Joints by core's one rule (posed_joints on the bones' transforms), so what is drawn is what skins.
-  const int np = h, nb = rig.skeleton.num_bones();
-  joint_pos_ = posed ? posed_joints(rig.skeleton, std::vector<Eigen::Affine3d>(pose.transforms.begin() + np,
-                                                                               pose.transforms.begin() + np + nb))
-                     : rig.skeleton.joints;
-  for (const Bone& b : rig.skeleton.bones) handle_pos_.row(h++) = joint_pos_.row(b.a);
-  for (const Cage& c : rig.cages)
-    for (int v = 0; v < c.mesh.num_vertices(); ++v) handle_pos_.row(h) = X(h, c.mesh.V.row(v)), ++h;
-  for (const Region& r : rig.regions) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    int cnt = 0;
-    for (int v : r.vertices)
-      if (v >= 0 && v < doc.surface().V.rows()) sum += doc.surface().V.row(v).transpose(), ++cnt;
-    handle_pos_.row(h) = cnt ? Eigen::Vector3d(sum / cnt) : Eigen::Vector3d::Zero();
-    ++h;
-  }
-}
-
 void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSettings& s) {
   gl::SurfaceStyle style;
   style.wireframe = s.wireframe;
@@ -529,97 +411,6 @@ void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSet
   extra_lines_.clear();
   extra_line_widths_.clear();
   extra_points_.clear();
-}
-
-void SceneView::draw_overlays(const Document& doc, const view::Camera& cam) {
-  // Over a surface that is not the rigged mesh (a transition, a key of other triangles) the rig fades.
-  const float alpha = overlay_opacity_;
-  if (alpha < kMinOverlayOpacity) return;
-  const Rig& rig = doc.rig();
-  const auto& sel = doc.selection().handles;
-  auto selected = [&](int h) { return std::find(sel.begin(), sel.end(), h) != sel.end(); };
-  const SelectionStyle& style = selection_style();
-  auto faded = [&](Eigen::Vector4f c) { return c.w() *= alpha, c; };
-  const Eigen::Vector4f sel_color = faded(style.body), outline = faded(style.outline);
-  auto color_of = [&](int h) -> Eigen::Vector4f {
-    if (selected(h)) return sel_color;
-    Eigen::Vector3f c = handle_color(h);
-    // Overlays are not gamma-corrected: lift the linear colour back for display.
-    return faded(Eigen::Vector4f(std::pow(c.x(), 1 / 2.2f), std::pow(c.y(), 1 / 2.2f), std::pow(c.z(), 1 / 2.2f), 1.0f));
-  };
-  // Selected handles get an outline: the same line or point, wider, in the outline colour, drawn under.
-  std::vector<gl::OverlayVertex> lines, thin, pts, small_pts, outline_lines, outline_pts, outline_small;
-  const int np = num_point_handles(rig);
-  // Pseudo-edges between point handles.
-  for (const auto& [a, b] : rig.pseudo_edges)
-    if (a >= 0 && b >= 0 && a < np && b < np) {
-      thin.push_back(gl::overlay_vertex(handle_pos_.row(a), faded(Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f))));
-      thin.push_back(gl::overlay_vertex(handle_pos_.row(b), faded(Eigen::Vector4f(0.8f, 0.8f, 0.85f, 0.7f))));
-    }
-  // Bones: a thick line from parent joint to child joint, joints as small dots.
-  for (int i = 0; i < rig.skeleton.num_bones(); ++i) {
-    const Bone& b = rig.skeleton.bones[i];
-    const int h = np + i;
-    const Eigen::Vector4f c = color_of(h);
-    lines.push_back(gl::overlay_vertex(handle_pos_.row(h), c));  // its own transform's first joint
-    lines.push_back(gl::overlay_vertex(joint_pos_.row(b.b), Eigen::Vector4f(0.5f * c.x(), 0.5f * c.y(), 0.5f * c.z(), c.w())));
-    if (selected(h)) {
-      outline_lines.push_back(gl::overlay_vertex(handle_pos_.row(h), outline));
-      outline_lines.push_back(gl::overlay_vertex(joint_pos_.row(b.b), outline));
-    }
-  }
-  const Eigen::Vector4f joint_color = faded(Eigen::Vector4f(0.70f, 0.72f, 0.76f, 1.0f));
-  for (int j = 0; j < joint_pos_.rows(); ++j) {
-    const bool sel_joint = doc.selection().joint == j;
-    small_pts.push_back(gl::overlay_vertex(joint_pos_.row(j), sel_joint ? sel_color : joint_color));
-    if (sel_joint) outline_small.push_back(gl::overlay_vertex(joint_pos_.row(j), outline));
-  }
-  // Cages: wireframe through the (posed) cage vertices.
-  int h0 = np + rig.skeleton.num_bones();
-  for (const Cage& c : rig.cages) {
-    const Eigen::Vector4f wire = faded(Eigen::Vector4f(0.55f, 0.85f, 0.95f, 0.85f));
-    auto edge = [&](int a, int b) {
-      thin.push_back(gl::overlay_vertex(handle_pos_.row(h0 + a), wire));
-      thin.push_back(gl::overlay_vertex(handle_pos_.row(h0 + b), wire));
-    };
-    for (int f = 0; f < c.mesh.F.rows(); ++f)
-      for (int k = 0; k < 3; ++k) edge(c.mesh.F(f, k), c.mesh.F(f, (k + 1) % 3));
-    for (int e = 0; e < c.edges.rows(); ++e) edge(c.edges(e, 0), c.edges(e, 1));
-    for (int v = 0; v < c.mesh.num_vertices(); ++v) {
-      small_pts.push_back(gl::overlay_vertex(handle_pos_.row(h0 + v), selected(h0 + v) ? sel_color : wire));
-      if (selected(h0 + v)) outline_small.push_back(gl::overlay_vertex(handle_pos_.row(h0 + v), outline));
-    }
-    h0 += c.mesh.num_vertices();
-  }
-  auto point = [&](int h) {
-    pts.push_back(gl::overlay_vertex(handle_pos_.row(h), color_of(h)));
-    if (selected(h)) outline_pts.push_back(gl::overlay_vertex(handle_pos_.row(h), outline));
-  };
-  for (int i = 0; i < np; ++i) point(i);
-  for (size_t r = 0; r < rig.regions.size(); ++r, ++h0)
-    if (!rig.regions[r].vertices.empty()) point(h0);
-  const float bone_w = 5.0f, small_sz = 8.0f, point_sz = 14.0f;
-  gpu_.draw_lines(cam, thin, 1.5f, false);
-  if (!outline_lines.empty()) gpu_.draw_lines(cam, outline_lines, bone_w + style.line_extra, false);
-  gpu_.draw_lines(cam, lines, bone_w, false);
-  if (!outline_small.empty()) gpu_.draw_points(cam, outline_small, small_sz + style.point_extra, false);
-  gpu_.draw_points(cam, small_pts, small_sz, false);
-  if (!outline_pts.empty()) gpu_.draw_points(cam, outline_pts, point_sz + style.point_extra, false);
-  gpu_.draw_points(cam, pts, point_sz, false);
-  // FAST states on the handles (bones: at the tip IK drags): a dark centre is pinned, a white one free.
-  if (doc.posing().fast) {
-    std::vector<gl::OverlayVertex> marks;
-    const std::vector<HandleConstraint> states = doc.handle_states();
-    for (int k = 0; k < static_cast<int>(states.size()) && k < handle_pos_.rows(); ++k) {
-      if (states[k] == HandleConstraint::Position) continue;
-      const HandleRef r = handle_ref(rig, k);
-      const Eigen::Vector3d at = r.kind == HandleKind::Bone ? Eigen::Vector3d(joint_pos_.row(rig.skeleton.bones[r.index].b))
-                                                            : Eigen::Vector3d(handle_pos_.row(k));
-      marks.push_back(gl::overlay_vertex(at, faded(states[k] == HandleConstraint::Fixed ? Eigen::Vector4f(0.08f, 0.08f, 0.1f, 1.0f)
-                                                                                       : Eigen::Vector4f(1.0f, 1.0f, 1.0f, 1.0f))));
-    }
-    gpu_.draw_points(cam, marks, 6.0f, false);
-  }
 }
 
 void SceneView::show_preview(const TriMesh& mesh) {

@@ -96,6 +96,9 @@ class SceneView {
   void update_colors(const Document& doc, const ViewSettings& s);
   bool surface_closed(const Document& doc);
   void show_rest(const TriMesh& rest, bool closed);
+  // The one rule for which pose is on screen (shown_pose with the axis being synced).
+  Pose pose_on_screen(const Document& doc, SliceAxis axis) const;
+  // scene_overlays.cpp: the rig's glyphs as displayed, and their overlay draw.
   void update_handles(const Document& doc, const ViewSettings& s);
   void draw_overlays(const Document& doc, const view::Camera& cam);
 

@@ -69,21 +69,16 @@ inline std::uint64_t key_of(int a, int b) {
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
-}  // namespace
-
-ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, double c,
-                             const Eigen::MatrixXd* vertex_normals4) {
+// The slice's triangles before the weld, each as the weld keys of its 3 corners (the manifold edge,
+// or vertex, each corner lies on); triangles the weld collapses are skipped. f(std::uint64_t key[3]).
+template <class F>
+void for_each_slice_triangle(const AnimationManifold& M, SliceAxis axis_e, double c, F&& f) {
   const int axis = static_cast<int>(axis_e);
-  if (axis < 0 || axis > 3) throw Error("slice axis out of range");
   const bool on_plane_above = slice_on_plane_is_above(M, axis_e, c);
   const auto [first, last] = slice_tet_range(M, axis_e, c);
   const auto& table = slice_table();
-  const bool flip = slice_flips_winding(axis);
   const double* V = M.V.data();
   const int* T = M.T.data();
-
-  // Pass 1: per triangle, the weld keys of its 3 corners.
-  std::vector<std::uint64_t> corners;
   for (int k = first; k < last; ++k) {
     int g[4];
     double s[4];
@@ -105,10 +100,34 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
         key[j] = s[a] == 0.0 ? key_of(g[a], g[a]) : s[b] == 0.0 ? key_of(g[b], g[b]) : key_of(g[a], g[b]);
       }
       if (key[0] == key[1] || key[1] == key[2] || key[0] == key[2]) continue;  // collapsed by the weld
-      if (flip) std::swap(key[1], key[2]);
-      corners.insert(corners.end(), key, key + 3);
+      f(key);
     }
   }
+}
+
+}  // namespace
+
+int welded_slice_vertex_count(const AnimationManifold& M, SliceAxis axis, double value) {
+  if (static_cast<int>(axis) < 0 || static_cast<int>(axis) > 3) throw Error("slice axis out of range");
+  std::vector<std::uint64_t> keys;
+  for_each_slice_triangle(M, axis, value, [&](const std::uint64_t* key) { keys.insert(keys.end(), key, key + 3); });
+  std::sort(keys.begin(), keys.end());
+  return static_cast<int>(std::unique(keys.begin(), keys.end()) - keys.begin());
+}
+
+ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, double c,
+                             const Eigen::MatrixXd* vertex_normals4) {
+  const int axis = static_cast<int>(axis_e);
+  if (axis < 0 || axis > 3) throw Error("slice axis out of range");
+  const bool flip = slice_flips_winding(axis);
+  const double* V = M.V.data();
+
+  // Pass 1: per triangle, the weld keys of its 3 corners.
+  std::vector<std::uint64_t> corners;
+  for_each_slice_triangle(M, axis_e, c, [&](std::uint64_t* key) {
+    if (flip) std::swap(key[1], key[2]);
+    corners.insert(corners.end(), key, key + 3);
+  });
 
   // Pass 2: weld. An open-addressing table gives each distinct key a first-seen id; the ids are then
   // renumbered in key order so the vertex order is deterministic (a layer's own order at key times).

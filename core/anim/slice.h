@@ -53,6 +53,10 @@ std::pair<int, int> slice_tet_range(const AnimationManifold& m, SliceAxis axis, 
 // else all. Their sums are the slice's vertex normals.
 std::pair<int, int> normal_tet_range(const AnimationManifold& m, SliceAxis axis, double value);
 
+// How many vertices slice_manifold(m, axis, value) has (its weld, by the same rule), without building
+// the slice: only the weld keys, no positions or normals (the editor's HUD asks every frame).
+int welded_slice_vertex_count(const AnimationManifold& m, SliceAxis axis, double value);
+
 // True when vertices exactly on the hyperplane count as above (see the rules).
 bool slice_on_plane_is_above(const AnimationManifold& m, SliceAxis axis, double value);
 

@@ -5,6 +5,7 @@ dfm_test(test_editor_view_model SOURCES test_editor_view_model.cpp ${PROJECT_SOU
 # The editor's CPU logic: camera and picking (core/view), and the gizmo, built from its sources so a
 # half-written GL pass in render/ never blocks these tests.
 dfm_test(test_camera SOURCES test_camera.cpp LIBS dfm_view)
+dfm_test(test_view_color SOURCES test_view_color.cpp LIBS dfm_view)
 dfm_test(test_editor_picking SOURCES test_editor_picking.cpp LIBS dfm_view)
 dfm_test(test_editor_gizmo SOURCES test_editor_gizmo.cpp
          ${PROJECT_SOURCE_DIR}/app/editor/gizmo.cpp ${PROJECT_SOURCE_DIR}/app/editor/camera_sync.cpp
