@@ -31,7 +31,7 @@ inline AnimationManifold deforming_sphere_manifold() {
 // interval topologies are the per-tetrahedron slice's (the path transitions take).
 inline AnimationManifold without_prism_records(AnimationManifold m) {
   m.prism_slabs.clear();
-  m.prism_faces.clear();
+  m.layer_faces.clear();
   return m;
 }
 

@@ -136,7 +136,7 @@ TEST_CASE("a prism slab's interval is its layers' mesh, vertex for vertex", "[ma
   const std::vector<double> times = manifold_vertex_times(M);
   REQUIRE(times.size() == 3);
   const int n = M.prism_slabs[0].count;
-  const Eigen::MatrixXi& F = M.prism_faces[0];
+  const Eigen::MatrixXi& F = M.layer_faces[0];
   for (int i = 0; i < 2; ++i) {
     const IntervalSlice s = build_interval_slice(M, N4, times[i], times[i + 1]);
     REQUIRE(s.num_vertices() == n);

@@ -15,6 +15,7 @@
 #include "core/anim/bake.h"
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_frame.h"
+#include "core/anim/manifold_io.h"
 #include "core/anim/surface_checks.h"
 #include "core/mesh/io.h"
 #include "core/scene/key_surfaces.h"
@@ -318,6 +319,25 @@ TEST_CASE("a transition: sphere key at 0, torus key-mesh at 1, the slice at 0.5 
   const ManifoldSlice tr = manifold_frame(M, 0.5), exact = slice_manifold(M, SliceAxis::T, 0.5);
   CHECK(tr.mesh.V == exact.mesh.V);
   CHECK(tr.mesh.F == exact.mesh.F);
+  // At the sphere's time the frame is the sphere itself: its vertices in its order, its triangles, none
+  // of the transition's surface Steiner points the slice there has; saved frames at the ends too.
+  const TriMesh ball = sphere();
+  REQUIRE(key_layer_at(M, 0.0) >= 0);
+  const ManifoldSlice first = manifold_frame(M, 0.0);
+  CHECK(first.mesh.F == ball.F);
+  REQUIRE(first.mesh.num_vertices() == ball.num_vertices());
+  CHECK((first.mesh.V - ball.V).cwiseAbs().maxCoeff() < 1e-12);
+  CHECK(slice_manifold(M, SliceAxis::T, 0.0).mesh.num_vertices() >= ball.num_vertices());
+  for (int v = 0; v < first.mesh.num_vertices(); ++v) CHECK(first.mesh.N.row(v).dot(ball.V.row(v)) > 0.8);  // outward
+  run_script(d, parse_script("save-frames " + tmp / "f" + " 5\n", "s.txt"), "s.txt");
+  CHECK(read_surface(tmp / "f0000.obj").num_vertices() == ball.num_vertices());
+  CHECK(read_surface(tmp / "f0004.obj").num_vertices() == moved.num_vertices());
+  CHECK(read_surface(tmp / "f0002.obj").F == torus.F);  // t = 1: the torus key, within the prism run
+  // The key layers survive a .tet4 round trip.
+  write_manifold(tmp / "m.tet4", M);
+  const AnimationManifold R = read_manifold(tmp / "m.tet4");
+  REQUIRE(R.key_layers.size() == M.key_layers.size());
+  CHECK(manifold_frame(R, 0.0).mesh.V == first.mesh.V);
 }
 
 TEST_CASE("in-betweens per key interval: ARAP turns a body rigidly, linear shrinks it, handles add none "

@@ -91,7 +91,7 @@ AnimationManifold build_manifold(const std::vector<Eigen::MatrixXd>& layers, con
     M.T.block(3L * l * i, 0, 3L * l, 4) = pattern.array() + static_cast<int>(i * n);
   }
   M.slab_offsets[m - 1] = 3 * l * (m - 1);
-  M.prism_faces.push_back(F);
+  M.layer_faces.push_back(F);
   M.prism_slabs.resize(m - 1);
   for (int i = 0; i + 1 < m; ++i)
     M.prism_slabs[i] = PrismSlab{0, static_cast<int>(i * n), static_cast<int>((i + 1) * n), static_cast<int>(n)};
@@ -115,15 +115,30 @@ void validate_prism_slabs(const AnimationManifold& M, const std::string& what) {
     const PrismSlab& p = M.prism_slabs[i];
     if (!p.is_prism()) continue;
     const std::string slab = what + ": prism slab " + std::to_string(i);
-    if (p.faces >= static_cast<int>(M.prism_faces.size())) throw Error(slab + " names a missing triangle list");
+    if (p.faces >= static_cast<int>(M.layer_faces.size())) throw Error(slab + " names a missing triangle list");
     if (p.count < 1 || p.lower < 0 || p.upper < 0 || p.lower > nv - p.count || p.upper > nv - p.count)
       throw Error(slab + " has a layer outside the vertices");
     for (int v = 0; v < p.count; ++v)
       if (M.V(p.lower + v, 3) != M.times[i] || M.V(p.upper + v, 3) != M.times[i + 1])
         throw Error(slab + ": layer vertex " + std::to_string(v) + " is not at the slab's times");
-    const Eigen::MatrixXi& F = M.prism_faces[p.faces];
+    const Eigen::MatrixXi& F = M.layer_faces[p.faces];
     if (F.cols() != 3 || (F.size() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= p.count)))
       throw Error(slab + ": a triangle has a vertex index outside [0, " + std::to_string(p.count) + ")");
+  }
+}
+
+void validate_key_layers(const AnimationManifold& M, const std::string& what) {
+  const int nv = M.num_vertices();
+  for (size_t i = 0; i < M.key_layers.size(); ++i) {
+    const ManifoldKey& k = M.key_layers[i];
+    const std::string key = what + ": key layer " + std::to_string(i);
+    if (k.faces < 0 || k.faces >= static_cast<int>(M.layer_faces.size())) throw Error(key + " names a missing triangle list");
+    for (int v : k.vertices)
+      if (v < 0 || v >= nv || M.V(v, 3) != k.time) throw Error(key + ": a vertex is missing or not at its time");
+    const Eigen::MatrixXi& F = M.layer_faces[k.faces];
+    const int n = static_cast<int>(k.vertices.size());
+    if (F.cols() != 3 || (F.size() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= n)))
+      throw Error(key + ": a triangle has a vertex index outside [0, " + std::to_string(n) + ")");
   }
 }
 
@@ -160,6 +175,7 @@ void validate_manifold(const AnimationManifold& M, const std::string& what) {
     }
   }
   validate_prism_slabs(M, what);
+  validate_key_layers(M, what);
 }
 
 }  // namespace dfm

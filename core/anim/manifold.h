@@ -28,12 +28,21 @@ using MatrixX4dRow = Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor>;
 using MatrixX4iRow = Eigen::Matrix<int, Eigen::Dynamic, 4, Eigen::RowMajor>;
 
 // A slab made by the prism build: vertex v (0 <= v < count) of its lower layer is manifold vertex
-// lower + v, of its upper layer upper + v, and its triangles are prism_faces[faces]. faces = -1 for a
+// lower + v, of its upper layer upper + v, and its triangles are layer_faces[faces]. faces = -1 for a
 // slab made otherwise (a transition).
 struct PrismSlab {
   int faces = -1;
   int lower = 0, upper = 0, count = 0;
   bool is_prism() const { return faces >= 0; }
+};
+
+// A key surface standing in the manifold at `time` (a transition's end, whose slice there is the key
+// with its surface Steiner points): its triangles are layer_faces[faces] on manifold vertices
+// vertices[v], so a frame at that time can be the key itself.
+struct ManifoldKey {
+  double time = 0;
+  int faces = -1;
+  std::vector<int> vertices;
 };
 
 struct AnimationManifold {
@@ -43,10 +52,11 @@ struct AnimationManifold {
   // m entries: the tetrahedra between times[i] and times[i+1] (slab i) are rows
   // [slab_offsets[i], slab_offsets[i+1]) of T; slab_offsets.back() == #T.
   std::vector<int> slab_offsets;
-  // Empty, or one entry per slab saying how it was made; prism_faces holds the triangle lists
-  // (#F x 3, outward) the prism slabs refer to, one per run of keys sharing a connectivity.
+  // Empty, or one entry per slab saying how it was made; layer_faces holds the triangle lists
+  // (#F x 3, outward) the prism slabs and key layers refer to.
   std::vector<PrismSlab> prism_slabs;
-  std::vector<Eigen::MatrixXi> prism_faces;
+  std::vector<ManifoldKey> key_layers;
+  std::vector<Eigen::MatrixXi> layer_faces;
 
   int num_vertices() const { return static_cast<int>(V.rows()); }
   int num_tets() const { return static_cast<int>(T.rows()); }
@@ -66,8 +76,8 @@ AnimationManifold build_manifold(const BakedLayers& layers, const Eigen::MatrixX
 std::vector<Eigen::Vector4i> prism_tets(const Eigen::Vector3i& f, int lower_offset, int stride);
 
 // Checks the invariants above (sizes, index range, sorted times, offsets, that every vertex of slab
-// i's tetrahedra has times[i] <= t <= times[i+1], and that a prism slab's layers lie at its two times
-// with triangles on them); throws dfm::Error naming `what` and the first problem.
+// i's tetrahedra has times[i] <= t <= times[i+1], and that a prism slab's layers and a key layer lie
+// at their times with triangles on them); throws dfm::Error naming `what` and the first problem.
 void validate_manifold(const AnimationManifold& m, const std::string& what = "manifold");
 
 }  // namespace dfm

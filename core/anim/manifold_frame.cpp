@@ -25,7 +25,7 @@ ManifoldSlice prism_frame(const AnimationManifold& m, int slab, double t, const 
   const auto [first, last] = normal_tet_range(m, SliceAxis::T, t);
   const VertexNormalSource normal4(m, vertex_normals4, first, last);
   ManifoldSlice out;
-  out.mesh.F = m.prism_faces[p.faces];
+  out.mesh.F = m.layer_faces[p.faces];
   out.mesh.V.resize(p.count, 3);
   out.mesh.N.resize(p.count, 3);
   out.edges.resize(p.count);
@@ -54,9 +54,38 @@ ManifoldSlice prism_frame(const AnimationManifold& m, int slab, double t, const 
   return out;
 }
 
+int key_layer_at(const AnimationManifold& m, double t) {
+  for (size_t i = 0; i < m.key_layers.size(); ++i)
+    if (m.key_layers[i].time == t) return static_cast<int>(i);
+  return -1;
+}
+
+ManifoldSlice key_frame(const AnimationManifold& m, int layer, const Eigen::MatrixXd* vertex_normals4) {
+  if (layer < 0 || layer >= static_cast<int>(m.key_layers.size()))
+    throw Error("frame: no key layer " + std::to_string(layer));
+  const ManifoldKey& k = m.key_layers[layer];
+  const auto [first, last] = normal_tet_range(m, SliceAxis::T, k.time);
+  const VertexNormalSource normal4(m, vertex_normals4, first, last);
+  const int n = static_cast<int>(k.vertices.size());
+  ManifoldSlice out;
+  out.mesh.F = m.layer_faces[k.faces];
+  out.mesh.V.resize(n, 3);
+  out.mesh.N.resize(n, 3);
+  out.edges.resize(n);
+  for (int v = 0; v < n; ++v) {
+    const int at = k.vertices[v];
+    out.edges[v] = {at, at};
+    out.mesh.V.row(v) = m.V.block<1, 3>(at, 0);
+    out.mesh.N.row(v) = slice_normal3(normal4(at), SliceAxis::T).transpose();
+  }
+  return out;
+}
+
 ManifoldSlice manifold_frame(const AnimationManifold& m, double t, const Eigen::MatrixXd* vertex_normals4) {
   const int slab = prism_slab_at(m, t);
   if (slab >= 0) return prism_frame(m, slab, t, vertex_normals4);
+  const int key = key_layer_at(m, t);
+  if (key >= 0) return key_frame(m, key, vertex_normals4);
   return slice_manifold(m, SliceAxis::T, t, vertex_normals4);
 }
 

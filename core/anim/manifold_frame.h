@@ -8,9 +8,11 @@
 //   mu = (t_up - c) / (t_up - t_down),   p = p_up + mu (p_down - p_up),   n likewise from the 4D normals,
 // with the layers' triangles, so a frame has the artist's vertex and triangle counts and order. (The
 // exact slice of a prism's three tetrahedra kinks on the side diagonals and splits every triangle into
-// four.) At a layer's own time the frame is that layer, bit for bit. Elsewhere (a transition between
-// meshes of different connectivity, or a manifold without prism records) the frame is the
-// per-tetrahedron slice, slice_manifold; so are the x, y, z sweeps.
+// four.) At a layer's own time the frame is that layer, bit for bit, and at the time of a key a
+// transition ends at, that key (ManifoldKey: its vertices and triangles, without the transition's
+// surface Steiner points). Elsewhere (inside a transition between meshes of different connectivity, or
+// a manifold without these records) the frame is the per-tetrahedron slice, slice_manifold; so are the
+// x, y, z sweeps.
 #include <Eigen/Core>
 
 #include "core/anim/manifold.h"
@@ -29,7 +31,15 @@ int prism_slab_at(const AnimationManifold& m, double t);
 ManifoldSlice prism_frame(const AnimationManifold& m, int slab, double t,
                           const Eigen::MatrixXd* vertex_normals4 = nullptr);
 
-// prism_frame where a prism slab holds t, else slice_manifold(m, SliceAxis::T, t, vertex_normals4).
+// The key layer at exactly time t, or -1.
+int key_layer_at(const AnimationManifold& m, double t);
+
+// Key layer `layer` as a frame: its vertices in the key's order (each that manifold vertex: edges
+// (v, v)), its triangles, normals by slice.h's rule. Throws dfm::Error for a missing layer.
+ManifoldSlice key_frame(const AnimationManifold& m, int layer, const Eigen::MatrixXd* vertex_normals4 = nullptr);
+
+// prism_frame where a prism slab holds t, else key_frame at a key layer's time, else
+// slice_manifold(m, SliceAxis::T, t, vertex_normals4).
 ManifoldSlice manifold_frame(const AnimationManifold& m, double t, const Eigen::MatrixXd* vertex_normals4 = nullptr);
 
 }  // namespace dfm

@@ -73,7 +73,8 @@ class Lines {
   long line_ = 0;
 };
 
-// Version 2's closing sections: the prism build's triangle lists and each slab's entry (manifold.h).
+// Version 2's closing sections: the layers' triangle lists, each slab's prism entry and the key layers
+// (manifold.h).
 // Index ranges are checked here; validate_manifold checks them against the layers.
 void read_prism_slabs(Lines& L, std::vector<std::string_view>& tok, AnimationManifold& M) {
   auto count = [&](const char* name) { return L.count(tok, name); };
@@ -86,7 +87,7 @@ void read_prism_slabs(Lines& L, std::vector<std::string_view>& tok, AnimationMan
       if (tok.size() != 4 || tok[0] != "f") throw L.error("expected a triangle line 'f A B C'");
       for (int d = 0; d < 3; ++d) F(f, d) = L.number<int>(tok[d + 1], "vertex index");
     }
-    M.prism_faces.push_back(std::move(F));
+    M.layer_faces.push_back(std::move(F));
   }
   const int np = count("prisms");
   if (np != 0 && np != M.num_slabs())
@@ -101,6 +102,24 @@ void read_prism_slabs(Lines& L, std::vector<std::string_view>& tok, AnimationMan
     p.count = L.number<int>(tok[4], "layer vertex count");
     if (p.faces < -1 || p.faces >= ns) throw L.error("prism: triangle list " + std::to_string(p.faces) + " does not exist");
     M.prism_slabs.push_back(p);
+  }
+  const int nk = count("keys");
+  for (int i = 0; i < nk; ++i) {
+    L.expect(tok, "a line 'key TIME FACES N'");
+    if (tok.size() != 4 || tok[0] != "key") throw L.error("expected 'key TIME FACES N'");
+    ManifoldKey k;
+    k.time = L.number<double>(tok[1], "key time");
+    k.faces = L.number<int>(tok[2], "triangle list index");
+    const int n = L.number<int>(tok[3], "key vertex count");
+    if (k.faces < 0 || k.faces >= ns) throw L.error("key: triangle list " + std::to_string(k.faces) + " does not exist");
+    if (n < 0 || n > 2000000000) throw L.error("key vertex count out of range");
+    k.vertices.resize(n);
+    for (int v = 0; v < n; ++v) {
+      L.expect(tok, "a key vertex line 'k V'");
+      if (tok.size() != 2 || tok[0] != "k") throw L.error("expected a key vertex line 'k V'");
+      k.vertices[v] = L.number<int>(tok[1], "vertex index");
+    }
+    M.key_layers.push_back(std::move(k));
   }
 }
 
@@ -151,9 +170,9 @@ void write_manifold(const std::string& path, const AnimationManifold& M) {
       flush(false);
     }
     buf += "surfaces ";
-    put(buf, static_cast<int>(M.prism_faces.size()));
+    put(buf, static_cast<int>(M.layer_faces.size()));
     buf += '\n';
-    for (const Eigen::MatrixXi& F : M.prism_faces) {
+    for (const Eigen::MatrixXi& F : M.layer_faces) {
       buf += "surface ";
       put(buf, static_cast<int>(F.rows()));
       buf += '\n';
@@ -177,6 +196,24 @@ void write_manifold(const std::string& path, const AnimationManifold& M) {
         put(buf, x);
       }
       buf += '\n';
+    }
+    buf += "keys ";
+    put(buf, static_cast<int>(M.key_layers.size()));
+    buf += '\n';
+    for (const ManifoldKey& k : M.key_layers) {
+      buf += "key ";
+      put(buf, k.time);
+      buf += ' ';
+      put(buf, k.faces);
+      buf += ' ';
+      put(buf, static_cast<int>(k.vertices.size()));
+      buf += '\n';
+      for (int v : k.vertices) {
+        buf += "k ";
+        put(buf, v);
+        buf += '\n';
+        flush(false);
+      }
     }
     flush(true);
     if (!os) throw Error(path + ": write failed");

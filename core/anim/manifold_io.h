@@ -9,11 +9,14 @@
 //                               slab i (times[i]..times[i+1]); FIRST_0 = 0, the last layer's FIRST = K
 //   v X Y Z T                   N lines, 4D vertex positions
 //   t A B C D                   K lines, 0-based vertex indices, oriented as in manifold.h
-//   surfaces S                  the prism build's triangle lists (manifold.h's prism_faces), each as
+//   surfaces S                  the layers' triangle lists (manifold.h's layer_faces), each as
 //   surface NF                    its face count and NF lines
 //   f A B C                       of 0-based layer vertex indices
 //   prisms P                    P = 0 or one line per slab (manifold.h's PrismSlab):
 //   prism FACES LOWER UPPER N     its triangle list (-1: not a prism slab) and layers
+//   keys K                      key layers (manifold.h's ManifoldKey), each as
+//   key TIME FACES N              its time, triangle list and vertex count, and N lines
+//   k V                           of the manifold vertex each key vertex is
 //
 // Numbers are written with the shortest decimal text that reads back to the same double, so a
 // save/load round trip is exact. Loading validates everything (validate_manifold) and throws

@@ -1,5 +1,6 @@
 #include "core/anim/manifold_sequence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <list>
@@ -74,7 +75,7 @@ void append_slabs(AnimationManifold& out, const AnimationManifold& M) {
     out.slab_offsets.push_back(base_t + M.slab_offsets[i]);
   }
   // How each slab was made, renumbered the same way (a transition's slabs have no prism entry).
-  const int base_f = static_cast<int>(out.prism_faces.size());
+  const int base_f = static_cast<int>(out.layer_faces.size());
   for (int i = 0; i < M.num_slabs(); ++i) {
     PrismSlab p = M.prism_slabs.empty() ? PrismSlab{} : M.prism_slabs[i];
     if (p.is_prism()) {
@@ -84,7 +85,31 @@ void append_slabs(AnimationManifold& out, const AnimationManifold& M) {
     }
     out.prism_slabs.push_back(p);
   }
-  out.prism_faces.insert(out.prism_faces.end(), M.prism_faces.begin(), M.prism_faces.end());
+  out.layer_faces.insert(out.layer_faces.end(), M.layer_faces.begin(), M.layer_faces.end());
+}
+
+// The key as it stands in out's vertices [first, out.num_vertices()) at its time: each key vertex's
+// manifold vertex (within 1e-9 of the key's bounding-box diagonal; a transition keeps every key
+// vertex). False, out unchanged, when a vertex has none (e.g. an unreferenced one the build dropped).
+bool add_key_layer(AnimationManifold& out, int first, const KeySurface& key) {
+  std::vector<std::pair<double, int>> by_x;  // candidates at the key's time, sorted by x
+  for (int v = first; v < out.num_vertices(); ++v)
+    if (out.V(v, 3) == key.time) by_x.push_back({out.V(v, 0), v});
+  std::sort(by_x.begin(), by_x.end());
+  const double tol = 1e-9 * (key.V.colwise().maxCoeff() - key.V.colwise().minCoeff()).norm();
+  ManifoldKey layer{key.time, static_cast<int>(out.layer_faces.size()), std::vector<int>(key.V.rows(), -1)};
+  for (Eigen::Index k = 0; k < key.V.rows(); ++k) {
+    double best = tol;
+    for (auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(key.V(k, 0) - tol, -1));
+         it != by_x.end() && it->first <= key.V(k, 0) + tol; ++it) {
+      const double d = (out.V.block<1, 3>(it->second, 0) - key.V.row(k)).norm();
+      if (d <= best) best = d, layer.vertices[k] = it->second;
+    }
+    if (layer.vertices[k] < 0) return false;
+  }
+  out.layer_faces.push_back(key.F);
+  out.key_layers.push_back(std::move(layer));
+  return true;
 }
 
 }  // namespace
@@ -122,7 +147,10 @@ AnimationManifold build_manifold_sequence(const std::vector<KeySurface>& keys, c
       TransitionStats ts;
       check_transition_key({keys[i].V, keys[i].F, {}}, keys[i].name);
       check_transition_key({keys[i + 1].V, keys[i + 1].F, {}}, keys[i + 1].name);
+      const int first = out.num_vertices();
       append_slabs(out, transition_cache().get(keys[i], keys[i + 1], options, &ts));
+      add_key_layer(out, first, keys[i]);
+      add_key_layer(out, first, keys[i + 1]);
       local.transition_slabs += 1;
       local.transitions += ts;
       i += 1;
