@@ -1,6 +1,5 @@
 #include "core/bind/tetrahedralize.h"
 
-#include <Eigen/Geometry>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -19,6 +18,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/mesh/io_formats.h"
 #include "core/util/error.h"
 
 #ifndef DFM_TETGEN_EXE
@@ -124,60 +124,6 @@ int run_process(const std::vector<std::string>& args, const fs::path& log_path) 
   return status;
 }
 
-// Whitespace tokens of a TetGen file with '#' comments removed.
-// The whitespace-separated tokens of a TetGen output file ('#' starts a comment), parsed in place from
-// one buffer: armadillo's .ele alone has 1.5M tokens, and one std::string each cost more than TetGen's
-// own output stage.
-struct Tokens {
-  std::string buf;
-  std::vector<std::pair<uint32_t, uint32_t>> t;  // [begin, end) in buf
-  size_t i = 0;
-  std::string path;
-  explicit Tokens(const fs::path& p) : path(p.string()) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw Error("TetGen produced no " + p.filename().string());
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    buf = ss.str();
-    if (buf.size() >= 0xffffffffu) throw file_error(path, 0, "file too large");
-    const uint32_t n = static_cast<uint32_t>(buf.size());
-    for (uint32_t k = 0; k < n;) {
-      const char c = buf[k];
-      if (c == '#') {
-        while (k < n && buf[k] != '\n') ++k;
-      } else if (std::isspace(static_cast<unsigned char>(c))) {
-        ++k;
-      } else {
-        const uint32_t b = k;
-        while (k < n && buf[k] != '#' && !std::isspace(static_cast<unsigned char>(buf[k]))) ++k;
-        t.emplace_back(b, k);
-      }
-    }
-  }
-  size_t size() const { return t.size(); }
-  std::string text(size_t k) const { return buf.substr(t[k].first, t[k].second - t[k].first); }
-  void next() {
-    if (i >= t.size()) throw file_error(path, 0, "truncated TetGen output");
-    ++i;
-  }
-  long integer() {
-    next();
-    const char* b = buf.c_str() + t[i - 1].first;
-    char* end;
-    const long v = std::strtol(b, &end, 10);
-    if (end != buf.c_str() + t[i - 1].second) throw file_error(path, 0, "expected an integer, got \"" + text(i - 1) + "\"");
-    return v;
-  }
-  double real() {
-    next();
-    const char* b = buf.c_str() + t[i - 1].first;
-    char* end;
-    const double v = std::strtod(b, &end);
-    if (end != buf.c_str() + t[i - 1].second) throw file_error(path, 0, "expected a number, got \"" + text(i - 1) + "\"");
-    return v;
-  }
-};
-
 struct Key {
   double x, y, z;
   bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -188,6 +134,82 @@ struct KeyHash {
     return h(k.x) ^ (h(k.y) * 0x9e3779b97f4a7c15ull) ^ (h(k.z) * 0xc2b2ae3d27d4eb4full);
   }
 };
+
+// Refuses what TetGen cannot take: fewer than 4 points, a non-finite point, an index out of range.
+void check_plc(const Plc& plc) {
+  const int nv = static_cast<int>(plc.V.rows());
+  if (nv < 4) throw Error("tetrahedralize: need at least 4 points, got " + std::to_string(nv));
+  for (int i = 0; i < nv; ++i)
+    if (!plc.V.row(i).allFinite()) throw Error("tetrahedralize: point " + std::to_string(i) + " is not finite");
+  const auto in_range = [nv](const Eigen::MatrixXi& M) { return M.size() == 0 || (M.minCoeff() >= 0 && M.maxCoeff() < nv); };
+  for (const Eigen::MatrixXi* M : {&plc.F, &plc.E})
+    if (!in_range(*M))
+      throw Error("tetrahedralize: facet/segment index " + std::to_string(M->minCoeff() < 0 ? M->minCoeff() : M->maxCoeff()) +
+                  " out of range");
+}
+
+// TetGen's input: a .poly (points, facets, segments as two-vertex polygons) or, without facets, a .node.
+void write_tetgen_input(const fs::path& in, const Plc& plc, bool has_plc) {
+  FILE* f = std::fopen(in.c_str(), "w");
+  if (!f) throw Error("cannot write " + in.string());
+  const int nv = static_cast<int>(plc.V.rows());
+  std::fprintf(f, "%d 3 0 0\n", nv);
+  for (int i = 0; i < nv; ++i) std::fprintf(f, "%d %.17g %.17g %.17g\n", i, plc.V(i, 0), plc.V(i, 1), plc.V(i, 2));
+  if (has_plc) {
+    std::fprintf(f, "%ld 0\n", static_cast<long>(plc.F.rows() + plc.E.rows()));
+    for (int i = 0; i < plc.F.rows(); ++i) std::fprintf(f, "1\n3 %d %d %d\n", plc.F(i, 0), plc.F(i, 1), plc.F(i, 2));
+    for (int i = 0; i < plc.E.rows(); ++i) std::fprintf(f, "1\n2 %d %d\n", plc.E(i, 0), plc.E(i, 1));
+    std::fprintf(f, "0\n0\n");
+  }
+  if (std::fclose(f) != 0) throw Error("cannot write " + in.string() + " (disk full?)");
+}
+
+// Runs TetGen -sw on `in`; returns its log. Throws with TetGen's last words when it fails.
+std::string run_tetgen(const fs::path& in, const std::string& sw) {
+  const std::string exe = tetgen_executable();
+  if (!executable_exists(exe)) throw Error("TetGen executable \"" + exe + "\" not found (install the Debian package tetgen)");
+  std::vector<std::string> args;
+  // TetGen reports errors with printf and then aborts: unbuffer it so the message reaches the log.
+  if (executable_exists("stdbuf")) args = {"stdbuf", "-o0", "-e0"};
+  args.push_back(exe);
+  args.push_back("-" + sw);
+  args.push_back(in.string());
+  const fs::path log_path = in.parent_path() / "log.txt";
+  const int status = run_process(args, log_path);
+  std::string log = read_text(log_path);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::string how = WIFSIGNALED(status) ? "aborted (signal " + std::to_string(WTERMSIG(status)) + ")"
+                                          : "exited with status " + std::to_string(WEXITSTATUS(status));
+    throw Error("TetGen -" + sw + " failed, " + how + ": " + failure_message(log));
+  }
+  return log;
+}
+
+// plc.V row -> output vertex, -1 where TetGen dropped it. TetGen keeps input points first unless it
+// drops some (duplicates, points outside the domain): then match exactly round-tripped coordinates.
+// A vertex no tet uses (TetGen -J keeps them) counts as dropped.
+Eigen::VectorXi input_to_output(const Eigen::MatrixXd& input, const TetMesh& mesh) {
+  const int nv = static_cast<int>(input.rows()), n = mesh.num_vertices();
+  Eigen::VectorXi to = Eigen::VectorXi::Constant(nv, -1);
+  bool identity = n >= nv;
+  for (int i = 0; identity && i < nv; ++i) identity = mesh.V.row(i) == input.row(i);
+  if (identity) {
+    for (int i = 0; i < nv; ++i) to(i) = i;
+  } else {
+    std::unordered_map<Key, int, KeyHash> where;
+    for (int i = 0; i < n; ++i) where.emplace(Key{mesh.V(i, 0) + 0.0, mesh.V(i, 1) + 0.0, mesh.V(i, 2) + 0.0}, i);
+    for (int i = 0; i < nv; ++i) {
+      auto it = where.find(Key{input(i, 0) + 0.0, input(i, 1) + 0.0, input(i, 2) + 0.0});
+      if (it != where.end()) to(i) = it->second;
+    }
+  }
+  std::vector<char> used(n, 0);
+  for (long i = 0; i < mesh.T.rows(); ++i)
+    for (int k = 0; k < 4; ++k) used[mesh.T(i, k)] = 1;
+  for (int i = 0; i < nv; ++i)
+    if (to(i) >= 0 && !used[to(i)]) to(i) = -1;
+  return to;
+}
 
 }  // namespace
 
@@ -200,111 +222,15 @@ TetgenResult tetrahedralize(const Plc& plc, const std::string& switches) {
   const auto t0 = std::chrono::steady_clock::now();
   const bool has_plc = plc.F.rows() > 0 || plc.E.rows() > 0;
   const std::string sw = checked_switches(switches, has_plc);
-  const int nv = static_cast<int>(plc.V.rows());
-  if (nv < 4) throw Error("tetrahedralize: need at least 4 points, got " + std::to_string(nv));
-  for (int i = 0; i < nv; ++i)
-    if (!plc.V.row(i).allFinite()) throw Error("tetrahedralize: point " + std::to_string(i) + " is not finite");
-  auto check_index = [&](int v) {
-    if (v < 0 || v >= nv) throw Error("tetrahedralize: facet/segment index " + std::to_string(v) + " out of range");
-  };
-
+  check_plc(plc);
   TempDir dir;
   const fs::path in = dir.path / (has_plc ? "in.poly" : "in.node");
-  {
-    FILE* f = std::fopen(in.c_str(), "w");
-    if (!f) throw Error("cannot write " + in.string());
-    std::fprintf(f, "%d 3 0 0\n", nv);
-    for (int i = 0; i < nv; ++i) std::fprintf(f, "%d %.17g %.17g %.17g\n", i, plc.V(i, 0), plc.V(i, 1), plc.V(i, 2));
-    if (has_plc) {
-      std::fprintf(f, "%ld 0\n", static_cast<long>(plc.F.rows() + plc.E.rows()));
-      for (int i = 0; i < plc.F.rows(); ++i) {
-        for (int k = 0; k < 3; ++k) check_index(plc.F(i, k));
-        std::fprintf(f, "1\n3 %d %d %d\n", plc.F(i, 0), plc.F(i, 1), plc.F(i, 2));
-      }
-      for (int i = 0; i < plc.E.rows(); ++i) {  // a two-vertex polygon is a segment
-        for (int k = 0; k < 2; ++k) check_index(plc.E(i, k));
-        std::fprintf(f, "1\n2 %d %d\n", plc.E(i, 0), plc.E(i, 1));
-      }
-      std::fprintf(f, "0\n0\n");
-    }
-    if (std::fclose(f) != 0) throw Error("cannot write " + in.string() + " (disk full?)");
-  }
-
-  const std::string exe = tetgen_executable();
-  if (!executable_exists(exe)) throw Error("TetGen executable \"" + exe + "\" not found (install the Debian package tetgen)");
-  std::vector<std::string> args;
-  // TetGen reports errors with printf and then aborts: unbuffer it so the message reaches the log.
-  if (executable_exists("stdbuf")) args = {"stdbuf", "-o0", "-e0"};
-  args.push_back(exe);
-  args.push_back("-" + sw);
-  args.push_back(in.string());
-  const fs::path log_path = dir.path / "log.txt";
-  const int status = run_process(args, log_path);
-
+  write_tetgen_input(in, plc, has_plc);
   TetgenResult res;
-  res.log = read_text(log_path);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::string how = WIFSIGNALED(status) ? "aborted (signal " + std::to_string(WTERMSIG(status)) + ")"
-                                          : "exited with status " + std::to_string(WEXITSTATUS(status));
-    throw Error("TetGen -" + sw + " failed, " + how + ": " + failure_message(res.log));
-  }
-
-  const fs::path stem = dir.path / "in.1";
-  Tokens node(stem.string() + ".node");
-  const long n = node.integer();
-  const long dim = node.integer(), nattr = node.integer(), nmark = node.integer();
-  if (n < 0 || dim != 3 || nattr < 0 || nmark < 0 || nmark > 1) throw file_error(node.path, 0, "unexpected header");
-  if (static_cast<size_t>(n) * (4 + nattr + nmark) > node.size()) throw file_error(node.path, 0, "truncated");
-  res.mesh.V.resize(n, 3);
-  for (long i = 0; i < n; ++i) {
-    const long id = node.integer();
-    if (id != i) throw file_error(node.path, 0, "nodes out of order (expected " + std::to_string(i) + ")");
-    for (int k = 0; k < 3; ++k) res.mesh.V(i, k) = node.real();
-    for (long k = 0; k < nattr + nmark; ++k) node.next();
-  }
-  Tokens ele(stem.string() + ".ele");
-  const long m = ele.integer(), per = ele.integer(), eattr = ele.integer();
-  if (m < 0 || per != 4 || eattr < 0) throw file_error(ele.path, 0, "unexpected header (only linear tets)");
-  if (static_cast<size_t>(m) * (5 + eattr) > ele.size()) throw file_error(ele.path, 0, "truncated");
-  res.mesh.T.resize(m, 4);
-  for (long i = 0; i < m; ++i) {
-    ele.integer();
-    for (int k = 0; k < 4; ++k) {
-      long v = ele.integer();
-      if (v < 0 || v >= n) throw file_error(ele.path, 0, "vertex index out of range");
-      res.mesh.T(i, k) = static_cast<int>(v);
-    }
-    for (long k = 0; k < eattr; ++k) ele.next();
-    // Orient positively: det[v1-v0, v2-v0, v3-v0] > 0.
-    const Eigen::Vector3d p0 = res.mesh.V.row(res.mesh.T(i, 0));
-    const Eigen::Vector3d e1 = res.mesh.V.row(res.mesh.T(i, 1)).transpose() - p0;
-    const Eigen::Vector3d e2 = res.mesh.V.row(res.mesh.T(i, 2)).transpose() - p0;
-    const Eigen::Vector3d e3 = res.mesh.V.row(res.mesh.T(i, 3)).transpose() - p0;
-    if (e1.dot(e2.cross(e3)) < 0) std::swap(res.mesh.T(i, 1), res.mesh.T(i, 2));
-  }
-
-  // TetGen keeps input points first unless it drops some (duplicates, points outside the domain):
-  // map input rows to output vertices by their exactly round-tripped coordinates.
-  res.input_to_tet = Eigen::VectorXi::Constant(nv, -1);
-  bool identity = n >= nv;
-  for (int i = 0; identity && i < nv; ++i) identity = res.mesh.V.row(i) == plc.V.row(i);
-  if (identity) {
-    for (int i = 0; i < nv; ++i) res.input_to_tet(i) = i;
-  } else {
-    std::unordered_map<Key, int, KeyHash> where;
-    for (int i = 0; i < n; ++i) where.emplace(Key{res.mesh.V(i, 0) + 0.0, res.mesh.V(i, 1) + 0.0, res.mesh.V(i, 2) + 0.0}, i);
-    for (int i = 0; i < nv; ++i) {
-      auto it = where.find(Key{plc.V(i, 0) + 0.0, plc.V(i, 1) + 0.0, plc.V(i, 2) + 0.0});
-      if (it != where.end()) res.input_to_tet(i) = it->second;
-    }
-  }
-  // A vertex no tet uses (TetGen -J keeps them) counts as dropped.
-  std::vector<char> used(n, 0);
-  for (long i = 0; i < m; ++i)
-    for (int k = 0; k < 4; ++k) used[res.mesh.T(i, k)] = 1;
-  for (int i = 0; i < nv; ++i)
-    if (res.input_to_tet(i) >= 0 && !used[res.input_to_tet(i)]) res.input_to_tet(i) = -1;
-
+  res.log = run_tetgen(in, sw);
+  // TetGen's output, read by the mesh module's reader (which orients the tets positively).
+  res.mesh = io::read_tetgen((dir.path / "in.1.node").string());
+  res.input_to_tet = input_to_output(plc.V, res.mesh);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

@@ -2,6 +2,7 @@
 // Shared parsing helpers for the readers in io_*.cpp: whole-file loading, strict number parsing,
 // a whitespace tokenizer and a line reader that both track line numbers, and count sanity checks
 // that refuse absurd element counts before anything is allocated.
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -36,6 +37,28 @@ class Tokenizer {
   std::string_view expect(const std::string& what);
   double real(const std::string& what);          // finite double
   long long integer(const std::string& what);    // integer
+  // As real(what()) and integer(what()), with the message built only for a bad token (a reader's hot
+  // loop: no string per token).
+  template <class What>
+  double real_or(const What& what) {
+    const size_t pos = pos_;
+    const long line = line_;
+    std::string_view t;
+    double v;
+    if (next(t) && parse_double(t, v) && std::isfinite(v)) return v;
+    pos_ = pos, line_ = line;
+    return real(what());
+  }
+  template <class What>
+  long long integer_or(const What& what) {
+    const size_t pos = pos_;
+    const long line = line_;
+    std::string_view t;
+    long long v;
+    if (next(t) && parse_int(t, v)) return v;
+    pos_ = pos, line_ = line;
+    return integer(what());
+  }
   long line() const { return line_; }
   long long bytes_left() const { return static_cast<long long>(data_.size() - pos_); }
   size_t pos() const { return pos_; }
