@@ -1,5 +1,6 @@
 // Gizmo drags, document camera conversion and the recent-files list: the editor's CPU logic.
 #include <cmath>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -91,6 +92,88 @@ TEST_CASE("gizmo_hit finds axis tips, plane squares, ring and nothing far away",
   REQUIRE(gizmo_hit(c, o, false, px(c, o) + Vector2d(300, 300)) == GizmoPart::None);
   REQUIRE(gizmo_hit(c, o, true, px(c, o) + Vector2d(L.ring_px, 0)) == GizmoPart::Ring);
   REQUIRE(gizmo_hit(c, o, true, px(c, o) + Vector2d(20, 0)) == GizmoPart::Trackball);
+}
+
+namespace {
+Vector3d at(const dfm::gl::OverlayVertex& v) { return Vector3d(v.position[0], v.position[1], v.position[2]); }
+bool lit(const dfm::gl::OverlayVertex& v) {
+  const Eigen::Vector4f h = gizmo_hover_color();
+  return v.color[0] == h[0] && v.color[1] == h[1] && v.color[2] == h[2] && v.color[3] == h[3];
+}
+}  // namespace
+
+// The Pose tool draws gizmo_lines(shape) and picks gizmo_hit(shape): one layout, checked here without
+// a GL context. What is drawn is where it picks, and the part under the cursor is the one lit.
+TEST_CASE("gizmo layout: the drawn axes and plane squares are where picking finds them", "[gizmo]") {
+  for (bool ortho : {false, true}) {
+    const view::Camera c = cam(ortho);
+    const Vector3d o(0.1, -0.2, 0.3);
+    const GizmoShape g = gizmo_shape(c, o, false);
+    const std::vector<dfm::gl::OverlayVertex> lines = gizmo_lines(g, GizmoPart::None);
+    REQUIRE(lines.size() == 2 * (3 + 3 * 4));  // per axis: its line and its square's 4 edges
+    for (int k = 0; k < 3; ++k) {
+      INFO("ortho " << ortho << " axis " << k);
+      // The drawn axis runs from the origin to axis_end; near its tip it picks that axis.
+      const Vector3d a0 = at(lines[10 * k]), a1 = at(lines[10 * k + 1]);
+      REQUIRE((a0 - o).norm() < 1e-6);
+      REQUIRE((a1 - g.axis_end[k]).norm() < 1e-6);
+      REQUIRE(gizmo_hit(c, g, px(c, o + 0.9 * (a1 - o))) == GizmoPart(int(GizmoPart::AxisX) + k));
+      // The drawn square: its 4 edges through the shape's corners, the centre picks the plane, a point
+      // just beyond the far corner does not.
+      Vector3d centre = Vector3d::Zero();
+      for (int e = 0; e < 4; ++e) {
+        REQUIRE((at(lines[10 * k + 2 + 2 * e]) - g.plane[k][e]).norm() < 1e-6);
+        REQUIRE((at(lines[10 * k + 3 + 2 * e]) - g.plane[k][(e + 1) % 4]).norm() < 1e-6);
+        centre += 0.25 * g.plane[k][e];
+      }
+      REQUIRE(gizmo_hit(c, g, px(c, centre)) == GizmoPart(int(GizmoPart::PlaneYZ) + k));
+      REQUIRE(gizmo_hit(c, g, px(c, 0.9 * g.plane[k][0] + 0.1 * centre)) == GizmoPart(int(GizmoPart::PlaneYZ) + k));
+      REQUIRE(gizmo_hit(c, g, px(c, g.plane[k][2] + 0.2 * (g.plane[k][2] - centre))) != GizmoPart(int(GizmoPart::PlaneYZ) + k));
+      // The plane square lies in the plane normal to axis k.
+      for (int e = 0; e < 4; ++e) REQUIRE(std::abs((g.plane[k][e] - o)[k]) < 1e-12);
+    }
+    // Hovering a part lights exactly its segments.
+    for (int p = int(GizmoPart::AxisX); p <= int(GizmoPart::PlaneXY); ++p) {
+      const std::vector<dfm::gl::OverlayVertex> l = gizmo_lines(g, GizmoPart(p));
+      const bool plane = p >= int(GizmoPart::PlaneYZ);
+      const int k = plane ? p - int(GizmoPart::PlaneYZ) : p - int(GizmoPart::AxisX);
+      for (size_t i = 0; i < l.size(); ++i) {
+        const int owner = int(i) / 10, slot = int(i) % 10;
+        const bool expect = owner == k && (plane ? slot >= 2 : slot < 2);
+        REQUIRE(lit(l[i]) == expect);
+      }
+    }
+  }
+}
+
+TEST_CASE("gizmo layout: the drawn ring is ring_px on screen and picks as the ring; sized in pixels", "[gizmo]") {
+  for (bool ortho : {false, true}) {
+    view::Camera c = cam(ortho);
+    const Vector3d o(0.1, -0.2, 0.3);
+    const GizmoShape g = gizmo_shape(c, o, true);
+    const std::vector<dfm::gl::OverlayVertex> lines = gizmo_lines(g, GizmoPart::Ring);
+    REQUIRE(lines.size() == 4 * 72);  // the ring and the disc's rim, 72 segments each
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const double r = (px(c, at(lines[i])) - px(c, o)).norm();
+      if (i < 2 * 72) {  // the ring: lit, on its pixel radius, and picked as the ring
+        REQUIRE(lit(lines[i]));
+        REQUIRE(r == Approx(GizmoLayout{}.ring_px).epsilon(1e-4));
+        REQUIRE(gizmo_hit(c, g, px(c, at(lines[i]))) == GizmoPart::Ring);
+      } else {  // the disc's rim just inside
+        REQUIRE_FALSE(lit(lines[i]));
+        REQUIRE(r < GizmoLayout{}.ring_px);
+      }
+    }
+    REQUIRE(gizmo_hit(c, g, px(c, o) + Vector2d(0.5 * g.ring_px, 0)) == GizmoPart::Trackball);
+    // Zooming out keeps the gizmo's size on screen: the ring's radius, and in ortho the axes' tips.
+    const Vector2d tip = px(c, gizmo_shape(c, o, false).axis_end[1]) - px(c, o);
+    c.distance *= 7;
+    const GizmoShape far = gizmo_shape(c, o, true);
+    for (const auto& v : gizmo_lines(far, GizmoPart::None))
+      REQUIRE((px(c, at(v)) - px(c, o)).norm() <= GizmoLayout{}.ring_px * (1 + 1e-4));
+    REQUIRE((px(c, at(gizmo_lines(far, GizmoPart::None)[0])) - px(c, o)).norm() == Approx(GizmoLayout{}.ring_px).epsilon(1e-4));
+    if (ortho) REQUIRE((px(c, gizmo_shape(c, o, false).axis_end[1]) - px(c, o) - tip).norm() < 1e-6);
+  }
 }
 
 TEST_CASE("world_per_pixels: that many pixels on screen", "[gizmo]") {

@@ -178,7 +178,7 @@ void Editor::show_opened(Opened what) {
     weight_rows_.clear();
     bone_chain_.clear();
     bone_chain_parent_ = -1;
-    paint_region_ = -1;
+    paint_tool_.new_document();
     weight_tools_ = WeightToolsUi{};
   }
   view_->sync(doc_, {});

@@ -13,8 +13,10 @@
 #include "app/editor/bind_worker.h"
 #include "app/editor/file_panel.h"
 #include "app/editor/frame_pacing.h"
-#include "app/editor/gizmo.h"
+#include "app/editor/paint_tool.h"
+#include "app/editor/pose_tool.h"
 #include "app/editor/scene_view.h"
+#include "app/editor/timeline_ruler.h"
 #include "app/editor/view_model.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
@@ -38,7 +40,6 @@ struct EditorOptions {
 };
 
 enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
-enum class PaintTarget { Mask, Region };
 
 struct ShapeSpacePanel;
 class ItemFlow;
@@ -188,11 +189,6 @@ class Editor {
   // UI state
   Tool tool_ = Tool::Select;
   WeightView weight_view_ = WeightView::Off;
-  PaintTarget paint_target_ = PaintTarget::Mask;
-  int paint_region_ = -1;
-  double brush_radius_ = 0.08;  // fraction of the surface's bounding-box diagonal
-  double brush_strength_ = 0.5;
-  double brush_falloff_ = 0.5;  // 0 = hard edge, 1 = smooth to the rim
   bool place_inside_ = true;
   bool gizmo_rotate_ = false;
   bool wireframe_ = false;
@@ -216,17 +212,14 @@ class Editor {
   PanelLayout panel_layout() const;
 
   // gestures
-  enum class Drag { None, Orbit, Pan, Handle, Gizmo, Paint, Timeline, Key } drag_ = Drag::None;
+  enum class Drag { None, Orbit, Pan, Handle } drag_ = Drag::None;
   Eigen::Vector2d drag_last_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d drag_start_ = Eigen::Vector2d::Zero();
-  GizmoPart gizmo_part_ = GizmoPart::None;
+  PoseTool pose_tool_;  // the gizmo and its drag (pose_tool.h)
+  PaintTool paint_tool_;  // the brush, its settings and its stroke (paint_tool.h)
+  TimelineRuler timeline_ruler_;  // the timeline's ruler and its drags (timeline_ruler.h)
   Eigen::Vector3d drag_point_ = Eigen::Vector3d::Zero();  // handle being dragged (world)
   int drag_handle_ = -1;
   int drag_joint_ = -1;
-  int drag_key_ = -1;
-  Eigen::Vector3d brush_center_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d brush_normal_ = Eigen::Vector3d::UnitY();
-  bool brush_visible_ = false;
 
   // timing and messages
   // UI frames drawn while the last bind ran (the window must stay responsive: each < 100 ms).

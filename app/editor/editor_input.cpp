@@ -10,7 +10,6 @@
 
 #include "app/editor/camera_sync.h"
 #include "app/editor/editor.h"
-#include "core/scene/brush.h"
 #include "core/view/picking.h"
 
 namespace dfm::editor {
@@ -23,6 +22,33 @@ struct Grab {
   enum Kind { None, Handle, Joint } kind = None;
   int index = -1;
 };
+
+// Points, cage vertices and regions by their glyph; joints; then bones by their segment.
+Grab pick_rig(const view::Camera& cam, const SceneView& view, const Rig& rig, const Eigen::Vector2d& m) {
+  const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
+  int best = view::pick_projected_point(cam, view.handle_positions(), m, 9);
+  if (best >= np && best < np + nb) best = -1;  // a bone's row is its first joint: pick bones by segment
+  if (best >= 0) return {Grab::Handle, best};
+  const int j = view::pick_projected_point(cam, view.joint_positions(), m, 7);
+  if (j >= 0) return {Grab::Joint, j};
+  if (nb == 0) return {};
+  std::vector<std::pair<int, int>> segs;
+  for (const Bone& b : rig.skeleton.bones) segs.emplace_back(b.a, b.b);
+  const int b = view::pick_projected_segment(cam, view.joint_positions(), segs, m, 6);
+  return b >= 0 ? Grab{Grab::Handle, np + b} : Grab{};
+}
+
+// Where the cursor meets the plane through p that faces the camera (p itself when that plane is
+// behind the eye): a dragged handle's new position.
+Eigen::Vector3d on_view_plane(const view::Camera& cam, const Eigen::Vector3d& p, const Eigen::Vector2d& m) {
+  view::Camera c = cam;
+  c.target = p;
+  c.distance = cam.orthographic ? cam.distance : (p - view::camera_eye(cam)).dot(view::camera_forward(cam));
+  if (!cam.orthographic && c.distance <= 1e-9) return p;
+  const Eigen::Vector3d q = view::pixel_on_target_plane(cam.orthographic ? cam : c, m.x(), m.y());
+  if (!cam.orthographic) return q;
+  return q + (p - q).dot(view::camera_forward(cam)) * view::camera_forward(cam);
+}
 
 }  // namespace
 
@@ -87,7 +113,7 @@ void Editor::handle_camera_input() {
     view::zoom_to_cursor(cam_, std::pow(0.85, io.MouseWheel), m);
     sync_camera_to_doc();
   }
-  if (drag_ == Drag::None && over) {
+  if (drag_ == Drag::None && !pose_tool_.dragging() && !paint_tool_.painting() && over) {
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Middle) || (io.KeyAlt && ImGui::IsMouseClicked(ImGuiMouseButton_Left)))
       drag_ = (io.KeyShift ? Drag::Pan : Drag::Orbit), drag_last_ = m;
     else if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) && !(tool_ == Tool::DrawBone && !bone_chain_.empty()))
@@ -111,7 +137,6 @@ void Editor::handle_viewport_input() {
   ImGuiIO& io = ImGui::GetIO();
   viewport_hovered_ = !io.WantCaptureMouse && viewport_.contains(io.MousePos.x, io.MousePos.y);
   handle_camera_input();
-  brush_visible_ = false;
   if (drag_ == Drag::Orbit || drag_ == Drag::Pan) return;
   const bool clicked = viewport_hovered_ && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.KeyAlt;
   const bool down = ImGui::IsMouseDown(ImGuiMouseButton_Left);
@@ -127,6 +152,8 @@ void Editor::handle_viewport_input() {
   } catch (const std::exception& e) {
     if (drag_ != Drag::None) doc_.end_gesture();
     drag_ = Drag::None;
+    pose_tool_.cancel(doc_);
+    paint_tool_.cancel(doc_);
     error_popup_ = e.what();
   }
 }
@@ -136,24 +163,9 @@ void Editor::tool_select(bool clicked, bool released) {
   const Rig& rig = doc_.rig();
   if (clicked) {
     const Eigen::MatrixXd& P = view_->handle_positions();
-    const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
-    Grab g;
-    // Points, cage vertices and regions by their glyph; joints; then bones by their segment. Only what
-    // is drawn: not with Handles off, nor over a mesh the rig does not apply to (overlays hidden).
+    // Only what is drawn: not with Handles off, nor over a mesh the rig does not apply to.
     const bool rig_shown = show_handles_ && view_->overlay_opacity() >= kMinOverlayOpacity;
-    int best = rig_shown ? view::pick_projected_point(cam_, P, m, 9) : -1;
-    if (best >= np && best < np + nb) best = -1;  // a bone's row is its first joint: pick bones by segment
-    if (best >= 0) g = {Grab::Handle, best};
-    if (g.kind == Grab::None && rig_shown) {
-      const int j = view::pick_projected_point(cam_, view_->joint_positions(), m, 7);
-      if (j >= 0) g = {Grab::Joint, j};
-    }
-    if (g.kind == Grab::None && nb > 0 && rig_shown) {
-      std::vector<std::pair<int, int>> segs;
-      for (const Bone& b : rig.skeleton.bones) segs.emplace_back(b.a, b.b);
-      const int b = view::pick_projected_segment(cam_, view_->joint_positions(), segs, m, 6);
-      if (b >= 0) g = {Grab::Handle, np + b};
-    }
+    const Grab g = rig_shown ? pick_rig(cam_, *view_, rig, m) : Grab{};
     const bool additive = ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl;
     if (g.kind == Grab::Handle) {
       select_handle(g.index, additive);
@@ -193,25 +205,16 @@ void Editor::tool_select(bool clicked, bool released) {
     return;
   }
   if (drag_ == Drag::Handle) {
-    // Move in the plane through the handle that faces the camera.
-    view::Camera c = cam_;
-    c.target = drag_point_;
-    c.distance = (drag_point_ - view::camera_eye(cam_)).dot(view::camera_forward(cam_));
-    if (c.distance > 1e-9 || cam_.orthographic) {
-      if (cam_.orthographic) c.distance = cam_.distance;
-      const Eigen::Vector3d p = view::pixel_on_target_plane(cam_.orthographic ? cam_ : c, m.x(), m.y());
-      Eigen::Vector3d q = p;
-      if (cam_.orthographic) q = p + (drag_point_ - p).dot(view::camera_forward(cam_)) * view::camera_forward(cam_);
-      if ((q - drag_point_).norm() > 0) {
-        if (drag_joint_ >= 0) {
-          doc_.move_joint(drag_joint_, q);
-        } else {
-          const HandleRef r = handle_ref(rig, drag_handle_);
-          if (r.kind == HandleKind::Point) doc_.move_point(r.index, q);
-          else if (r.kind == HandleKind::CageVertex) doc_.move_cage_vertex(r.cage, r.index, q);
-        }
-        drag_point_ = q;
+    const Eigen::Vector3d q = on_view_plane(cam_, drag_point_, m);
+    if ((q - drag_point_).norm() > 0) {
+      if (drag_joint_ >= 0) {
+        doc_.move_joint(drag_joint_, q);
+      } else {
+        const HandleRef r = handle_ref(rig, drag_handle_);
+        if (r.kind == HandleKind::Point) doc_.move_point(r.index, q);
+        else if (r.kind == HandleKind::CageVertex) doc_.move_cage_vertex(r.cage, r.index, q);
       }
+      drag_point_ = q;
     }
     if (released) {
       doc_.end_gesture();
@@ -293,129 +296,26 @@ void Editor::tool_draw_bone(bool clicked) {
 }
 
 void Editor::tool_paint(bool down, bool clicked, bool released) {
-  const Eigen::Vector2d m = mouse_in_viewport();
-  const Eigen::MatrixXd& V = view_->display_vertices();
-  const view::SurfaceHit hit = viewport_hovered_ || drag_ == Drag::Paint
-                                 ? view::pick_surface(view::pixel_ray(cam_, m.x(), m.y()), V, view_->display_faces())
-                                 : view::SurfaceHit{};
-  const double radius = brush_radius_ * std::max(1e-9, view_->surface_bounds().diagonal().norm());
-  const bool erase = ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift;
-  if (hit.hit()) {
-    const Eigen::MatrixXi& F = view_->display_faces();
-    const Eigen::Vector3d a = V.row(F(hit.face, 0)), b = V.row(F(hit.face, 1)), c = V.row(F(hit.face, 2));
-    brush_center_ = hit.point;
-    brush_normal_ = (b - a).cross(c - a).normalized();
-    brush_visible_ = true;
-    const Eigen::Vector4f col = erase ? rgba(1, 0.35f, 0.3f) : rgba(1, 1, 1, 0.9f);
-    const Eigen::Vector3d lift = brush_center_ + 1e-3 * radius * brush_normal_;
-    view_->add_overlay_lines(gl::circle_lines(lift, brush_normal_, radius, col, 64), 2.0f);
-    // Inner circle where the falloff starts.
-    if (brush_falloff_ < 0.99)
-      view_->add_overlay_lines(gl::circle_lines(lift, brush_normal_, radius * (1 - brush_falloff_),
-                                                rgba(col.x(), col.y(), col.z(), 0.35f), 48), 1.0f);
-  }
-  if (clicked && hit.hit()) {
-    drag_ = Drag::Paint;
-    doc_.begin_gesture();
-    if (paint_target_ == PaintTarget::Region && (paint_region_ < 0 || paint_region_ >= int(doc_.rig().regions.size())))
-      paint_region_ = doc_.add_region();
-  }
-  if (drag_ == Drag::Paint && down && hit.hit()) {
-    const Brush brush{radius, brush_strength_, brush_falloff_, erase ? BrushMode::Erase : BrushMode::Add};
-    const Eigen::VectorXd& mask = doc_.mask();
-    const BrushDab dab = brush_dab(V, mask.size() == V.rows() ? mask : Eigen::VectorXd(), brush_center_, brush);
-    if (!dab.vertices.empty()) {
-      if (paint_target_ == PaintTarget::Mask) doc_.paint_mask(dab.vertices, dab.values);
-      else doc_.paint_region(paint_region_, dab.vertices, erase);
-    }
-  }
-  if (drag_ == Drag::Paint && released) {
-    doc_.end_gesture();
-    drag_ = Drag::None;
-  }
+  PaintTool::Input in;
+  in.mouse = mouse_in_viewport();
+  in.hovered = viewport_hovered_;
+  in.down = down, in.clicked = clicked, in.released = released;
+  in.erase = ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift;
+  paint_tool_.update(doc_, *view_, cam_, in);
 }
 
 void Editor::tool_pose(bool clicked, bool released) {
-  const Eigen::Vector2d m = mouse_in_viewport();
-  const auto& sel = doc_.selection().handles;
-  const Eigen::MatrixXd& P = view_->handle_positions();
-  const bool rig_shown = show_handles_ && view_->overlay_opacity() >= kMinOverlayOpacity;
-  if (sel.empty() || sel.front() >= P.rows() || !rig_shown) {  // no gizmo on a handle that is not drawn
-    if (clicked) tool_select(true, false);  // click selects a handle to pose
-    if (drag_ == Drag::Handle) {            // but posing never drags rest positions
-      doc_.end_gesture();
-      drag_ = Drag::None;
-    }
-    return;
-  }
-  const int h = sel.front();
-  const Eigen::Vector3d origin = P.row(h);
-  const bool can_rotate = handle_ref(doc_.rig(), h).kind != HandleKind::CageVertex;
-  const bool rotate = gizmo_rotate_ && can_rotate;
-  const GizmoPart hover = drag_ == Drag::Gizmo ? gizmo_part_ : gizmo_hit(cam_, origin, rotate, m);
-
-  // Draw the gizmo.
-  const double len = world_per_pixels(cam_, origin, GizmoLayout{}.axis_px);
-  auto hl = [&](GizmoPart p, Eigen::Vector4f c) { return hover == p ? rgba(1, 0.9f, 0.3f) : c; };
-  std::vector<gl::OverlayVertex> l;
-  if (!rotate) {
-    const Eigen::Vector4f ax[3] = {rgba(0.95f, 0.3f, 0.3f), rgba(0.4f, 0.9f, 0.35f), rgba(0.35f, 0.55f, 1.0f)};
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector4f c = hl(GizmoPart(int(GizmoPart::AxisX) + k), ax[k]);
-      l.push_back(gl::overlay_vertex(origin, c));
-      l.push_back(gl::overlay_vertex(origin + len * Eigen::Vector3d::Unit(k), c));
-      // Plane square between the other two axes.
-      const Eigen::Vector3d u = Eigen::Vector3d::Unit((k + 1) % 3), v = Eigen::Vector3d::Unit((k + 2) % 3);
-      const double a = 0.25 * len, b = a + len * GizmoLayout{}.plane_px / GizmoLayout{}.axis_px;
-      const Eigen::Vector4f pc = hl(GizmoPart(int(GizmoPart::PlaneYZ) + k), rgba(ax[k].x(), ax[k].y(), ax[k].z(), 0.7f));
-      const Eigen::Vector3d q[4] = {origin + a * u + a * v, origin + b * u + a * v, origin + b * u + b * v, origin + a * u + b * v};
-      for (int e = 0; e < 4; ++e) {
-        l.push_back(gl::overlay_vertex(q[e], pc));
-        l.push_back(gl::overlay_vertex(q[(e + 1) % 4], pc));
-      }
-    }
-  } else {
-    const double r = world_per_pixels(cam_, origin, GizmoLayout{}.ring_px);
-    for (auto& v : gl::circle_lines(origin, -view::camera_forward(cam_), r, hl(GizmoPart::Ring, rgba(0.95f, 0.95f, 1.0f)), 72))
-      l.push_back(v);
-    for (auto& v : gl::circle_lines(origin, -view::camera_forward(cam_), 0.98 * r,
-                                    hover == GizmoPart::Trackball ? rgba(1, 0.9f, 0.3f, 0.35f) : rgba(1, 1, 1, 0.12f), 72))
-      l.push_back(v);
-  }
-  view_->add_overlay_lines(l, 3.0f);
-
-  if (clicked) {
-    if (hover != GizmoPart::None) {
-      drag_ = Drag::Gizmo;
-      gizmo_part_ = hover;
-      drag_last_ = m;
-      drag_start_ = m;
-      doc_.begin_gesture();
-    } else {
-      tool_select(true, false);
-      if (drag_ == Drag::Handle) {
-        doc_.end_gesture();
-        drag_ = Drag::None;
-      }
-    }
-    return;
-  }
-  if (drag_ == Drag::Gizmo) {
-    if (m != drag_last_) {
-      if (rotate) {
-        const Eigen::Quaterniond q = gizmo_rotation(cam_, origin, gizmo_part_, drag_last_, m);
-        if (q.angularDistance(Eigen::Quaterniond::Identity()) > 1e-9) doc_.rotate_handle(h, q);
-      } else {
-        const Eigen::Vector3d d = gizmo_translation(cam_, origin, gizmo_part_, drag_last_, m);
-        if (d.norm() > 0) doc_.translate_handle(h, d);
-      }
-      drag_last_ = m;
-    }
-    if (released) {
-      doc_.end_gesture();
-      drag_ = Drag::None;
-      gizmo_part_ = GizmoPart::None;
-    }
+  PoseTool::Input in;
+  in.mouse = mouse_in_viewport();
+  in.clicked = clicked;
+  in.released = released;
+  in.rotate = gizmo_rotate_;
+  in.rig_shown = show_handles_ && view_->overlay_opacity() >= kMinOverlayOpacity;
+  if (pose_tool_.update(doc_, *view_, cam_, in)) return;
+  if (clicked) tool_select(true, false);  // a click off the gizmo selects a handle to pose
+  if (drag_ == Drag::Handle) {            // but posing never drags rest positions
+    doc_.end_gesture();
+    drag_ = Drag::None;
   }
 }
 

@@ -202,21 +202,7 @@ void Editor::draw_tools_panel() {
       ImGui::TextWrapped("%d joint(s) in the chain. Right-click / Enter: finish, Esc: cancel.", int(bone_chain_.size()));
       break;
     case Tool::Paint: {
-      int target = static_cast<int>(paint_target_);
-      ImGui::RadioButton("Mask", &target, 0);
-      ImGui::SameLine();
-      ImGui::RadioButton("Region", &target, 1);
-      paint_target_ = static_cast<PaintTarget>(target);
-      float r = float(brush_radius_), s = float(brush_strength_), f = float(brush_falloff_);
-      ImGui::SliderFloat("Radius", &r, 0.005f, 0.4f, "%.3f");
-      ImGui::SliderFloat("Strength", &s, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
-      ImGui::SliderFloat("Falloff", &f, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
-      brush_radius_ = r, brush_strength_ = s, brush_falloff_ = f;
-      if (paint_target_ == PaintTarget::Region) {
-        if (ImGui::Button("New region")) paint_region_ = doc_.add_region();
-        ImGui::SameLine();
-        ImGui::TextDisabled("painting region %d", paint_region_);
-      }
+      paint_tool_.draw_options(doc_);  // paint_tool.h
       if (weight_view_ != WeightView::Mask && ImGui::Button("Show mask")) weight_view_ = WeightView::Mask;
       break;
     }

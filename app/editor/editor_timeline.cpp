@@ -1,16 +1,14 @@
 // The timeline under the viewport: transport (play / pause / loop), set and delete keys, key a mesh
-// file, a ruler to scrub the animation manifold (drag), pose keys as diamonds and mesh keys as squares
-// (drag to move, right-click to delete), and the sweep view (slice along x, y or z instead of time).
+// file, the in-between, time, speed and the sweep view (slice along x, y or z instead of time) above
+// the ruler (timeline_ruler.h: scrub, keys).
 #include <imgui.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 #include "app/editor/editor.h"
 #include "app/editor/theme.h"
-#include "render/overlay_geometry.h"
 
 namespace dfm::editor {
 
@@ -87,112 +85,8 @@ void Editor::draw_timeline_toolbar() {
 }
 
 void Editor::draw_timeline() {
-  const auto& keys = doc_.keys();
-  // Range: the keys' span padded, at least [0, 1].
-  double t0 = 0, t1 = 1;
-  if (!keys.empty()) {
-    t0 = std::min(0.0, keys.front().time);
-    t1 = std::max(1.0, keys.back().time);
-  }
-  t1 = std::max(t1, doc_.time());
-
   draw_timeline_toolbar();
-
-  // Ruler.
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const ImVec2 p0 = ImGui::GetCursorScreenPos();
-  const float w = ImGui::GetContentRegionAvail().x, h = std::max(30.0f, ImGui::GetContentRegionAvail().y);
-  const float pad = 10;
-  auto x_of = [&](double time) { return p0.x + pad + float((time - t0) / (t1 - t0)) * (w - 2 * pad); };
-  auto t_of = [&](float x) { return t0 + (t1 - t0) * double(x - p0.x - pad) / double(w - 2 * pad); };
-  dl->AddRectFilled(p0, ImVec2(p0.x + w, p0.y + h), IM_COL32(24, 25, 28, 255), 3.0f);
-  // Ticks on whole frames (1, 2 or 5 times a power of ten), labelled with the frame number, about
-  // one per 60 px.
-  const double frames = std::max(1e-9, (t1 - t0) * frame_rate_);
-  const double fstep = std::max(1.0, gl::nice_spacing(frames, std::max(2, int(w / 60))));
-  for (double f = std::ceil(t0 * frame_rate_ / fstep) * fstep; f <= t1 * frame_rate_ + 1e-6; f += fstep) {
-    const float x = x_of(f / frame_rate_);
-    dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p0.y + 8), IM_COL32(110, 114, 122, 255));
-    char lab[16];
-    std::snprintf(lab, sizeof lab, "%.0f", f);
-    dl->AddText(ImVec2(x + 3, p0.y + 1), IM_COL32(130, 134, 142, 255), lab);
-  }
-  if (keys.size() >= 2)  // the animated span
-    dl->AddRectFilled(ImVec2(x_of(keys.front().time), p0.y + h - 10), ImVec2(x_of(keys.back().time), p0.y + h - 6),
-                      IM_COL32(70, 110, 170, 200), 2.0f);
-  ImGui::InvisibleButton("ruler", ImVec2(w, h), ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
-  const bool hovered = ImGui::IsItemHovered();
-  const float mx = ImGui::GetIO().MousePos.x, my = ImGui::GetIO().MousePos.y;
-  const float ky = p0.y + h * 0.55f;
-  int hover_key = -1;
-  for (size_t i = 0; i < keys.size(); ++i)
-    if (hovered && std::abs(mx - x_of(keys[i].time)) < 7 && std::abs(my - ky) < 10) hover_key = int(i);
-  if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
-    if (hover_key >= 0) {
-      drag_ = Drag::Key;
-      drag_key_ = hover_key;
-    } else {
-      drag_ = Drag::Timeline;
-    }
-  }
-  if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && hover_key >= 0) doc_.delete_key(hover_key);
-  if (drag_ == Drag::Timeline) {
-    doc_.set_time(std::clamp(t_of(mx), 0.0, 1e9));
-    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag_ = Drag::None;
-  }
-  if (drag_ == Drag::Key) {
-    const float x = std::clamp(mx, p0.x + pad, p0.x + w - pad);
-    dl->AddLine(ImVec2(x, p0.y), ImVec2(x, p0.y + h), IM_COL32(255, 210, 90, 160));
-    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-      const double nt = std::max(0.0, std::round(t_of(x) * frame_rate_) / frame_rate_);  // snap to whole frames
-      if (drag_key_ >= 0 && drag_key_ < int(keys.size()) && std::abs(nt - keys[drag_key_].time) > 1e-9) {
-        try {
-          doc_.move_key(drag_key_, nt);
-        } catch (const std::exception& e) {
-          error_popup_ = e.what();
-        }
-      }
-      drag_ = Drag::None;
-      drag_key_ = -1;
-    }
-  }
-  // Intervals with an ARAP or linear in-between: a bar between their keys (green, grey).
-  for (size_t i = 0; i + 1 < doc_.keys().size(); ++i) {
-    const InbetweenMethod m = doc_.keys()[i].inbetween;
-    if (m == InbetweenMethod::Handles) continue;
-    const ImU32 c = m == InbetweenMethod::Arap ? IM_COL32(110, 200, 120, 200) : IM_COL32(150, 150, 150, 200);
-    dl->AddLine(ImVec2(x_of(doc_.keys()[i].time), ky), ImVec2(x_of(doc_.keys()[i + 1].time), ky), c, 3.0f);
-  }
-  // Pose keys are amber diamonds, mesh keys teal squares.
-  for (size_t i = 0; i < doc_.keys().size(); ++i) {
-    const float x = x_of(doc_.keys()[i].time), r = 6;
-    const bool hot = int(i) == hover_key || int(i) == drag_key_;
-    if (doc_.keys()[i].is_mesh()) {
-      const float q = r - 1;
-      dl->AddRectFilled(ImVec2(x - q, ky - q), ImVec2(x + q, ky + q),
-                        hot ? IM_COL32(150, 240, 235, 255) : IM_COL32(70, 195, 190, 255), 1.5f);
-    } else {
-      const ImU32 c = hot ? IM_COL32(255, 220, 110, 255) : IM_COL32(235, 180, 60, 255);
-      dl->AddQuadFilled(ImVec2(x, ky - r), ImVec2(x + r, ky), ImVec2(x, ky + r), ImVec2(x - r, ky), c);
-    }
-  }
-  const float xt = x_of(doc_.time());
-  dl->AddLine(ImVec2(xt, p0.y), ImVec2(xt, p0.y + h), IM_COL32(90, 160, 255, 255), 2.0f);
-  dl->AddTriangleFilled(ImVec2(xt - 5, p0.y), ImVec2(xt + 5, p0.y), ImVec2(xt, p0.y + 6), IM_COL32(90, 160, 255, 255));
-  if (hover_key >= 0) {
-    const SceneKey& k = doc_.keys()[hover_key];
-    const std::string next_join =
-        hover_key + 1 < int(doc_.keys().size()) ? interval_join_label(interval_join(doc_, hover_key)) : "(the last key)";
-    if (k.is_mesh())
-      ImGui::SetTooltip("mesh key %d at %s: %s\n%d vertices, %d triangles\nto the next key: %s\n"
-                        "(drag to move, right-click to delete)",
-                        hover_key, format_time(k.time, frame_rate_).c_str(),
-                        std::filesystem::path(k.mesh_path).filename().string().c_str(), k.mesh.num_vertices(),
-                        k.mesh.num_faces(), next_join.c_str());
-    else
-      ImGui::SetTooltip("key %d at %s\nto the next key: %s\n(drag to move, right-click to delete)", hover_key,
-                        format_time(k.time, frame_rate_).c_str(), next_join.c_str());
-  }
+  timeline_ruler_.draw(doc_, frame_rate_, error_popup_);
 }
 
 // The in-between of the key interval holding the current time (one undo step per change); a

@@ -43,37 +43,83 @@ double world_per_pixels(const view::Camera& cam, const Eigen::Vector3d& p, doubl
   return px * 2.0 * half_h / std::max(1.0, cam.height);
 }
 
-GizmoPart gizmo_hit(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
-                    const Eigen::Vector2d& px, const GizmoLayout& L) {
-  const Eigen::Vector2d o = image(cam, origin);
-  if (rotate_mode) {
+GizmoShape gizmo_shape(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
+                       const GizmoLayout& L) {
+  GizmoShape g;
+  g.origin = origin;
+  g.rotate = rotate_mode;
+  g.pick_px = L.pick_px;
+  g.ring_normal = -view::camera_forward(cam);
+  g.ring_px = L.ring_px;
+  g.ring_radius = world_per_pixels(cam, origin, L.ring_px);
+  const double len = world_per_pixels(cam, origin, L.axis_px);
+  const double a = 0.25 * len, b = a + len * L.plane_px / L.axis_px;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d u = Eigen::Vector3d::Unit((k + 1) % 3), v = Eigen::Vector3d::Unit((k + 2) % 3);
+    g.axis_end[k] = origin + len * Eigen::Vector3d::Unit(k);
+    g.plane[k] = {origin + a * u + a * v, origin + b * u + a * v, origin + b * u + b * v, origin + a * u + b * v};
+  }
+  return g;
+}
+
+GizmoPart gizmo_hit(const view::Camera& cam, const GizmoShape& g, const Eigen::Vector2d& px) {
+  const Eigen::Vector2d o = image(cam, g.origin);
+  if (g.rotate) {
     const double r = (px - o).norm();
-    if (std::abs(r - L.ring_px) <= L.pick_px) return GizmoPart::Ring;
-    if (r < L.ring_px) return GizmoPart::Trackball;
+    if (std::abs(r - g.ring_px) <= g.pick_px) return GizmoPart::Ring;
+    if (r < g.ring_px) return GizmoPart::Trackball;
     return GizmoPart::None;
   }
-  const double len = world_per_pixels(cam, origin, L.axis_px);
-  const Eigen::Vector3d axes[3] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
-  // Planes first: their squares sit between the axes.
-  const double p0 = 0.25 * len, p1 = p0 + len * L.plane_px / L.axis_px;
   for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d u = axes[(k + 1) % 3], v = axes[(k + 2) % 3];
-    // Point in the plane under the cursor, in (u, v) coordinates.
+    const Eigen::Vector3d u = Eigen::Vector3d::Unit((k + 1) % 3), v = Eigen::Vector3d::Unit((k + 2) % 3);
+    // Point in the plane under the cursor, in (u, v) coordinates, against the square's corners.
     Eigen::Vector3d hit;
-    if (!plane_point(view::pixel_ray(cam, px.x(), px.y()), origin, axes[k], hit)) continue;
-    const double a = (hit - origin).dot(u), b = (hit - origin).dot(v);
-    if (a >= p0 && a <= p1 && b >= p0 && b <= p1) return static_cast<GizmoPart>(int(GizmoPart::PlaneYZ) + k);
+    if (!plane_point(view::pixel_ray(cam, px.x(), px.y()), g.origin, Eigen::Vector3d::Unit(k), hit)) continue;
+    const double a = (hit - g.origin).dot(u), b = (hit - g.origin).dot(v);
+    const double lo = (g.plane[k][0] - g.origin).dot(u), hi = (g.plane[k][2] - g.origin).dot(u);
+    if (a >= lo && a <= hi && b >= lo && b <= hi) return static_cast<GizmoPart>(int(GizmoPart::PlaneYZ) + k);
   }
   GizmoPart best = GizmoPart::None;
-  double best_d = L.pick_px;
+  double best_d = g.pick_px;
   for (int k = 0; k < 3; ++k) {
-    const double d = segment_distance(o, image(cam, origin + len * axes[k]), px);
+    const double d = segment_distance(o, image(cam, g.axis_end[k]), px);
     if (d <= best_d) {
       best_d = d;
       best = static_cast<GizmoPart>(int(GizmoPart::AxisX) + k);
     }
   }
   return best;
+}
+
+GizmoPart gizmo_hit(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
+                    const Eigen::Vector2d& px, const GizmoLayout& L) {
+  return gizmo_hit(cam, gizmo_shape(cam, origin, rotate_mode, L), px);
+}
+
+Eigen::Vector4f gizmo_hover_color() { return {1.0f, 0.9f, 0.3f, 1.0f}; }
+
+std::vector<gl::OverlayVertex> gizmo_lines(const GizmoShape& g, GizmoPart hover) {
+  auto hl = [&](GizmoPart p, const Eigen::Vector4f& c) { return hover == p ? gizmo_hover_color() : c; };
+  std::vector<gl::OverlayVertex> l;
+  if (g.rotate) {
+    l = gl::circle_lines(g.origin, g.ring_normal, g.ring_radius, hl(GizmoPart::Ring, {0.95f, 0.95f, 1.0f, 1.0f}), 72);
+    const Eigen::Vector4f disc = hover == GizmoPart::Trackball ? Eigen::Vector4f(1, 0.9f, 0.3f, 0.35f)
+                                                               : Eigen::Vector4f(1, 1, 1, 0.12f);
+    for (const auto& v : gl::circle_lines(g.origin, g.ring_normal, 0.98 * g.ring_radius, disc, 72)) l.push_back(v);
+    return l;
+  }
+  const Eigen::Vector4f ax[3] = {{0.95f, 0.3f, 0.3f, 1.0f}, {0.4f, 0.9f, 0.35f, 1.0f}, {0.35f, 0.55f, 1.0f, 1.0f}};
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector4f c = hl(GizmoPart(int(GizmoPart::AxisX) + k), ax[k]);
+    l.push_back(gl::overlay_vertex(g.origin, c));
+    l.push_back(gl::overlay_vertex(g.axis_end[k], c));
+    const Eigen::Vector4f pc = hl(GizmoPart(int(GizmoPart::PlaneYZ) + k), {ax[k].x(), ax[k].y(), ax[k].z(), 0.7f});
+    for (int e = 0; e < 4; ++e) {
+      l.push_back(gl::overlay_vertex(g.plane[k][e], pc));
+      l.push_back(gl::overlay_vertex(g.plane[k][(e + 1) % 4], pc));
+    }
+  }
+  return l;
 }
 
 Eigen::Vector3d gizmo_translation(const view::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,

@@ -1,11 +1,15 @@
 #pragma once
-// The posing gizmo's geometry, all CPU: which part is under the cursor, and what a drag means
-// (translation along an axis or in a plane, rotation by a trackball ring). Sized in pixels so it
-// looks the same at any zoom.
+// The posing gizmo's geometry, all CPU: one layout (GizmoShape) that the Pose tool both draws and
+// picks, which part is under the cursor, and what a drag means (translation along an axis or in a
+// plane, rotation by a trackball ring). Sized in pixels so it looks the same at any zoom.
+#include <array>
+#include <vector>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "core/view/camera.h"
+#include "render/overlay_geometry.h"
 
 namespace dfm::editor {
 
@@ -20,10 +24,33 @@ struct GizmoLayout {
 
 // World length that appears `px` pixels long at `p`.
 double world_per_pixels(const view::Camera& cam, const Eigen::Vector3d& p, double px);
-// The part under the cursor. Translate mode offers axes and planes; rotate mode the view ring
-// (turn about the view axis) and the disc inside it (trackball).
+
+// The gizmo at one origin for one camera, in world space: what is drawn and what is picked.
+struct GizmoShape {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  bool rotate = false;  // rotate mode: the ring and its disc; else the axes and plane squares
+  // Translate: axis k from the origin to axis_end[k]; the square in the plane normal to axis k (between
+  // the other two axes u = k+1, v = k+2) has corners plane[k] = (a,a), (b,a), (b,b), (a,b) in (u, v).
+  std::array<Eigen::Vector3d, 3> axis_end;
+  std::array<std::array<Eigen::Vector3d, 4>, 3> plane;
+  // Rotate: the ring about the view axis, its radius in pixels (picking) and in world units (drawing).
+  Eigen::Vector3d ring_normal = Eigen::Vector3d::UnitZ();
+  double ring_px = 0, ring_radius = 0;
+  double pick_px = 8;  // picking tolerance
+};
+GizmoShape gizmo_shape(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
+                       const GizmoLayout& layout = {});
+// The part of `shape` under the cursor. Translate mode offers axes and planes (planes first: their
+// squares sit between the axes); rotate mode the view ring (turn about the view axis) and the disc
+// inside it (trackball).
+GizmoPart gizmo_hit(const view::Camera& cam, const GizmoShape& shape, const Eigen::Vector2d& px);
 GizmoPart gizmo_hit(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
                     const Eigen::Vector2d& px, const GizmoLayout& layout = {});
+// The line list the Pose tool draws for `shape`, the `hover` part highlighted: per axis its line and
+// its plane square (translate), or the ring and the disc's rim (rotate).
+std::vector<gl::OverlayVertex> gizmo_lines(const GizmoShape& shape, GizmoPart hover);
+// The highlight colour of the part under the cursor or being dragged.
+Eigen::Vector4f gizmo_hover_color();
 // World translation for a drag from one pixel to another on the given part (axis: along it only;
 // plane: within it). Zero for parts that do not translate.
 Eigen::Vector3d gizmo_translation(const view::Camera& cam, const Eigen::Vector3d& origin, GizmoPart part,

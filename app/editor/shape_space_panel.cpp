@@ -100,6 +100,46 @@ void remove_base(ShapeSpacePanel& p, int i) {
   p.points = kept;
 }
 
+// One checkbox per key: on makes it a base (numbered in chain order), off removes it.
+void draw_bases(ShapeSpacePanel& p, const Document& doc) {
+  ImGui::TextDisabled("bases (keys, in chain order):");
+  for (int k = 0; k < static_cast<int>(doc.keys().size()); ++k) {
+    const double t = doc.keys()[k].time;
+    const auto it = std::find(p.times.begin(), p.times.end(), t);
+    bool on = it != p.times.end();
+    char label[128];
+    std::snprintf(label, sizeof label, "%s%s##ssk%d", on ? std::to_string(it - p.times.begin()).c_str() : "-",
+                  (": " + key_label(doc, k)).c_str(), k);
+    if (ImGui::Checkbox(label, &on)) {
+      if (on) add_base(p, t);
+      else remove_base(p, static_cast<int>(it - p.times.begin()));
+    }
+  }
+  if (doc.keys().size() < 2) ImGui::TextDisabled("key two or more poses or meshes first");
+  if (!p.times.empty() && ImGui::SmallButton("Clear bases")) p.times.clear(), p.points.resize(0, 2);
+}
+
+// The barycentric weights at the cursor, the ARAP synthesis status, and what failed.
+void draw_weights_and_errors(ShapeSpacePanel& p, bool have_shape) {
+  CursorShape& c = p.shape;
+  if (p.weights.size() == static_cast<Eigen::Index>(p.times.size()) && p.times.size() >= 2) {
+    std::string w = "weights:";
+    for (int i = 0; i < p.weights.size(); ++i) {
+      char b[24];
+      std::snprintf(b, sizeof b, " %d:%.2f", i, p.weights(i));
+      w += b;
+    }
+    ImGui::TextWrapped("%s", w.c_str());
+    if (have_shape) shape_space_synthesis_status(c, p.space->morph() == ShapeMorph::Arap);
+  }
+  for (const std::string* e : std::initializer_list<const std::string*>{&p.build_error, &c.error()})
+    if (!e->empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.45f, 0.35f, 1));
+      ImGui::TextWrapped("%s", e->substr(0, 300).c_str());
+      ImGui::PopStyleColor();
+    }
+}
+
 }  // namespace
 
 bool Editor::shape_space_ui_option(const std::string& key, const std::string& value) {
@@ -218,21 +258,7 @@ void Editor::draw_shape_space_section() {
   ImGui::RadioButton("As rigid as possible", &morph, 1);
   p.morph = morph == 0 ? ShapeMorph::Linear : ShapeMorph::Arap;
 
-  ImGui::TextDisabled("bases (keys, in chain order):");
-  for (int k = 0; k < static_cast<int>(doc_.keys().size()); ++k) {
-    const double t = doc_.keys()[k].time;
-    const auto it = std::find(p.times.begin(), p.times.end(), t);
-    bool on = it != p.times.end();
-    char label[128];
-    std::snprintf(label, sizeof label, "%s%s##ssk%d", on ? std::to_string(it - p.times.begin()).c_str() : "-",
-                  (": " + key_label(doc_, k)).c_str(), k);
-    if (ImGui::Checkbox(label, &on)) {
-      if (on) add_base(p, t);
-      else remove_base(p, static_cast<int>(it - p.times.begin()));
-    }
-  }
-  if (doc_.keys().size() < 2) ImGui::TextDisabled("key two or more poses or meshes first");
-  if (!p.times.empty() && ImGui::SmallButton("Clear bases")) p.times.clear(), p.points.resize(0, 2);
+  draw_bases(p, doc_);
 
   update_shape_space();
   if (p.times.size() >= 2) {
@@ -254,22 +280,7 @@ void Editor::draw_shape_space_section() {
     view_->show_preview(TriMesh{c.vertices(), p.space->faces(), {}});
   if (!p.preview || !have_shape) view_->clear_preview();
 
-  if (p.weights.size() == static_cast<Eigen::Index>(p.times.size()) && p.times.size() >= 2) {
-    std::string w = "weights:";
-    for (int i = 0; i < p.weights.size(); ++i) {
-      char b[24];
-      std::snprintf(b, sizeof b, " %d:%.2f", i, p.weights(i));
-      w += b;
-    }
-    ImGui::TextWrapped("%s", w.c_str());
-    if (have_shape) shape_space_synthesis_status(c, p.space->morph() == ShapeMorph::Arap);
-  }
-  for (const std::string* e : std::initializer_list<const std::string*>{&p.build_error, &c.error()})
-    if (!e->empty()) {
-      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.45f, 0.35f, 1));
-      ImGui::TextWrapped("%s", e->substr(0, 300).c_str());
-      ImGui::PopStyleColor();
-    }
+  draw_weights_and_errors(p, have_shape);
   ImGui::Checkbox("Show in viewport", &p.preview);
 
   if (!p.key_time_set) p.key_time = doc_.time();

@@ -9,7 +9,8 @@ dfm_test(test_view_color SOURCES test_view_color.cpp LIBS dfm_view)
 dfm_test(test_editor_picking SOURCES test_editor_picking.cpp LIBS dfm_view)
 dfm_test(test_editor_gizmo SOURCES test_editor_gizmo.cpp
          ${PROJECT_SOURCE_DIR}/app/editor/gizmo.cpp ${PROJECT_SOURCE_DIR}/app/editor/camera_sync.cpp
-         ${PROJECT_SOURCE_DIR}/app/editor/file_panel.cpp LIBS dfm_view imgui)
+         ${PROJECT_SOURCE_DIR}/app/editor/file_panel.cpp ${PROJECT_SOURCE_DIR}/render/overlay_geometry.cpp
+         LIBS dfm_view imgui)
 
 # The real editor binary under the suite's X server.
 if(DFM_BUILD_EDITOR)
