@@ -117,8 +117,12 @@ void armadillo(bool baseline) {
 
 }  // namespace
 
+// The process-wide numeric settings (core/bind/numeric_setup.h): serial OpenMP regions here,
+// setup_numerics() first thing in main.
+DFM_RUN_OPENMP_REGIONS_SERIALLY()
+
 int main(int argc, char** argv) {
-  dfm::setup_numerics();
+  dfm::setup_numerics();  // before any bind (numeric_setup.h)
   const std::string which = argc > 1 ? argv[1] : "hand";
   const bool reference = argc > 2 && std::strcmp(argv[2], "--reference") == 0;
   const bool baseline = argc > 2 && std::strcmp(argv[2], "--baseline") == 0;

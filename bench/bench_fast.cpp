@@ -91,8 +91,12 @@ static void run_case(const Case& c) {
               static_cast<int>(c.display_V.rows()), 1e3 * lbs_s, 1e-6 * per_iteration_us / lbs_s);
 }
 
+// The process-wide numeric settings (core/bind/numeric_setup.h): serial OpenMP regions here,
+// setup_numerics() first thing in main.
+DFM_RUN_OPENMP_REGIONS_SERIALLY()
+
 int main(int argc, char** argv) {
-  dfm::setup_numerics();
+  dfm::setup_numerics();  // before any bind (numeric_setup.h)
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   const std::string data = argc > 1 ? argv[1] : std::string(DFM_DATA_DIR);
   {

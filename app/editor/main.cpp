@@ -35,6 +35,10 @@ void usage(std::FILE* out) {
 
 }  // namespace
 
+// The process-wide numeric settings (core/bind/numeric_setup.h): serial OpenMP regions here,
+// setup_numerics() first thing in main.
+DFM_RUN_OPENMP_REGIONS_SERIALLY()
+
 int main(int argc, char** argv) {
   dfm::setup_numerics();  // before any bind (numeric_setup.h)
   dfm::editor::EditorOptions opts;
