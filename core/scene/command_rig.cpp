@@ -1,0 +1,102 @@
+// The table's surface, rig, bind and mask commands (SCRIPT.md).
+#include "core/scene/bind_document.h"
+#include "core/scene/brush.h"
+#include "core/scene/command_parts.h"
+#include "core/util/error.h"
+
+namespace dfm::command_detail {
+namespace {
+
+using Opened = ScriptHost::Opened;
+
+void opened(const CommandContext& x, Opened what) {
+  if (x.host.opened) x.host.opened(what);
+}
+
+void open(CommandContext& x, const CommandWords& w) {
+  const bool scene = ends_with(w[1], ".json");
+  if (scene) x.doc.load_scene(w[1]);
+  else x.doc.open_mesh(w[1]);  // a new document
+  opened(x, scene ? Opened::Scene : Opened::NewMesh);
+}
+
+void pseudo_edge(CommandContext& x, const CommandWords& w) {
+  const int a = handle_at(x.doc, w, 1), b = handle_at(x.doc, w, 2);
+  for (int h : {a, b})
+    if (handle_ref(x.doc.rig(), h).kind != HandleKind::Point)
+      throw Error(handle_name(x.doc.rig(), h) + " (" + std::to_string(h) + ") is not a point handle");
+  x.doc.add_pseudo_edge(a, b);
+}
+
+// One dab of the Paint tool's brush (brush.h): paint-mask sets VALUE, paint-dab adds or erases.
+void paint(CommandContext& x, const CommandWords& w) {
+  Brush brush{num(w, 4), num(w, 5), 0.0, BrushMode::Set};
+  if (w[0] == "paint-mask") {
+    if (brush.strength < 0 || brush.strength > 1) throw Error("mask values are in [0, 1], got " + w[5]);
+    if (w.size() > 6) brush.falloff = num(w, 6);
+  } else {
+    brush.falloff = num(w, 6);
+    if (w.size() > 7 && w[7] != "erase") throw Error("the last word is 'erase' or nothing, got " + w[7]);
+    brush.mode = w.size() > 7 ? BrushMode::Erase : BrushMode::Add;
+  }
+  if (brush.radius <= 0) throw Error("radius must be > 0");
+  const BrushDab dab = brush_dab(x.doc.surface().V, x.doc.mask(), Eigen::Vector3d(num(w, 1), num(w, 2), num(w, 3)), brush);
+  if (dab.vertices.empty()) throw Error("no surface vertex within " + w[4] + " of the point");
+  x.doc.paint_mask(dab.vertices, dab.values);
+}
+
+void bind_monotone(CommandContext& x, const CommandWords& w) {
+  if (w[1] != "on" && w[1] != "off") throw Error("bind-monotone: expected on or off, got '" + w[1] + "'");
+  BindSettings b = x.doc.bind_settings();
+  b.monotone = w[1] == "on";
+  x.doc.set_bind_settings(b);
+}
+
+}  // namespace
+
+void add_rig_commands(std::vector<Command>& t) {
+  Command* c = &add(t, "open", "open FILE", 1, 1, {file_arg()}, open);
+  c->undoable = false;  // a new document: undo starts empty
+  c->remember_file = true;
+  c = &add(t, "replace-surface", "replace-surface FILE", 1, 1, {file_arg()}, [](CommandContext& x, const CommandWords& w) {
+    x.doc.replace_surface(w[1]);
+    opened(x, Opened::Surface);
+  });
+  c->poll = needs_surface;
+  c->remember_file = true;
+  add(t, "add-point", "add-point X Y Z", 3, 3, {number_arg()}, [](CommandContext& x, const CommandWords& w) {
+    x.doc.add_point({num(w, 1), num(w, 2), num(w, 3)});
+  });
+  c = &add(t, "add-bone", "add-bone X0 Y0 Z0 X1 Y1 Z1 [X2 Y2 Z2 ...]", 6, 3000, {number_arg()},
+           [](CommandContext& x, const CommandWords& w) {
+             std::vector<Eigen::Vector3d> joints;
+             for (size_t i = 1; i + 2 < w.size(); i += 3) joints.push_back({num(w, i), num(w, i + 1), num(w, i + 2)});
+             x.doc.add_bone_chain(joints);
+           });
+  c->check = [](const CommandWords& w, const std::string&) {
+    if ((w.size() - 1) % 3 != 0)
+      throw Error("add-bone needs joint positions in threes (x y z), got " + std::to_string(w.size() - 1) + " numbers");
+  };
+  c = &add(t, "load-skeleton", "load-skeleton FILE.tgf", 1, 1, {file_arg()},
+           [](CommandContext& x, const CommandWords& w) { x.doc.load_skeleton(w[1]); });
+  c->remember_file = true;
+  c = &add(t, "load-cage", "load-cage FILE", 1, 1, {file_arg()},
+           [](CommandContext& x, const CommandWords& w) { x.doc.load_cage(w[1]); });
+  c->remember_file = true;
+  add(t, "pseudo-edge", "pseudo-edge POINT_A POINT_B", 2, 2, {handle_arg()}, pseudo_edge);
+  add(t, "paint-mask", "paint-mask X Y Z RADIUS VALUE [FALLOFF]", 5, 6, {number_arg()}, paint).poll = needs_surface;
+  add(t, "paint-dab", "paint-dab X Y Z RADIUS STRENGTH FALLOFF [erase]", 6, 7,
+      {number_arg(), number_arg(), number_arg(), number_arg(), number_arg(), number_arg(), word_arg()}, paint)
+      .poll = needs_surface;
+  c = &add(t, "bind", "bind", 0, 0, {}, [](CommandContext& x, const CommandWords&) {
+    if (x.host.bind) x.host.bind(x.doc);
+    else run_bind_blocking(x.doc);
+  });
+  c->poll = [](const Document& d) {
+    if (const std::string why = needs_surface(d); !why.empty()) return why;
+    return d.num_handles() > 0 ? std::string() : std::string("no handles (add a point, bones or a cage)");
+  };
+  add(t, "bind-monotone", "bind-monotone on|off", 1, 1, {word_arg()}, bind_monotone);
+}
+
+}  // namespace dfm::command_detail
