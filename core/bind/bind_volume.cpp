@@ -17,6 +17,7 @@
 #include "core/bind/tet_face_adjacency.h"
 #include "core/bind/tetrahedralize.h"
 #include "core/bind/winding_bvh.h"
+#include "core/mesh/io_formats.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -410,8 +411,9 @@ BindVolume build_bind_volume(const TriMesh& surface, const Rig& rig, const Volum
   return vol;
 }
 
-BindVolume bind_volume_from_tets(const TetMesh& input, const Rig& rig) {
-  const auto t0 = Clock::now();
+namespace {
+
+void check_tet_input(const TetMesh& input, const Rig& rig) {
   const int nv = input.num_vertices();
   if (nv == 0 || input.num_tets() == 0) throw Error("bind: the tet mesh has no tets");
   if (input.T.cols() != 4) throw Error("bind: tets must have four vertices");
@@ -419,71 +421,102 @@ BindVolume bind_volume_from_tets(const TetMesh& input, const Rig& rig) {
   if (input.T.minCoeff() < 0 || input.T.maxCoeff() >= nv) throw Error("bind: a tet index is out of range");
   check_rig(rig);
   if (num_handles(rig) == 0) throw Error("bind: the rig has no handles");
+}
 
-  BindVolume vol;
-  vol.tets.V = input.V;
-  vol.tets.T = input.T;
-  int flipped = 0, flat = 0;
-  for (int t = 0; t < vol.tets.T.rows(); ++t) {
-    const Eigen::Vector3d a = vol.tets.V.row(vol.tets.T(t, 0));
-    const Eigen::Vector3d e1 = vol.tets.V.row(vol.tets.T(t, 1)).transpose() - a;
-    const Eigen::Vector3d e2 = vol.tets.V.row(vol.tets.T(t, 2)).transpose() - a;
-    const Eigen::Vector3d e3 = vol.tets.V.row(vol.tets.T(t, 3)).transpose() - a;
-    const double d = e1.dot(e2.cross(e3));
-    if (d < 0) std::swap(vol.tets.T(t, 1), vol.tets.T(t, 2)), ++flipped;
-    if (d == 0) ++flat;
+// The given tets, positively oriented, with notes on flipped and flat ones.
+void orient_given_tets(TetMesh& tets, std::vector<std::string>& notes) {
+  const int flipped = io::orient_tets_positively(tets.V, tets.T);
+  int flat = 0;
+  for (int t = 0; t < tets.T.rows(); ++t) {
+    const Eigen::Vector3d a = tets.V.row(tets.T(t, 0));
+    const Eigen::Vector3d e1 = tets.V.row(tets.T(t, 1)).transpose() - a;
+    const Eigen::Vector3d e2 = tets.V.row(tets.T(t, 2)).transpose() - a;
+    const Eigen::Vector3d e3 = tets.V.row(tets.T(t, 3)).transpose() - a;
+    flat += e1.dot(e2.cross(e3)) == 0;
   }
-  if (flipped) vol.notes.push_back(std::to_string(flipped) + " negatively oriented tets flipped");
-  if (flat) vol.notes.push_back(std::to_string(flat) + " tets have zero volume");
-  vol.tets.F = tet_boundary_faces(vol.tets.T);
+  if (flipped) notes.push_back(std::to_string(flipped) + " negatively oriented tets flipped");
+  if (flat) notes.push_back(std::to_string(flat) + " tets have zero volume");
+}
 
-  const double tol = 1e-5 * bbox_diagonal(vol.tets.V);
-  const int nh = num_handles(rig);
-  PointWelder grid(tol);  // a lookup structure over the tet vertices
-  for (int i = 0; i < nv; ++i) grid.insert(vol.tets.V.row(i).transpose());
-  std::unique_ptr<WindingTree> boundary;
-  auto missing = [&](int h, const Eigen::Vector3d& x) {
-    if (!boundary) boundary = std::make_unique<WindingTree>(build_winding_tree(vol.tets.V, vol.tets.F));
-    const bool inside = std::abs(winding_number(*boundary, x)) > 0.5;
-    return Error(std::string(handle_kind_name(handle_ref(rig, h).kind)) + " handle \"" + handle_name(rig, h) + "\" " +
-                 (inside ? "is not a vertex of the tet mesh: remesh it with the handle, or bind the surface"
-                         : "lies outside the tet mesh"));
-  };
-  BoundaryRows rows;
-  // Point handles and cage vertices: the tet vertex at that position.
-  for (const HandleSample& s : sample_handles(rig, 0)) {
-    if (handle_ref(rig, s.handle).kind == HandleKind::Bone) continue;
-    const int v = grid.find(s.x);
-    if (v < 0) throw missing(s.handle, s.x);
-    rows.add(v, s.w);
+// Constraint rows of a rig on tets used as given: each handle must lie on tet vertices.
+class GivenTetRows {
+ public:
+  GivenTetRows(const TetMesh& tets, const Rig& rig) : tets_(tets), rig_(rig), tol_(1e-5 * bbox_diagonal(tets.V)), grid_(tol_) {
+    for (int i = 0; i < tets.num_vertices(); ++i) grid_.insert(tets.V.row(i).transpose());
   }
+
+  BoundaryRows rows() {
+    BoundaryRows rows;
+    // Point handles and cage vertices: the tet vertex at that position.
+    for (const HandleSample& s : sample_handles(rig_, 0)) {
+      if (handle_ref(rig_, s.handle).kind == HandleKind::Bone) continue;
+      const int v = grid_.find(s.x);
+      if (v < 0) throw missing(s.handle, s.x);
+      rows.add(v, s.w);
+    }
+    for (int i = 0; i < rig_.skeleton.num_bones(); ++i) add_bone(i, rows);
+    for (int i = 0; i < static_cast<int>(rig_.regions.size()); ++i) add_region(i, rows);
+    add_cage_surface_rows(tets_.V, stack_cages(rig_), tol_, rows);
+    return rows;
+  }
+
+ private:
   // Bones: every tet vertex on the segment (libigl's boundary_conditions does the same).
-  for (int i = 0; i < rig.skeleton.num_bones(); ++i) {
-    const Bone& bone = rig.skeleton.bones[i];
-    const int h = handle_index(rig, {HandleKind::Bone, i});
-    if (bone.a < 0 || bone.b < 0 || bone.a >= rig.skeleton.num_joints() || bone.b >= rig.skeleton.num_joints())
-      throw Error("bone " + handle_name(rig, h) + " refers to a missing joint");
-    const Eigen::Vector3d a = rig.skeleton.joints.row(bone.a), b = rig.skeleton.joints.row(bone.b);
+  void add_bone(int i, BoundaryRows& rows) {
+    const Bone& bone = rig_.skeleton.bones[i];
+    const int h = handle_index(rig_, {HandleKind::Bone, i});
+    if (bone.a < 0 || bone.b < 0 || bone.a >= rig_.skeleton.num_joints() || bone.b >= rig_.skeleton.num_joints())
+      throw Error("bone " + handle_name(rig_, h) + " refers to a missing joint");
+    const Eigen::Vector3d a = rig_.skeleton.joints.row(bone.a), b = rig_.skeleton.joints.row(bone.b);
     const Eigen::Vector3d d = b - a;
     const double l2 = d.squaredNorm();
     int hits = 0;
-    for (int v = 0; v < nv; ++v) {
-      const Eigen::Vector3d p = vol.tets.V.row(v);
+    for (int v = 0; v < tets_.num_vertices(); ++v) {
+      const Eigen::Vector3d p = tets_.V.row(v);
       const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-      if ((a + t * d - p).norm() <= tol) rows.add(v, {{h, 1.0}}), ++hits;
+      if ((a + t * d - p).norm() <= tol_) rows.add(v, {{h, 1.0}}), ++hits;
     }
     if (!hits) throw missing(h, 0.5 * (a + b));
   }
-  for (int i = 0; i < static_cast<int>(rig.regions.size()); ++i) {
-    const int h = handle_index(rig, {HandleKind::Region, i});
-    if (rig.regions[i].vertices.empty()) throw Error("region \"" + handle_name(rig, h) + "\" has no vertices");
-    for (int u : rig.regions[i].vertices) {
-      if (u < 0 || u >= nv) throw Error("region \"" + handle_name(rig, h) + "\": vertex " + std::to_string(u) + " out of range");
+
+  void add_region(int i, BoundaryRows& rows) {
+    const int h = handle_index(rig_, {HandleKind::Region, i});
+    if (rig_.regions[i].vertices.empty()) throw Error("region \"" + handle_name(rig_, h) + "\" has no vertices");
+    for (int u : rig_.regions[i].vertices) {
+      if (u < 0 || u >= tets_.num_vertices())
+        throw Error("region \"" + handle_name(rig_, h) + "\": vertex " + std::to_string(u) + " out of range");
       rows.add(u, {{h, 1.0}});
     }
   }
-  add_cage_surface_rows(vol.tets.V, stack_cages(rig), tol, rows);
-  rows.finish(nh, vol.b, vol.bc);
+
+  // Why handle h (at x) has no tet vertex: inside the mesh but not a vertex, or outside it.
+  Error missing(int h, const Eigen::Vector3d& x) {
+    if (!boundary_) boundary_ = std::make_unique<WindingTree>(build_winding_tree(tets_.V, tets_.F));
+    const bool inside = std::abs(winding_number(*boundary_, x)) > 0.5;
+    return Error(std::string(handle_kind_name(handle_ref(rig_, h).kind)) + " handle \"" + handle_name(rig_, h) + "\" " +
+                 (inside ? "is not a vertex of the tet mesh: remesh it with the handle, or bind the surface"
+                         : "lies outside the tet mesh"));
+  }
+
+  const TetMesh& tets_;
+  const Rig& rig_;
+  double tol_;
+  PointWelder grid_;  // a lookup structure over the tet vertices
+  std::unique_ptr<WindingTree> boundary_;
+};
+
+}  // namespace
+
+BindVolume bind_volume_from_tets(const TetMesh& input, const Rig& rig) {
+  const auto t0 = Clock::now();
+  check_tet_input(input, rig);
+  const int nv = input.num_vertices();
+  BindVolume vol;
+  vol.tets.V = input.V;
+  vol.tets.T = input.T;
+  orient_given_tets(vol.tets, vol.notes);
+  vol.tets.F = tet_boundary_faces(vol.tets.T);
+  GivenTetRows(vol.tets, rig).rows().finish(num_handles(rig), vol.b, vol.bc);
   vol.to_user.resize(nv, nv);
   vol.to_user.setIdentity();
   attach_free_pieces(vol);
