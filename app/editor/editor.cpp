@@ -15,7 +15,6 @@
 #include "app/editor/theme.h"
 #include "core/mesh/io.h"
 #include "core/scene/bind_document.h"
-#include "core/scene/script.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "render/screenshot.h"
@@ -26,30 +25,6 @@ namespace dfm::editor {
 namespace {
 
 constexpr double kAutosaveSeconds = 180.0;
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// The default scene ships in the source tree's assets/; look beside and above the executable so the
-// editor runs from any working directory (build tree or install).
-std::string find_default_scene() {
-  if (const char* env = std::getenv("DFM_ASSETS_DIR")) {
-    const fs::path p = fs::path(env) / "default.scene.json";
-    if (fs::exists(p)) return p.string();
-  }
-  std::error_code ec;
-  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  for (int up = 0; !ec && up < 5 && !dir.empty(); ++up) {
-    for (const char* rel : {"assets/default.scene.json", "share/deform/assets/default.scene.json"}) {
-      const fs::path p = dir / rel;
-      if (fs::exists(p)) return p.string();
-    }
-    if (dir == dir.parent_path()) break;
-    dir = dir.parent_path();
-  }
-  return "";
-}
 
 // A three-quarter view from slightly above: shows depth better than a flat front view.
 Eigen::Quaterniond default_orientation() {
@@ -139,33 +114,8 @@ void Editor::status(const std::string& msg, bool error) {
   if (error) std::fprintf(stderr, "deform-editor: %s\n", msg.c_str());
 }
 
-namespace {
-bool is_mesh_extension(const std::string& ext) {
-  for (const char* e : {"obj", "off", "ply", "stl", "mesh", "node", "ele"})
-    if (ext == e) return true;
-  return false;
-}
-}  // namespace
-
-void Editor::open_file(const std::string& path) {
-  if (const std::string why = unopenable_reason(path); !why.empty()) throw Error(why);  // e.g. a .glb
-  const std::string ext = file_extension(path);
-  if (ends_with(path, ".json")) {
-    doc_.load_scene(path);
-    show_opened(Opened::Scene);
-  } else if (ext == "tgf") {
-    doc_.load_skeleton(path);
-  } else if (doc_.surface().num_vertices() > 0 && (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl") &&
-             ImGui::GetCurrentContext() && ImGui::GetIO().KeyAlt) {
-    doc_.load_cage(path);  // Alt+drop: a cage around the current surface
-  } else {
-    doc_.open_mesh(path);  // a new document (Replace surface... keeps the rig)
-    show_opened(Opened::NewMesh);
-  }
-}
-
-void Editor::show_opened(Opened what) {
-  if (what != Opened::Surface) {
+void Editor::show_opened(ScriptHost::Opened what) {
+  if (what != ScriptHost::Opened::Surface) {
     // A fresh document's view: nothing of the last one's tools, selection helpers or playback.
     tool_ = Tool::Select;
     weight_view_ = WeightView::Off;
@@ -182,84 +132,15 @@ void Editor::show_opened(Opened what) {
     weight_tools_ = WeightToolsUi{};
   }
   view_->sync(doc_, {});
-  if (what == Opened::Scene) {
+  if (what == ScriptHost::Opened::Scene) {
     view::Camera c = cam_;
     from_document_camera(doc_.camera(), c);
     cam_ = c;
     fit_scene_radius();
   } else {
-    if (what == Opened::NewMesh) cam_.orientation = default_orientation(), cam_.orthographic = false;
+    if (what == ScriptHost::Opened::NewMesh) cam_.orientation = default_orientation(), cam_.orthographic = false;
     frame_all();
   }
-}
-
-void Editor::open_any(const std::string& path) {
-  const std::string ext = file_extension(path);
-  const bool alt = ImGui::GetCurrentContext() && ImGui::GetIO().KeyAlt;
-  const bool new_document = ext == "json" || (is_mesh_extension(ext) && !(alt && doc_.surface().num_vertices() > 0));
-  if (new_document && doc_.dirty() && pending_open_ != path) {
-    pending_open_ = path;  // draw_open_prompt asks, then calls open_any again
-    return;
-  }
-  pending_open_.clear();
-  try {
-    open_file(path);
-    files_.add_recent(path);
-    status("opened " + path + (new_document && ext != "json" ? " (a new document)" : ""));
-  } catch (const std::exception& e) {
-    error_popup_ = e.what();
-    status(e.what(), true);
-  }
-}
-
-void Editor::replace_surface_file(const std::string& path) {
-  try {
-    doc_.replace_surface(path);
-    show_opened(Opened::Surface);
-    files_.add_recent(path);
-    status("replaced the surface with " + path + ": rig kept, bind again");
-  } catch (const std::exception& e) {
-    error_popup_ = e.what();
-    status(e.what(), true);
-  }
-}
-
-void Editor::draw_open_prompt() {
-  if (pending_open_.empty()) return;
-  const char* title = "Discard unsaved changes?";
-  if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
-  ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::Text("%s has unsaved changes.", fs::path(doc_.title()).filename().string().c_str());
-    ImGui::Text("Opening %s starts a new document.", fs::path(pending_open_).filename().string().c_str());
-    ImGui::TextDisabled("(File > Replace surface... keeps the rig on a new mesh.)");
-    if (ImGui::Button("Discard and open")) {
-      const std::string p = pending_open_;
-      ImGui::CloseCurrentPopup();
-      open_any(p);  // pending_open_ == p: opens without asking again
-    }
-    ImGui::SameLine();
-    if (ImGui::Button("Cancel")) pending_open_.clear(), ImGui::CloseCurrentPopup();
-    ImGui::EndPopup();
-  }
-}
-
-void Editor::load_initial() {
-  if (!opts_.file.empty()) {
-    // A bad file on the command line is fatal for batch use (--quit), a message otherwise.
-    if (opts_.quit) open_file(opts_.file);
-    else open_any(opts_.file);
-    return;
-  }
-  const std::string def = find_default_scene();
-  if (def.empty()) {
-    status("no default scene found (assets/default.scene.json); open a mesh with File > Open");
-    return;
-  }
-  doc_.load_scene(def);
-  show_opened(Opened::Scene);
-  // The default scene is a template: saving it should ask for a new name, not overwrite the asset.
-  status("default scene: " + def);
 }
 
 void Editor::fit_scene_radius() {
@@ -505,82 +386,11 @@ void Editor::wait_for_manifold() {
   std::fflush(stdout);
 }
 
-// Plays the timeline for a number of frames, each one fully drawn and finished (glFinish), and prints
-// the frame times: what an artist sees while the animation plays. The stage split (ImGui layout and
-// input, deform = slice or skin, scene draw, ImGui draw) is measured with glFinish between stages.
-// A frame that shows no vertex while the document has a surface is counted: it is a bug.
 int Editor::run() {
   load_initial();
   if (!opts_.ui.empty()) apply_ui_options(opts_.ui);
   if (cam_.scene_radius <= 0 || view_->surface_bounds().isEmpty()) cam_.scene_radius = 1.0;
-
-  if (!opts_.script.empty()) {
-    const std::vector<ScriptLine> lines = read_script(opts_.script);  // checks every line first
-    ScriptHost host;
-    host.screenshot = [this](const std::string& png) {
-      frame_stats_.pause();  // the script's commands ran since the last frame
-      wait_for_manifold();  // a script's picture shows the animation it keyed, not the build in progress
-      wait_for_shape_space();  // ...and the Shape space panel's ARAP shape, not its linear stand-in
-      save_screenshot(png);
-      std::printf("screenshot: %s (HUD: %s)\n", png.c_str(), hud_text().c_str());
-      std::fflush(stdout);
-    };
-    host.bind = [this](Document& d) {
-      // The window as the user sees it before pressing Bind: the first frame ever drawn pays one-off
-      // costs (shader compiles, mesh and font uploads) that are not the bind's.
-      frame_stats_.pause();
-      render_frame();
-      present_frame();
-      glfwPollEvents();
-      const double bind_t0 = glfwGetTime();
-      bind_.start(make_document_bind_job(d));
-      bind_frames_ = 0, bind_frame_max_ms_ = 0, bind_frame_sum_ms_ = 0, bind_frames_over_100_ = 0;
-      // Keep drawing (progress bar) while the worker runs, as in the interactive editor: a frame when
-      // the progress shown changes, at most progress_hz a second, sleeping between them so the bind's threads
-      // get the CPU. Each frame is timed as the user would see it (drawn, finished and swapped).
-      JobFrameClock clock;
-      while (bind_.running()) {
-        if (!next_job_frame(clock)) continue;
-        const double t0 = glfwGetTime();
-        render_frame();
-        present_frame();
-        glfwPollEvents();
-        glFinish();
-        const double ms = 1000.0 * (glfwGetTime() - t0);
-        ++bind_frames_, bind_frame_sum_ms_ += ms, bind_frame_max_ms_ = std::max(bind_frame_max_ms_, ms);
-        bind_frames_over_100_ += ms > 100.0;
-        // Once the progress bar is past meshing (the docs' picture of a bind in progress).
-        if (!opts_.bind_screenshot.empty() && bind_.progress().fraction > 0.35) {
-          save_screenshot(opts_.bind_screenshot);
-          opts_.bind_screenshot.clear();
-        }
-      }
-      const double bind_wall = glfwGetTime() - bind_t0;
-      std::printf("bind: %d frames drawn while binding, mean %.1f ms, max %.1f ms, %d over 100 ms\n", bind_frames_,
-                  bind_frames_ ? bind_frame_sum_ms_ / bind_frames_ : 0.0, bind_frame_max_ms_, bind_frames_over_100_);
-      std::fflush(stdout);
-      auto r = bind_.take_result();
-      if (!r || !r->ok) throw Error(r ? r->error : "bind produced no result");
-      std::printf("bind: wall time %.2f s (the bind's own stages %.2f s)\n", bind_wall,
-                  r->result->report.total_seconds);
-      std::fflush(stdout);
-      apply_bind_result(d, *r->result);
-    };
-    host.export_gltf = [this](const std::string& path, int influences) {
-      std::printf("export-gltf: %s\n", export_gltf(path, influences).c_str());
-      std::fflush(stdout);
-    };
-    host.after_command = [this](const ScriptLine& line) {
-      frame_stats_.pause();  // the command ran since the last frame
-      if (line.words[0] == "open") show_opened(file_extension(line.words[1]) == "json" ? Opened::Scene : Opened::NewMesh);
-      if (line.words[0] == "replace-surface") show_opened(Opened::Surface);
-      render_frame();
-      present_frame();
-      glfwPollEvents();
-    };
-    const ScriptResult r = run_script(doc_, lines, opts_.script, host);
-    if (r.quit) should_quit_ = true;
-  }
+  if (!opts_.script.empty()) run_script_file();
   if (frame_selection_after_script_) frame_selection();
   if (opts_.play_frames > 0) play_benchmark(opts_.play_frames);
   if (!opts_.screenshot.empty()) wait_for_manifold(), wait_for_shape_space(), save_screenshot(opts_.screenshot);
@@ -603,10 +413,7 @@ int Editor::run() {
     was_playing = playing_;
     render_frame();
     present_frame();
-    if (binding) {
-      const double ms = frame_stats_.last_ms();
-      ++bind_frames_, bind_frame_sum_ms_ += ms, bind_frame_max_ms_ = std::max(bind_frame_max_ms_, ms);
-    }
+    if (binding) bind_tally_.add(frame_stats_.last_ms());
   }
   return 0;
 }

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "app/editor/batch_runner.h"
 #include "app/editor/bind_worker.h"
 #include "app/editor/file_panel.h"
 #include "app/editor/frame_pacing.h"
@@ -18,6 +19,7 @@
 #include "app/editor/scene_view.h"
 #include "app/editor/timeline_ruler.h"
 #include "app/editor/view_model.h"
+#include "core/scene/command.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
 #include "render/gl_backend.h"
@@ -77,23 +79,28 @@ class Editor {
   };
   void save_screenshot(const std::string& path);
   // A scene, mesh or tet mesh (a new document: asks first when the open one has unsaved changes),
-  // a skeleton (added to the rig), or a cage (Alt+drop) by extension; errors go to the popup.
+  // a skeleton (added to the rig), or a cage (Alt+drop) by extension, as the table's command for it;
+  // errors go to the popup.
   void open_any(const std::string& path);
   Document& document() { return doc_; }
 
  private:
+  // editor_commands.cpp: the editor's side of the command table (core/scene/command.h).
+  // The host every command runs with: screenshots, glTF export with its report, the UI's bind on the
+  // worker, and show_opened after open and replace-surface.
+  ScriptHost command_host();
+  // A menu item, button, shortcut or the file panel: runs the line as a script would, remembers a
+  // file it opened or saved, shows the line as the status; an error goes to the popup (false).
+  bool run_ui_command(const CommandWords& words);
+  void load_initial();  // the command line's file (or the default scene), by `open`
+  void run_script_file();  // --script: every line checked, then run with the batch bind (batch_runner.h)
+  void draw_open_prompt();  // "Discard unsaved changes?" before a new document replaces a dirty one
   // editor.cpp
   void init_imgui();
-  void load_initial();
-  // Opening files (editor.cpp). open_file does it without asking (throws dfm::Error); every open of a
-  // scene or mesh, by the menu, a drop, the command line or a script, ends in show_opened: a new
-  // document gets a fresh document's view settings, then the view syncs and frames it (a scene by its
-  // saved camera, a mesh from the three-quarter view).
-  void open_file(const std::string& path);
-  enum class Opened { Scene, NewMesh, Surface };
-  void show_opened(Opened what);
-  void replace_surface_file(const std::string& path);  // File > Replace surface... (one undo step)
-  void draw_open_prompt();  // "Discard unsaved changes?" before a new document replaces a dirty one
+  // Every open of a scene or mesh, by the menu, a drop, the command line or a script, ends here (the
+  // host's opened()): a new document gets a fresh document's view settings, then the view syncs and
+  // frames it (a scene by its saved camera, a mesh from the three-quarter view).
+  void show_opened(ScriptHost::Opened what);
   void fit_scene_radius();  // from the surface's bounds (pan/zoom speeds, gizmo size)
   void frame_all();
   void frame_selection();
@@ -130,6 +137,7 @@ class Editor {
   void tool_pose(bool clicked, bool released);
   Eigen::Vector2d mouse_in_viewport() const;
   // editor_panels.cpp
+  bool available(const char* command) const;  // the table command's poll allows it (menus, buttons)
   void draw_ui();
   void draw_menu_bar();
   void draw_left_panel();
@@ -163,12 +171,8 @@ class Editor {
   void draw_timeline_toolbar();
   // actions
   void start_bind();
-  bool save_scene_as(const std::string& path);  // false: failed, reported in the UI
-  void save_posed(const std::string& path);
+  bool save_scene_as(const std::string& path);  // `save-scene PATH` from the UI; false: failed, reported
   void draw_inbetween_choice(ItemFlow& flow);  // the timeline's in-between combo (theme.h's ItemFlow)
-  void save_frames(const std::string& pattern, int count);
-  // Timeline > Key mesh...: Document::key_mesh_file at the time the button was pressed (errors: popup).
-  void key_mesh_file(const std::string& path, double t);
   // Draws frames until the viewport's manifold has finished building (scripts, --screenshot).
   void wait_for_manifold();
   // File > Export glTF and `export-gltf`: returns the report as text (also shown in a popup).
@@ -222,10 +226,7 @@ class Editor {
   int drag_joint_ = -1;
 
   // timing and messages
-  // UI frames drawn while the last bind ran (the window must stay responsive: each < 100 ms).
-  int bind_frames_ = 0;
-  double bind_frame_max_ms_ = 0, bind_frame_sum_ms_ = 0;
-  int bind_frames_over_100_ = 0;
+  FrameTally bind_tally_;  // UI frames drawn while the last bind ran (each should stay < 100 ms)
   bool profile_stages_ = false;
   std::optional<Eigen::Vector2d> forced_cursor_;
   bool frame_selection_after_script_ = false;  // --ui frame=selection  // --ui cursor=XxY: the mouse held there (screenshots)  // render_frame: glFinish after each stage and time it (play-frames)
@@ -238,8 +239,6 @@ class Editor {
   bool status_error_ = false;
   std::string error_popup_;
   std::string export_report_;  // shown in the "glTF export" popup until closed
-  int export_influences_ = 4;
-  double key_mesh_time_ = 0;  // the time "Key mesh..." was pressed at
   bool quit_prompt_ = false;
   std::string pending_open_;  // a file waiting on "Discard unsaved changes?"
   bool should_quit_ = false;

@@ -1,5 +1,6 @@
 // Batch and test entry points of the editor: --play-frames (playback against posing, by stage), --ui
 // (initial tool and view state), and waiting for the Shape space panel's worker before a screenshot.
+// A script's bind with its frames is batch_runner.h's.
 #include "app/editor/editor.h"
 
 #include <GLFW/glfw3.h>
@@ -15,6 +16,10 @@
 
 namespace dfm::editor {
 
+// Plays the timeline for a number of frames, each one fully drawn and finished (glFinish), and prints
+// the frame times: what an artist sees while the animation plays. The stage split (ImGui layout and
+// input, deform = slice or skin, scene draw, ImGui draw) is measured with glFinish between stages.
+// A frame that shows no vertex while the document has a surface is counted: it is a bug.
 void Editor::play_benchmark(int frames) {
   playing_ = true;
   loop_ = true;

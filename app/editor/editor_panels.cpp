@@ -12,12 +12,9 @@
 #include "app/editor/editor.h"
 #include "app/editor/theme.h"
 
-#include "core/anim/frame_sequence.h"
 #include "core/anim/slice.h"
-#include "core/export/export_document.h"
 #include "core/mesh/io.h"
-#include "core/scene/key_surfaces.h"
-#include "core/scene/script.h"
+#include "core/scene/command.h"
 #include "core/util/error.h"
 #include "core/view/colormap.h"
 
@@ -44,6 +41,9 @@ ImU32 to_u32(const Eigen::Vector3f& linear) {
 }
 
 }  // namespace
+
+// A menu item or button of a table command is enabled when the command's poll allows it.
+bool Editor::available(const char* command) const { return command_unavailable(command, doc_).empty(); }
 
 PanelLayout Editor::panel_layout() const {
   int w = 0, h = 0;
@@ -81,22 +81,10 @@ void Editor::draw_ui() {
   viewport_ = l.viewport;
   draw_viewport_hud();
 
-  if (files_.draw()) {
-    const std::string p = files_.path(), what = files_.purpose();
-    try {
-      if (what == "open") open_any(p);
-      else if (what == "replace-surface") replace_surface_file(p);
-      else if (what == "save-scene") save_scene_as(p);
-      else if (what == "save-posed") save_posed(p);
-      else if (what == "save-frames") save_frames(p, kDefaultFrameCount);
-      else if (what == "screenshot") save_screenshot(p);
-      else if (what == "export-gltf") export_gltf(p, export_influences_);
-      else if (what == "load-skeleton") doc_.load_skeleton(p), files_.add_recent(p);
-      else if (what == "load-cage") doc_.load_cage(p), files_.add_recent(p);
-      else if (what == "key-mesh") key_mesh_file(p, key_mesh_time_);
-    } catch (const std::exception& e) {
-      error_popup_ = e.what();
-    }
+  if (files_.draw()) {  // the chosen file completes its command's line
+    const CommandWords words = files_.command_line();
+    if (words[0] == "open") open_any(words[1]);  // asks first when the document has unsaved changes
+    else run_ui_command(words);
   }
   draw_quit_prompt();
   draw_error_popup();
@@ -112,7 +100,7 @@ void Editor::draw_menu_bar() {
         if (ImGui::MenuItem(r.c_str())) open_any(r);
       ImGui::EndMenu();
     }
-    if (ImGui::MenuItem("Replace surface...", nullptr, false, doc_.surface().num_vertices() > 0))
+    if (ImGui::MenuItem("Replace surface...", nullptr, false, available("replace-surface")))
       files_.show(FilePanel::Mode::Open, "Replace surface (the rig stays)", "replace-surface");
     if (ImGui::MenuItem("Load skeleton (.tgf)...")) files_.show(FilePanel::Mode::Open, "Load skeleton", "load-skeleton");
     if (ImGui::MenuItem("Load cage...")) files_.show(FilePanel::Mode::Open, "Load cage", "load-cage");
@@ -122,19 +110,18 @@ void Editor::draw_menu_bar() {
       else save_scene_as(doc_.path());
     }
     if (ImGui::MenuItem("Save scene as...")) files_.show(FilePanel::Mode::Save, "Save scene as", "save-scene", "scene.scene.json");
-    if (ImGui::MenuItem("Save posed mesh...", nullptr, false, doc_.has_weights() || doc_.has_mesh_keys()))
+    if (ImGui::MenuItem("Save posed mesh...", nullptr, false, available("save-posed")))
       files_.show(FilePanel::Mode::Save, "Save posed mesh", "save-posed", "posed.obj");
-    if (ImGui::MenuItem("Save all frames...", nullptr, false, (doc_.has_weights() || doc_.has_mesh_keys()) && doc_.keys().size() >= 2))
+    if (ImGui::MenuItem("Save all frames...", nullptr, false, available("save-frames")))
       files_.show(FilePanel::Mode::Save, "Save frames (name####.obj)", "save-frames", "frame.obj");
     if (ImGui::MenuItem("Save screenshot...")) files_.show(FilePanel::Mode::Save, "Save screenshot", "screenshot", "screenshot.png");
-    if (ImGui::BeginMenu("Export glTF", doc_.has_weights())) {
+    if (ImGui::BeginMenu("Export glTF", available("export-gltf"))) {
       // glTF stores 4 joints per set: 8 keeps more of the bind's weights at twice the attribute size.
       for (int k : {4, 8}) {
         const std::string label = std::to_string(k) + " influences per vertex (.glb)...";
-        if (ImGui::MenuItem(label.c_str())) {
-          export_influences_ = k;
-          files_.show(FilePanel::Mode::Save, "Export glTF (" + std::to_string(k) + " influences)", "export-gltf", "scene.glb");
-        }
+        if (ImGui::MenuItem(label.c_str()))
+          files_.show(FilePanel::Mode::Save, "Export glTF (" + std::to_string(k) + " influences)", "export-gltf", "scene.glb",
+                      {std::to_string(k)});
       }
       ImGui::EndMenu();
     }
@@ -144,12 +131,12 @@ void Editor::draw_menu_bar() {
   }
   if (ImGui::BeginMenu("Edit")) {
     const std::string u = "Undo " + doc_.undo_name(), r = "Redo " + doc_.redo_name();
-    if (ImGui::MenuItem(u.c_str(), "Ctrl+Z", false, doc_.can_undo())) doc_.undo();
-    if (ImGui::MenuItem(r.c_str(), "Ctrl+Shift+Z", false, doc_.can_redo())) doc_.redo();
+    if (ImGui::MenuItem(u.c_str(), "Ctrl+Z", false, available("undo"))) run_ui_command({"undo"});
+    if (ImGui::MenuItem(r.c_str(), "Ctrl+Shift+Z", false, available("redo"))) run_ui_command({"redo"});
     ImGui::Separator();
     if (ImGui::MenuItem("Delete selected", "Del", false, !doc_.selection().handles.empty()))
       doc_.delete_handles(doc_.selection().handles);
-    if (ImGui::MenuItem("Reset pose")) doc_.reset_pose();
+    if (ImGui::MenuItem("Reset pose")) run_ui_command({"reset-pose"});
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("View")) {
@@ -208,7 +195,7 @@ void Editor::draw_tools_panel() {
     }
     case Tool::Pose:
       ImGui::TextWrapped("Select a handle, then drag the gizmo. Method: %s", skin_method_name(doc_.method()));
-      if (ImGui::Button("Reset pose")) doc_.reset_pose();
+      if (ImGui::Button("Reset pose")) run_ui_command({"reset-pose"});
       break;
     case Tool::Select:
       ImGui::TextWrapped("Click to select (Shift: add). Drag handles before binding. Click the surface to list a vertex's weights.");
@@ -306,7 +293,7 @@ void Editor::draw_outliner() {
     if (sel.size() == 2 && handle_ref(rig, sel[0]).kind == HandleKind::Point &&
         handle_ref(rig, sel[1]).kind == HandleKind::Point) {
       ImGui::SameLine();
-      if (ImGui::Button("Pseudo-edge")) doc_.add_pseudo_edge(sel[0], sel[1]);
+      if (ImGui::Button("Pseudo-edge")) run_ui_command(command_words("pseudo-edge", {sel[0], sel[1]}));
     }
   }
   ImGui::EndChild();
@@ -377,28 +364,26 @@ void Editor::draw_bind_section() {
     char overlay[96];
     std::snprintf(overlay, sizeof overlay, "%s  %.0f%%", p.stage.c_str(), 100.0 * p.fraction);
     ImGui::ProgressBar(float(p.fraction), ImVec2(-1, 0), overlay);
-    ImGui::TextDisabled("%.1f s, UI %.0f ms max", bind_.elapsed_seconds(), bind_frame_max_ms_);
+    ImGui::TextDisabled("%.1f s, UI %.0f ms max", bind_.elapsed_seconds(), bind_tally_.max_ms);
     ImGui::SameLine();
     if (ImGui::Button(bind_.cancel_requested() ? "Cancelling..." : "Cancel", ImVec2(-1, 0))) bind_.cancel();
     return;
   }
   bool monotone = doc_.bind_settings().monotone;
-  if (ImGui::Checkbox("Monotone weights", &monotone)) {
-    BindSettings b = doc_.bind_settings();
-    b.monotone = monotone;
-    doc_.set_bind_settings(b);  // one undo step; takes effect at the next bind
-  }
+  if (ImGui::Checkbox("Monotone weights", &monotone))  // one undo step; takes effect at the next bind
+    run_ui_command({"bind-monotone", monotone ? "on" : "off"});
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("No local maxima or minima away from the handles (Jacobson 2013, ch. 5); slower bind");
-  const bool can = doc_.surface().num_vertices() > 0 && doc_.num_handles() > 0;
+  const bool can = available("bind");
   if (!can) ImGui::BeginDisabled();
-  if (ImGui::Button(doc_.has_weights() ? "Rebind" : "Bind", ImVec2(-1, 28))) start_bind();
+  if (ImGui::Button(doc_.has_weights() ? "Rebind" : "Bind", ImVec2(-1, 28))) run_ui_command({"bind"});  // the worker
   if (!can) ImGui::EndDisabled();
   if (doc_.has_weights()) {
     const BindStats& s = doc_.bind_stats();
     text_disabled_wrapped("%d handles, %d tets, %.2f s", doc_.num_handles(), s.tets, s.seconds);
     for (const auto& n : s.notes) ImGui::TextWrapped("- %s", n.c_str());
-    if (bind_frames_ > 0) text_disabled_wrapped("UI while binding: %d frames, max %.0f ms", bind_frames_, bind_frame_max_ms_);
+    if (bind_tally_.frames > 0)
+      text_disabled_wrapped("UI while binding: %d frames, max %.0f ms", bind_tally_.frames, bind_tally_.max_ms);
   } else {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.75f, 0.35f, 1));
     ImGui::TextWrapped("%s", doc_.weights_note().c_str());
@@ -407,7 +392,7 @@ void Editor::draw_bind_section() {
   int m = static_cast<int>(doc_.method());
   const char* methods[] = {"LBS", "DQS", "Stretch/twist bones"};
   ImGui::SetNextItemWidth(-1);
-  if (ImGui::Combo("##method", &m, methods, 3)) doc_.set_method(static_cast<SkinMethod>(m));
+  if (ImGui::Combo("##method", &m, methods, 3)) run_ui_command({"set-method", skin_method_name(static_cast<SkinMethod>(m))});
 }
 
 void Editor::draw_weights_section() {
@@ -540,77 +525,6 @@ void message_popup(const char* title, std::string& text, float wrap) {
 
 void Editor::draw_error_popup() { message_popup("Error", error_popup_, 600); }
 
-std::string Editor::export_gltf(const std::string& path, int influences) {
-  GltfExportOptions o;
-  o.influences = influences;
-  o.refit = true;
-  o.residual_morph_tolerance = 1e-4;  // as `deform export --residual-morphs`: keys replay exactly
-  const GltfExportReport r = export_document_gltf(doc_, path, o);
-  char buf[512];
-  const double rel = r.bbox_diagonal > 0 ? r.max_prune_error / r.bbox_diagonal : 0.0;
-  std::snprintf(buf, sizeof buf,
-                "%s\n%d vertices, %d triangles, %d joints, %d influences, %d keys\n"
-                "pruning error: %.3g (%.3g%% of the bbox diagonal) at %s\n"
-                "%d vertices refit, %d residual morph targets, max shear %.2g",
-                path.c_str(), r.vertices, r.triangles, r.joints, r.influences, r.keys, r.max_prune_error, 100.0 * rel,
-                r.max_prune_error_key < 0 ? "the current pose" : ("key " + std::to_string(r.max_prune_error_key)).c_str(),
-                r.refit_vertices, r.residual_targets, r.max_shear);
-  std::string text = buf;
-  for (const std::string& n : r.notes) text += "\nnote: " + n;
-  export_report_ = text;
-  status("exported " + path);
-  return text;
-}
-
 void Editor::draw_export_report() { message_popup("glTF export", export_report_, 640); }
-
-void Editor::start_bind() {
-  try {
-    if (!bind_.start(make_document_bind_job(doc_))) status("a bind is already running");
-    else bind_frames_ = 0, bind_frame_max_ms_ = 0, bind_frame_sum_ms_ = 0;
-  } catch (const std::exception& e) {
-    error_popup_ = e.what();
-  }
-}
-
-bool Editor::save_scene_as(const std::string& path) {
-  // A failed save (full disk, no permission) leaves the previous file intact (atomic save) and the
-  // scene in memory: say what failed and let the user pick another place.
-  try {
-    sync_camera_to_doc();
-    doc_.save_scene(path);
-  } catch (const std::exception& e) {
-    error_popup_ = std::string("The scene was not saved; it is still open here.\n") + e.what();
-    status(std::string("save failed: ") + e.what(), true);
-    return false;
-  }
-  files_.add_recent(path);
-  status("saved " + path);
-  return true;
-}
-
-void Editor::save_posed(const std::string& path) {
-  write_surface(path, posed_surface(doc_));
-  status("saved posed mesh " + path);
-}
-
-void Editor::save_frames(const std::string& prefix, int count) {
-  if (doc_.keys().size() < 2) throw Error("saving frames needs at least two keys");
-  const std::vector<std::string> paths = write_frame_sequence(document_manifold(doc_), prefix, count);
-  status("saved " + std::to_string(count) + " frames: " + paths.front() + " .. " + paths.back());
-}
-
-void Editor::key_mesh_file(const std::string& path, double t) {
-  try {
-    doc_.key_mesh_file(path, t);  // checks the mesh first: a bad file changes nothing
-    files_.add_recent(path);
-    char msg[64];
-    std::snprintf(msg, sizeof msg, " at t = %.3f", t);
-    status("keyed mesh " + path + msg);
-  } catch (const std::exception& e) {
-    error_popup_ = std::string("The mesh was not keyed; the scene is unchanged.\n") + e.what();
-    status(e.what(), true);
-  }
-}
 
 }  // namespace dfm::editor

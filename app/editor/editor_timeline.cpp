@@ -25,9 +25,9 @@ void Editor::draw_timeline_toolbar() {
   if (ImGui::Button("Key (K)")) doc_.set_key(doc_.time());
   flow.next(ItemFlow::button_width("Key mesh..."));
   if (ImGui::Button("Key mesh...")) {
-    // The same file dialog as File > Open; the pick lands in Editor::draw_ui -> key_mesh_file.
-    key_mesh_time_ = doc_.time();
-    files_.show(FilePanel::Mode::Open, "Key mesh at " + format_time(key_mesh_time_, frame_rate_), "key-mesh");
+    // The same file dialog as File > Open; the pick runs `key-mesh FILE T` at the time pressed.
+    files_.show(FilePanel::Mode::Open, "Key mesh at " + format_time(doc_.time(), frame_rate_), "key-mesh", "",
+                {CommandArg(doc_.time()).word});
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Key a whole mesh (any surface file, any connectivity) at the current time;\n"

@@ -62,15 +62,22 @@ FilePanel::FilePanel() : recent_(load_recent()) {
   dir_ = fs::current_path(ec).string();
 }
 
-void FilePanel::show(Mode mode, const std::string& title, const std::string& purpose,
-                     const std::string& default_name) {
+void FilePanel::show(Mode mode, const std::string& title, const std::string& command, const std::string& default_name,
+                     const std::vector<std::string>& more_args) {
   open_ = true;
   mode_ = mode;
   title_ = title;
-  purpose_ = purpose;
+  command_ = command;
+  more_args_ = more_args;
   std::snprintf(name_, sizeof name_, "%s", default_name.c_str());
   error_.clear();
   list_dir();
+}
+
+std::vector<std::string> FilePanel::command_line() const {
+  std::vector<std::string> words{command_, chosen_};
+  words.insert(words.end(), more_args_.begin(), more_args_.end());
+  return words;
 }
 
 void FilePanel::add_recent(const std::string& path) {

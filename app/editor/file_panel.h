@@ -1,6 +1,8 @@
 #pragma once
 // An ImGui file browser (folders, files filtered by the extensions the editor opens) with a recent
-// files list kept in $XDG_CONFIG_HOME/deform-editor/recent.txt (or ~/.config/...).
+// files list kept in $XDG_CONFIG_HOME/deform-editor/recent.txt (or ~/.config/...). It is shown for a
+// command of the table (core/scene/command.h) whose first argument is the file: the chosen path
+// completes the command line, which the editor runs as any menu item's.
 #include <string>
 #include <vector>
 
@@ -16,13 +18,14 @@ class FilePanel {
  public:
   enum class Mode { Open, Save };
   FilePanel();
-  // Opens the panel; `title` e.g. "Open", "Save scene as"; default_name pre-fills the name field.
-  void show(Mode mode, const std::string& title, const std::string& purpose,
-            const std::string& default_name = "");
-  // Draws it when open; returns true on the frame a path is chosen (then path() and purpose()).
+  // Opens the panel for `command FILE more_args...`; `title` e.g. "Open", "Save scene as";
+  // default_name pre-fills the name field.
+  void show(Mode mode, const std::string& title, const std::string& command, const std::string& default_name = "",
+            const std::vector<std::string>& more_args = {});
+  // Draws it when open; returns true on the frame a path is chosen (then command_line()).
   bool draw();
-  const std::string& path() const { return chosen_; }
-  const std::string& purpose() const { return purpose_; }
+  // The command with the chosen path as its first argument.
+  std::vector<std::string> command_line() const;
   void add_recent(const std::string& path);
   const std::vector<std::string>& recent() const { return recent_; }
 
@@ -30,7 +33,8 @@ class FilePanel {
   void list_dir();
   bool open_ = false;
   Mode mode_ = Mode::Open;
-  std::string title_, purpose_, chosen_;
+  std::string title_, command_, chosen_;
+  std::vector<std::string> more_args_;
   std::string dir_;
   char name_[512] = {0};
   std::vector<std::pair<std::string, bool>> entries_;  // name, is_dir
