@@ -13,30 +13,25 @@
 #include "core/scene/command.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
+#include "tests/volume_test_meshes.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
 
 namespace {
 
-TriMesh tetra() {
-  TriMesh m;
-  m.V.resize(4, 3);
-  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
-  m.F.resize(4, 3);
-  m.F << 0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2;
-  return m;
-}
+TriMesh unit_box() { return test::box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones()); }
 
-// Two point handles and a bone on a tetrahedron, weights fixed by hand.
+// Two point handles and a bone in a unit box, weights fixed by hand (rows sum to 1).
 void make_posable(Document& d) {
-  d.set_surface(tetra(), "tetra");
+  d.set_surface(unit_box(), "box");
   d.add_point({0.1, 0.1, 0.1});
   d.add_point({0.2, 0.1, 0.1});
   d.add_bone_chain({{0, 0, 0.2}, {0.1, 0, 0.2}});
   d.rename_handle(2, "l_arm");
-  Eigen::MatrixXd W(4, 3);
-  W << 0.7, 0.1, 0.2, 0.5, 0.3, 0.2, 0.25, 0.5, 0.25, 0, 0.6, 0.4;
+  Eigen::MatrixXd W(8, 3);
+  for (int i = 0; i < 8; ++i) W.row(i) << 0.1 * i, 0.3, 0.7 - 0.1 * i;
+  W(7, 0) = 0.65, W(7, 2) = 0.05;
   d.set_weights(W, {});
 }
 
@@ -175,7 +170,7 @@ TEST_CASE("poll greys out what cannot run, and says why") {
   CHECK_THAT(command_unavailable("replace-surface", empty), Catch::Contains("no surface"));
   CHECK(command_unavailable("open", empty).empty());
   Document d;
-  d.set_surface(tetra(), "tetra");
+  d.set_surface(unit_box(), "box");
   CHECK_THAT(command_unavailable("bind", d), Catch::Contains("no handles"));
   d.add_point({0.1, 0.1, 0.1});
   CHECK(command_unavailable("bind", d).empty());

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "app/editor/editor.h"
 #include "app/editor/theme.h"
@@ -38,6 +39,47 @@ bool tool_button(const char* label, bool active, const char* tip, float w) {
 ImU32 to_u32(const Eigen::Vector3f& linear) {
   return ImGui::GetColorU32(ImVec4(std::pow(linear.x(), 1 / 2.2f), std::pow(linear.y(), 1 / 2.2f),
                                    std::pow(linear.z(), 1 / 2.2f), 1.0f));
+}
+
+// The rig's handles as tree nodes by type, each drawn by row(h) (h: its number, what scripts take).
+void outliner_tree(const Rig& rig, const std::function<void(int)>& row) {
+  int h = 0;
+  const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
+  ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+  if (ImGui::TreeNode("points", "Points (%d)", np)) {
+    for (int i = 0; i < np; ++i) row(h + i);
+    ImGui::TreePop();
+  }
+  h += np;
+  ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+  if (ImGui::TreeNode("bones", "Bones (%d)", nb)) {
+    // Indent children under parents to show the hierarchy.
+    for (int i : bones_topological_order(rig.skeleton)) {
+      int depth = 0;
+      for (int p = rig.skeleton.bones[i].parent; p >= 0 && depth < 16; p = rig.skeleton.bones[p].parent) ++depth;
+      if (depth) ImGui::Indent(8.0f * depth);
+      row(h + i);
+      if (depth) ImGui::Unindent(8.0f * depth);
+    }
+    ImGui::TreePop();
+  }
+  h += nb;
+  if (ImGui::TreeNode("cages", "Cages (%d)", int(rig.cages.size()))) {
+    for (const Cage& c : rig.cages) {
+      if (ImGui::TreeNode(c.name.empty() ? "cage" : c.name.c_str())) {
+        for (int v = 0; v < c.mesh.num_vertices(); ++v) row(h + v);
+        ImGui::TreePop();
+      }
+      h += c.mesh.num_vertices();
+    }
+    ImGui::TreePop();
+  } else {
+    h += num_cage_vertices(rig);
+  }
+  if (ImGui::TreeNode("regions", "Regions (%d)", int(rig.regions.size()))) {
+    for (size_t r = 0; r < rig.regions.size(); ++r) row(h + int(r));
+    ImGui::TreePop();
+  }
 }
 
 }  // namespace
@@ -250,43 +292,7 @@ void Editor::draw_outliner() {
     }
     ImGui::PopID();
   };
-  int h = 0;
-  const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
-  ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-  if (ImGui::TreeNode("points", "Points (%d)", np)) {
-    for (int i = 0; i < np; ++i) row(h + i);
-    ImGui::TreePop();
-  }
-  h += np;
-  ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-  if (ImGui::TreeNode("bones", "Bones (%d)", nb)) {
-    // Indent children under parents to show the hierarchy.
-    for (int i : bones_topological_order(rig.skeleton)) {
-      int depth = 0;
-      for (int p = rig.skeleton.bones[i].parent; p >= 0 && depth < 16; p = rig.skeleton.bones[p].parent) ++depth;
-      if (depth) ImGui::Indent(8.0f * depth);
-      row(h + i);
-      if (depth) ImGui::Unindent(8.0f * depth);
-    }
-    ImGui::TreePop();
-  }
-  h += nb;
-  if (ImGui::TreeNode("cages", "Cages (%d)", int(rig.cages.size()))) {
-    for (const Cage& c : rig.cages) {
-      if (ImGui::TreeNode(c.name.empty() ? "cage" : c.name.c_str())) {
-        for (int v = 0; v < c.mesh.num_vertices(); ++v) row(h + v);
-        ImGui::TreePop();
-      }
-      h += c.mesh.num_vertices();
-    }
-    ImGui::TreePop();
-  } else {
-    h += num_cage_vertices(rig);
-  }
-  if (ImGui::TreeNode("regions", "Regions (%d)", int(rig.regions.size()))) {
-    for (size_t r = 0; r < rig.regions.size(); ++r) row(h + int(r));
-    ImGui::TreePop();
-  }
+  outliner_tree(rig, row);
   if (!sel.empty()) {
     ImGui::Separator();
     if (ImGui::Button("Delete selected")) doc_.delete_handles(sel);
