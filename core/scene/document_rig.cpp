@@ -8,6 +8,7 @@
 
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
+#include "core/rig/handle_deletion.h"
 #include "core/rig/rig_io.h"
 #include "core/scene/document_parts.h"
 #include "core/util/error.h"
@@ -15,7 +16,6 @@
 namespace dfm {
 
 using document_detail::check_finite;
-using document_detail::erase_at;
 
 // ---- edits: surface and rig ------------------------------------------------------------------------
 
@@ -182,84 +182,12 @@ void Document::move_cage_vertex(int cage, int vertex, const Eigen::Vector3d& p) 
 }
 
 void Document::delete_handles(std::vector<int> handles) {
-  const int n = num_handles();
-  for (int h : handles)
-    if (h < 0 || h >= n) throw Error("no handle " + std::to_string(h));
-  std::set<int> points, bones, cages, regions;
-  for (int h : handles) {
-    HandleRef r = handle_ref(s_.rig, h);
-    switch (r.kind) {
-      case HandleKind::Point: points.insert(r.index); break;
-      case HandleKind::Bone: bones.insert(r.index); break;
-      case HandleKind::CageVertex: cages.insert(r.cage); break;
-      case HandleKind::Region: regions.insert(r.index); break;
-    }
-  }
-  if (handles.empty()) return;
+  const HandleDeletion d = plan_handle_deletion(s_.rig, handles);
+  if (d.empty()) return;
   rig_edit("delete handles", "", [&](SceneData& s) {
-    Rig& rig = s.rig;
-    auto each_params = [&](const std::function<void(PoseParams&)>& f) {
-      f(s.pose);
-      for (SceneKey& k : s.keys) f(k.params);
-    };
-    // Cage vertex ranges must be computed before cages are erased.
-    std::vector<std::pair<int, int>> cage_ranges;  // [begin, end) in the concatenated cage vertices
-    int base = 0;
-    for (int c = 0; c < static_cast<int>(rig.cages.size()); ++c) {
-      int nv = rig.cages[c].mesh.num_vertices();
-      if (cages.count(c)) cage_ranges.push_back({base, base + nv});
-      base += nv;
-    }
-    for (auto it = cage_ranges.rbegin(); it != cage_ranges.rend(); ++it)
-      each_params([&](PoseParams& p) {
-        if (static_cast<int>(p.cage_translation.size()) >= it->second)
-          p.cage_translation.erase(p.cage_translation.begin() + it->first, p.cage_translation.begin() + it->second);
-      });
-    for (auto it = cages.rbegin(); it != cages.rend(); ++it) rig.cages.erase(rig.cages.begin() + *it);
-    for (auto it = regions.rbegin(); it != regions.rend(); ++it) {
-      rig.regions.erase(rig.regions.begin() + *it);
-      each_params([&](PoseParams& p) { erase_at(p.region_transform, *it); });
-    }
-    for (auto it = points.rbegin(); it != points.rend(); ++it) {
-      const int i = *it;
-      rig.points.erase(rig.points.begin() + i);
-      each_params([&](PoseParams& p) {
-        erase_at(p.point_translation, i);
-        erase_at(p.point_rotation, i);
-      });
-      std::vector<std::pair<int, int>> kept;
-      for (auto [a, b] : rig.pseudo_edges) {
-        if (a == i || b == i) continue;
-        kept.push_back({a > i ? a - 1 : a, b > i ? b - 1 : b});
-      }
-      rig.pseudo_edges = kept;
-    }
-    if (!bones.empty()) {
-      Skeleton& sk = rig.skeleton;
-      for (auto it = bones.rbegin(); it != bones.rend(); ++it) {
-        sk.bones.erase(sk.bones.begin() + *it);
-        each_params([&](PoseParams& p) {
-          erase_at(p.bone_rotation, *it);
-          erase_at(p.bone_translation, *it);
-          erase_at(p.bone_twist_stretch, *it);
-        });
-      }
-      // Drop joints no bone uses any more.
-      std::vector<int> remap(sk.num_joints(), -1);
-      for (const Bone& b : sk.bones) remap[b.a] = remap[b.b] = 0;
-      int k = 0;
-      for (int& r : remap)
-        if (r == 0) r = k++;
-      Eigen::MatrixXd J(k, 3);
-      for (int j = 0; j < static_cast<int>(remap.size()); ++j)
-        if (remap[j] >= 0) J.row(remap[j]) = sk.joints.row(j);
-      sk.joints = J;
-      for (Bone& b : sk.bones) {
-        b.a = remap[b.a];
-        b.b = remap[b.b];
-      }
-      compute_bone_parents(sk);
-    }
+    dfm::delete_handles(s.rig, d);
+    dfm::delete_handles(s.pose, d);
+    for (SceneKey& k : s.keys) dfm::delete_handles(k.params, d);
   });
   s_.selection = Selection{};
 }
