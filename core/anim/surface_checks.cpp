@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/mesh/mesh_info.h"
+
 namespace dfm {
 
 namespace {
@@ -50,28 +52,8 @@ double flux_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int axis)
   return vol;
 }
 
-bool is_closed_and_oriented(const Eigen::MatrixXi& F) {
-  auto key = [](int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
-  std::vector<std::uint64_t> directed;
-  directed.reserve(3 * F.rows());
-  for (int f = 0; f < F.rows(); ++f)
-    for (int j = 0; j < 3; ++j) directed.push_back(key(F(f, j), F(f, (j + 1) % 3)));
-  std::sort(directed.begin(), directed.end());
-  for (size_t i = 0; i < directed.size(); ++i) {
-    if (i + 1 < directed.size() && directed[i] == directed[i + 1]) return false;  // edge used twice one way
-    const auto a = static_cast<int>(directed[i] >> 32), b = static_cast<int>(directed[i] & 0xffffffffu);
-    if (a == b || !std::binary_search(directed.begin(), directed.end(), key(b, a))) return false;
-  }
-  return true;
-}
+bool is_closed_and_oriented(const Eigen::MatrixXi& F) { return F.rows() == 0 || is_closed(F); }
 
-double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
-  double vol = 0.0;
-  for (int f = 0; f < F.rows(); ++f) {
-    const Eigen::Vector3d a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    vol += a.dot(b.cross(c));
-  }
-  return vol / 6.0;
-}
+double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) { return signed_volume(V, F); }
 
 }  // namespace dfm

@@ -5,7 +5,8 @@
 namespace dfm {
 
 // True when every directed edge (a, b) of F occurs exactly once and its reverse (b, a) exactly once:
-// a closed, consistently oriented, edge-manifold surface.
+// a closed, consistently oriented, edge-manifold surface. mesh_info's is_closed, except that an
+// empty F counts as closed here (an empty slice).
 bool is_closed_and_oriented(const Eigen::MatrixXi& F);
 
 // True when no directed edge occurs twice and none is degenerate: an oriented, edge-manifold
@@ -22,6 +23,7 @@ Eigen::MatrixXi boundary_edges(const Eigen::MatrixXi& F);
 double flux_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, int axis);
 
 // Signed volume enclosed by a closed surface (divergence theorem); positive when wound outward.
+// mesh_info's signed_volume, under the name the slice checks use.
 double enclosed_volume(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F);
 
 }  // namespace dfm
