@@ -117,17 +117,8 @@ Eigen::VectorXd sample(const GltfChannel& c, double t) {
   return (1 - u) * a + u * b;
 }
 
-}  // namespace
-
-std::vector<double> GltfDocument::key_times() const {
-  std::vector<double> t;
-  for (const auto& c : channels) t.insert(t.end(), c.times.begin(), c.times.end());
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  return t;
-}
-
-GltfDocument read_gltf(const std::string& path) {
+// The file's model, by its extension (.glb binary, .gltf text).
+tinygltf::Model load_model(const std::string& path) {
   require_readable_file(path);
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
@@ -138,8 +129,11 @@ GltfDocument read_gltf(const std::string& path) {
   else if (ext == "gltf") ok = loader.LoadASCIIFromFile(&m, &err, &warn, path);
   else throw file_error(path, 0, "not a .glb or .gltf file");
   if (!ok) throw file_error(path, 0, "cannot load glTF: " + err);
+  return m;
+}
 
-  GltfDocument doc;
+// Nodes with their local transforms, morph weights and parents (the hierarchy must be a forest).
+void read_nodes(const tinygltf::Model& m, const std::string& path, GltfDocument& doc) {
   doc.nodes.resize(m.nodes.size());
   for (size_t i = 0; i < m.nodes.size(); ++i) {
     const tinygltf::Node& s = m.nodes[i];
@@ -162,6 +156,10 @@ GltfDocument read_gltf(const std::string& path) {
         throw file_error(path, 0, "node hierarchy is not a forest");
       doc.nodes[c].parent = static_cast<int>(i);
     }
+}
+
+// The first skinned mesh's node and the first morphing (unskinned, with targets) one.
+void find_mesh_nodes(const tinygltf::Model& m, GltfDocument& doc) {
   for (size_t i = 0; i < doc.nodes.size(); ++i) {
     const GltfNode& n = doc.nodes[i];
     if (doc.skinned_node < 0 && n.mesh >= 0 && n.skin >= 0) doc.skinned_node = static_cast<int>(i);
@@ -169,54 +167,76 @@ GltfDocument read_gltf(const std::string& path) {
         !m.meshes[n.mesh].primitives[0].targets.empty())
       doc.morph_node = static_cast<int>(i);
   }
-  if (doc.skinned_node >= 0) {
-    const GltfNode& n = doc.nodes[doc.skinned_node];
-    doc.skinned = read_mesh(m, n.mesh, path);
-    const tinygltf::Skin& skin = m.skins.at(n.skin);
-    doc.joints = skin.joints;
-    doc.inverse_bind.assign(skin.joints.size(), Eigen::Matrix4d::Identity());
-    if (skin.inverseBindMatrices >= 0) {
-      const Eigen::MatrixXd ibm = read_accessor(m, skin.inverseBindMatrices, path);
-      if (ibm.rows() < static_cast<long>(skin.joints.size()) || ibm.cols() != 16)
-        throw file_error(path, 0, "inverse bind matrices do not match the joints");
-      for (size_t j = 0; j < skin.joints.size(); ++j)
-        for (int k = 0; k < 16; ++k) doc.inverse_bind[j](k % 4, k / 4) = ibm(j, k);
-    }
-    if (doc.skinned.joints.size() && doc.skinned.joints.maxCoeff() >= static_cast<int>(doc.joints.size()))
-      throw file_error(path, 0, "a JOINTS value exceeds the skin's joint count");
+}
+
+// The skinned mesh, its skin's joints and inverse bind matrices.
+void read_skin(const tinygltf::Model& m, const std::string& path, GltfDocument& doc) {
+  const GltfNode& n = doc.nodes[doc.skinned_node];
+  doc.skinned = read_mesh(m, n.mesh, path);
+  const tinygltf::Skin& skin = m.skins.at(n.skin);
+  doc.joints = skin.joints;
+  doc.inverse_bind.assign(skin.joints.size(), Eigen::Matrix4d::Identity());
+  if (skin.inverseBindMatrices >= 0) {
+    const Eigen::MatrixXd ibm = read_accessor(m, skin.inverseBindMatrices, path);
+    if (ibm.rows() < static_cast<long>(skin.joints.size()) || ibm.cols() != 16)
+      throw file_error(path, 0, "inverse bind matrices do not match the joints");
+    for (size_t j = 0; j < skin.joints.size(); ++j)
+      for (int k = 0; k < 16; ++k) doc.inverse_bind[j](k % 4, k / 4) = ibm(j, k);
   }
+  if (doc.skinned.joints.size() && doc.skinned.joints.maxCoeff() >= static_cast<int>(doc.joints.size()))
+    throw file_error(path, 0, "a JOINTS value exceeds the skin's joint count");
+}
+
+// One channel of an animation: its target, interpolation, times and values (weights as #times x #targets).
+GltfChannel read_channel(const tinygltf::Model& m, const tinygltf::Animation& a, const tinygltf::AnimationChannel& ch,
+                         const std::string& path) {
+  const tinygltf::AnimationSampler& s = a.samplers.at(ch.sampler);
+  GltfChannel c;
+  c.node = ch.target_node;
+  if (ch.target_path == "translation") c.path = GltfChannel::Path::Translation;
+  else if (ch.target_path == "rotation") c.path = GltfChannel::Path::Rotation;
+  else if (ch.target_path == "scale") c.path = GltfChannel::Path::Scale;
+  else if (ch.target_path == "weights") c.path = GltfChannel::Path::Weights;
+  else throw file_error(path, 0, "unknown animation path '" + ch.target_path + "'");
+  if (s.interpolation == "STEP") c.step = true;
+  else if (s.interpolation != "LINEAR" && !s.interpolation.empty())
+    throw file_error(path, 0, "interpolation " + s.interpolation + " is not supported");
+  const Eigen::MatrixXd in = read_accessor(m, s.input, path);
+  c.times.assign(in.data(), in.data() + in.rows());
+  Eigen::MatrixXd out = read_accessor(m, s.output, path);
+  if (c.path == GltfChannel::Path::Weights) {  // flat scalars: #times x #targets
+    const long per = c.times.empty() ? 0 : out.rows() / static_cast<long>(c.times.size());
+    Eigen::MatrixXd w(c.times.size(), per);
+    for (long i = 0; i < w.rows(); ++i)
+      for (long j = 0; j < per; ++j) w(i, j) = out(i * per + j, 0);
+    out = w;
+  }
+  if (out.rows() != static_cast<long>(c.times.size()) || c.times.empty())
+    throw file_error(path, 0, "animation sampler input and output counts differ");
+  c.values = out;
+  return c;
+}
+
+}  // namespace
+
+GltfDocument read_gltf(const std::string& path) {
+  const tinygltf::Model m = load_model(path);
+  GltfDocument doc;
+  read_nodes(m, path, doc);
+  find_mesh_nodes(m, doc);
+  if (doc.skinned_node >= 0) read_skin(m, path, doc);
   if (doc.morph_node >= 0) doc.morph = read_mesh(m, doc.nodes[doc.morph_node].mesh, path);
-  if (!m.animations.empty()) {
-    const tinygltf::Animation& a = m.animations[0];
-    for (const auto& ch : a.channels) {
-      const tinygltf::AnimationSampler& s = a.samplers.at(ch.sampler);
-      GltfChannel c;
-      c.node = ch.target_node;
-      if (ch.target_path == "translation") c.path = GltfChannel::Path::Translation;
-      else if (ch.target_path == "rotation") c.path = GltfChannel::Path::Rotation;
-      else if (ch.target_path == "scale") c.path = GltfChannel::Path::Scale;
-      else if (ch.target_path == "weights") c.path = GltfChannel::Path::Weights;
-      else throw file_error(path, 0, "unknown animation path '" + ch.target_path + "'");
-      if (s.interpolation == "STEP") c.step = true;
-      else if (s.interpolation != "LINEAR" && !s.interpolation.empty())
-        throw file_error(path, 0, "interpolation " + s.interpolation + " is not supported");
-      const Eigen::MatrixXd in = read_accessor(m, s.input, path);
-      c.times.assign(in.data(), in.data() + in.rows());
-      Eigen::MatrixXd out = read_accessor(m, s.output, path);
-      if (c.path == GltfChannel::Path::Weights) {  // flat scalars: #times x #targets
-        const long per = c.times.empty() ? 0 : out.rows() / static_cast<long>(c.times.size());
-        Eigen::MatrixXd w(c.times.size(), per);
-        for (long i = 0; i < w.rows(); ++i)
-          for (long j = 0; j < per; ++j) w(i, j) = out(i * per + j, 0);
-        out = w;
-      }
-      if (out.rows() != static_cast<long>(c.times.size()) || c.times.empty())
-        throw file_error(path, 0, "animation sampler input and output counts differ");
-      c.values = out;
-      doc.channels.push_back(std::move(c));
-    }
-  }
+  if (!m.animations.empty())
+    for (const auto& ch : m.animations[0].channels) doc.channels.push_back(read_channel(m, m.animations[0], ch, path));
   return doc;
+}
+
+std::vector<double> GltfDocument::key_times() const {
+  std::vector<double> t;
+  for (const auto& c : channels) t.insert(t.end(), c.times.begin(), c.times.end());
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
 }
 
 std::vector<GltfNode> gltf_animated_nodes(const GltfDocument& doc, double t) {
