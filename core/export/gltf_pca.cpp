@@ -113,24 +113,10 @@ void check_animation(const PcaAnimation& a) {
                   std::to_string(i) + ")");
 }
 
-}  // namespace
-
-PcaGltfReport export_pca_gltf(const std::string& path, const PcaAnimation& a, const PcaGltfOptions& options) {
-  const std::string ext = file_extension(path);
-  if (ext != "glb" && ext != "gltf") throw Error(path + ": glTF export needs a .glb or .gltf file name");
-  check_animation(a);
-  const int nv = a.num_vertices(), n = a.num_frames(), k = a.num_bases();
-  PcaGltfReport report;
-  report.vertices = nv;
-  report.triangles = static_cast<int>(a.F.rows());
-  report.frames = n;
-  report.morph_targets = k;
-  const UnitWeights u = unit_weights(a);
-
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "deform (dfm PCA animation exporter, tinygltf)";
-  GltfBufferBuilder bb(model);
+// The morphing mesh: base positions (and fitted normals), triangles, one target per basis.
+tinygltf::Mesh pca_mesh(GltfBufferBuilder& bb, const PcaAnimation& a, const UnitWeights& u, const PcaGltfOptions& options,
+                        PcaGltfReport& report) {
+  const int k = a.num_bases();
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.attributes["POSITION"] = bb.add_floats(rows_to_floats(u.base), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
@@ -165,42 +151,76 @@ PcaGltfReport export_pca_gltf(const std::string& path, const PcaAnimation& a, co
     extras["targetNames"] = tinygltf::Value(names);
     mesh.extras = tinygltf::Value(extras);
   }
-  model.meshes.push_back(mesh);
+  return mesh;
+}
 
-  // Rotations as unit quaternions, each on the side of the previous one so slerp takes the short way.
+// Per frame, in single precision: time, rigid motion and morph weights.
+struct FrameTracks {
   std::vector<float> times, translation, rotation, weights;
+};
+
+// Rotations as unit quaternions, each on the side of the previous one so slerp takes the short way.
+FrameTracks frame_tracks(const PcaAnimation& a, const UnitWeights& u) {
+  FrameTracks f;
   Eigen::Quaterniond prev = Eigen::Quaterniond::Identity();
-  for (int i = 0; i < n; ++i) {
-    times.push_back(static_cast<float>(a.times[i]));
+  for (int i = 0; i < a.num_frames(); ++i) {
+    f.times.push_back(static_cast<float>(a.times[i]));
     Eigen::Quaterniond q = a.motion[i].rotation.normalized();
     if (i > 0 && q.dot(prev) < 0) q.coeffs() = -q.coeffs();
     prev = q;
-    for (double c : {q.x(), q.y(), q.z(), q.w()}) rotation.push_back(static_cast<float>(c));
-    for (int c = 0; c < 3; ++c) translation.push_back(static_cast<float>(a.motion[i].translation[c]));
-    for (int j = 0; j < k; ++j) weights.push_back(static_cast<float>(u.W(i, j)));
+    for (double c : {q.x(), q.y(), q.z(), q.w()}) f.rotation.push_back(static_cast<float>(c));
+    for (int c = 0; c < 3; ++c) f.translation.push_back(static_cast<float>(a.motion[i].translation[c]));
+    for (int j = 0; j < a.num_bases(); ++j) f.weights.push_back(static_cast<float>(u.W(i, j)));
   }
+  return f;
+}
+
+// One node holding mesh 0 at the first frame's motion, its scene, and the animation of its tracks.
+void add_node_and_animation(tinygltf::Model& model, GltfBufferBuilder& bb, const FrameTracks& f, bool morphs,
+                            const std::string& name) {
   tinygltf::Node node;
-  node.name = options.name;
+  node.name = name;
   node.mesh = 0;
-  node.translation = {translation[0], translation[1], translation[2]};
-  node.rotation = {rotation[0], rotation[1], rotation[2], rotation[3]};
+  node.translation = {f.translation[0], f.translation[1], f.translation[2]};
+  node.rotation = {f.rotation[0], f.rotation[1], f.rotation[2], f.rotation[3]};
   model.nodes.push_back(node);
   tinygltf::Scene scene;
-  scene.name = options.name;
+  scene.name = name;
   scene.nodes = {0};
   model.scenes.push_back(scene);
   model.defaultScene = 0;
 
   tinygltf::Animation anim;
-  anim.name = options.name;
-  const int input = bb.add_floats(times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
+  anim.name = name;
+  const int input = bb.add_floats(f.times, 1, TINYGLTF_TYPE_SCALAR, 0, true);
   auto channel = [&](const std::string& target_path, const std::vector<float>& values, int type, int width) {
     add_linear_channel(anim, bb, 0, target_path, input, values, type, width);
   };
-  if (k > 0) channel("weights", weights, TINYGLTF_TYPE_SCALAR, 1);
-  channel("translation", translation, TINYGLTF_TYPE_VEC3, 3);
-  channel("rotation", rotation, TINYGLTF_TYPE_VEC4, 4);
+  if (morphs) channel("weights", f.weights, TINYGLTF_TYPE_SCALAR, 1);
+  channel("translation", f.translation, TINYGLTF_TYPE_VEC3, 3);
+  channel("rotation", f.rotation, TINYGLTF_TYPE_VEC4, 4);
   model.animations.push_back(anim);
+}
+
+}  // namespace
+
+PcaGltfReport export_pca_gltf(const std::string& path, const PcaAnimation& a, const PcaGltfOptions& options) {
+  const std::string ext = file_extension(path);
+  if (ext != "glb" && ext != "gltf") throw Error(path + ": glTF export needs a .glb or .gltf file name");
+  check_animation(a);
+  PcaGltfReport report;
+  report.vertices = a.num_vertices();
+  report.triangles = static_cast<int>(a.F.rows());
+  report.frames = a.num_frames();
+  report.morph_targets = a.num_bases();
+  const UnitWeights u = unit_weights(a);
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "deform (dfm PCA animation exporter, tinygltf)";
+  GltfBufferBuilder bb(model);
+  model.meshes.push_back(pca_mesh(bb, a, u, options, report));
+  add_node_and_animation(model, bb, frame_tracks(a, u), a.num_bases() > 0, options.name);
   write_gltf_model(path, model);
   return report;
 }
