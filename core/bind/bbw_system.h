@@ -19,7 +19,7 @@ struct FreeSystem {
 FreeSystem split_free_fixed(Eigen::SparseMatrix<double> Q, const Eigen::VectorXi& b, const Eigen::MatrixXd& bc);
 
 // Renumbers the variables in a nested-dissection order (a vertex's neighbours then sit close to it in
-// memory, which makes the Gauss-Seidel sweeps and products with Q_ff 2x faster than in TetGen's order,
+// memory, which makes the Gauss-Seidel sweeps and products with Q_ff faster than in TetGen's order,
 // and every face is already in elimination order). With bound_free_start it also factorizes Q_ff once
 // and returns the bound-free solutions -Q_ff^-1 G (renumbered), which start the bounded solves (often
 // nearly feasible); else an empty matrix. ordered(): called between the ordering and the factorization.

@@ -18,8 +18,8 @@ constexpr size_t kMinCached = size_t(1) << 20;  // smaller blocks go straight to
 constexpr size_t kMaxBlocks = 8;                // per thread
 constexpr size_t kHugePage = size_t(2) << 20;
 // Blocks smaller than this keep their tails resident: giving them back costs a page fault per page when
-// the next, larger face touches them again (hand.mesh: a third of its page faults), and they do not
-// decide the peak memory; the factors of large meshes (armadillo: 16-200 MB) do.
+// the next, larger face touches them again, and they do not decide the peak memory; the factors of
+// large meshes do.
 constexpr size_t kMinGivingBack = size_t(16) << 20;
 constexpr size_t kPage = 4096;
 
@@ -58,8 +58,7 @@ struct BlockCache {
   void put(void* p, size_t usable) {
     if (usable >= kMinGivingBack) {
       // A large free block keeps its address space, not its pages: a cached block that no later face
-      // takes would otherwise stay resident; huge pages make the refault of a reused one cheap
-      // (armadillo, same CPU time; peak 596-597 -> 588-592 MB).
+      // takes would otherwise stay resident; huge pages make the refault of a reused one cheap.
       const uintptr_t b = (reinterpret_cast<uintptr_t>(p) + kPage - 1) & ~(kPage - 1);
       const uintptr_t e = (reinterpret_cast<uintptr_t>(p) + usable) & ~(kPage - 1);
       if (e > b) madvise(reinterpret_cast<void*>(b), e - b, MADV_DONTNEED);

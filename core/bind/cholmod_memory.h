@@ -1,12 +1,11 @@
 #pragma once
-// Reuse of CHOLMOD's large blocks. Every face factorization allocates the factor's values afresh (~100 MB
-// for an armadillo face) and frees them after the solve; glibc maps such blocks anew each time, and the
-// page faults of first touch plus CHOLMOD's zeroing were a quarter of armadillo's bounded-solve CPU
-// (perf: page faults 12%, memset in cholmod_super_numeric 13%). Blocks of 1 MB and more that CHOLMOD
-// frees are kept per thread and handed back to the next request they fit, so a face reuses the last
-// face's memory. Big fresh blocks are advised for transparent huge pages (512x fewer faults). Blocks of
-// 16 MB and more keep only their address space while cached (their pages are given back), so stale
-// blocks cost no memory; smaller ones stay resident (refaulting them was a third of hand.mesh's faults).
+// Reuse of CHOLMOD's large blocks. Every face factorization allocates the factor's values afresh and
+// frees them after the solve; glibc maps such blocks anew each time, and the page faults of first touch
+// plus CHOLMOD's zeroing are a large share of the bounded solve on big meshes. Blocks of 1 MB and more
+// that CHOLMOD frees are kept per thread and handed back to the next request they fit, so a face reuses
+// the last face's memory. Big fresh blocks are advised for transparent huge pages (fewer faults).
+// Blocks of 16 MB and more keep only their address space while cached (their pages are given back), so
+// stale blocks cost no memory; smaller ones stay resident (refaulting them would cost more than they hold).
 
 namespace dfm {
 

@@ -71,7 +71,7 @@ std::vector<char> carve_to_domain(const Eigen::MatrixXd& V, const Eigen::MatrixX
   for (int t = 0; t < Td.rows(); ++t)
     centroids.row(t) = 0.25 * (Vd.row(Td(t, 0)) + Vd.row(Td(t, 1)) + Vd.row(Td(t, 2)) + Vd.row(Td(t, 3)));
   WindingAccuracy acc;
-  acc.node_tolerance = 1e-2;  // only |w| > 1/2 matters: far looser than the default, 3x faster
+  acc.node_tolerance = 1e-2;  // only |w| > 1/2 matters: far looser (and faster) than the default
   const Eigen::VectorXd wn = winding_numbers(tree, centroids, acc);
   std::vector<char> keep(Td.rows(), 0);
   for (int t = 0; t < Td.rows(); ++t) {

@@ -38,8 +38,7 @@ void check_indices(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T) {
 
 // Sum over tets of a_t vol_t grad(phi_i) . grad(phi_j) (a = 1 where `a` is empty), assembled straight
 // into compressed columns: the pattern comes from the vertex-to-tet incidence and every element entry is
-// added into its slot, instead of 16 triplets a tet sorted by setFromTriplets (armadillo: 0.79 s -> see
-// test_fem / bench).
+// added into its slot, instead of 16 triplets a tet sorted by setFromTriplets (the sort dominated).
 Eigen::SparseMatrix<double> weighted_stiffness(const Eigen::MatrixXd& V, const Eigen::MatrixXi& T,
                                                const Eigen::VectorXd& a) {
   check_indices(V, T);

@@ -9,12 +9,10 @@
 
 namespace dfm {
 
-// Defaults chosen on messy copies of closed meshes (bench/bench_segmentation, tests/test_graph_cut.cpp);
-// misclassified tets, threshold -> cut: decimated knight 373 -> 220, bunny 247 -> 19, the voxel thin
-// part 100 -> 7 and tunnel 161 -> 0. gamma 1-4 and sigma 0.3-0.4 all do well. Unweighted data (Eq. 8.8
-// as printed) did worse on these graded meshes (knight 299, bunny 194 at gamma 1) and let big tets near
-// w = 1/2 follow their large faces (beetle volume 0.056 -> 0.103); mean-normalized volumes let the
-// padded box's huge tets dominate (the beetle vanished at gamma 4).
+// Defaults chosen on messy copies of closed meshes (bench/bench_segmentation prints the misclassified
+// tets of threshold and cut; tests/test_graph_cut.cpp); gamma 1-4 and sigma 0.3-0.4 all do well.
+// Unweighted data (Eq. 8.8 as printed) misclassifies more on graded meshes and lets big tets near
+// w = 1/2 follow their large faces; mean-normalized volumes let the padded box's huge tets dominate.
 struct GraphCutOptions {
   // gamma in Eq. 8.8: smoothness against the data term. Face areas are divided by their median and tet
   // volumes by theirs, so the balance does not depend on the model's scale. 0 is the threshold.

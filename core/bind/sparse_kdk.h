@@ -1,8 +1,7 @@
 #pragma once
 // K diag(d) K for a symmetric sparse K: the bilaplacian K M^-1 K of the weight energy. Gustavson's
 // column-by-column product with a dense accumulator, written for this one shape: Eigen's general
-// product (row-major temporary, 64-bit indices, a transposed copy) took 1.6 s on armadillo's 71K
-// vertices.
+// product makes a row-major temporary, 64-bit indices and a transposed copy (see bench_bind's assembly).
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 
