@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/util/error.h"
+
 namespace dfm::test {
 
 inline std::string data_dir() {
@@ -26,6 +28,20 @@ inline std::string data_file(const std::string& name) {
   if (running_in_ci()) FAIL("shared data file missing in CI: " << p);
   WARN("SKIPPED: shared data file not found: " << p);
   return "";
+}
+
+// What a call threw, told apart by type: "cancelled" (dfm::Cancelled), "error" (any other dfm::Error)
+// or "nothing".
+template <class F>
+std::string thrown_kind(F&& f) {
+  try {
+    f();
+  } catch (const Cancelled&) {
+    return "cancelled";
+  } catch (const Error&) {
+    return "error";
+  }
+  return "nothing";
 }
 
 }  // namespace dfm::test
