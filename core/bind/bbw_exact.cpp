@@ -134,6 +134,69 @@ double exact_pou_kkt_residual(const Eigen::SparseMatrix<double>& H, const Eigen:
   return res;
 }
 
+namespace {
+
+// Entries at or beyond a bound start fixed there (-1 at 0, +1 at 1), the rest free; one free per row.
+Status status_of(const Eigen::MatrixXd& x) {
+  Status st(x.rows(), x.cols());
+  for (int k = 0; k < x.size(); ++k) st.data()[k] = x.data()[k] <= 0 ? -1 : (x.data()[k] >= 1 ? 1 : 0);
+  keep_one_free(st, x);
+  return st;
+}
+
+// Multiplier-corrected gradient sign test: releases fixed entries whose multiplier has the wrong sign;
+// returns how many.
+int release_wrong_signs(const Eigen::SparseMatrix<double>& H, const Eigen::MatrixXd& G, const std::vector<int>& pivot,
+                        const Eigen::MatrixXd& xs, double tau, Status& st) {
+  const Eigen::MatrixXd grad = H * xs + G;
+  const Eigen::VectorXd hd = H.diagonal();
+  int released = 0;
+  for (int i = 0; i < xs.rows(); ++i) {
+    const double lambda = -grad(i, pivot[i]);
+    for (int j = 0; j < xs.cols(); ++j) {
+      const double gl = grad(i, j) + lambda;
+      if ((st(i, j) < 0 && gl < -tau * hd(i)) || (st(i, j) > 0 && gl > tau * hd(i))) st(i, j) = 0, ++released;
+    }
+  }
+  return released;
+}
+
+// A feasible point near x: clipped to [0, 1], rows renormalized (an empty row takes X0's positive part).
+void clip_and_renormalize(Eigen::MatrixXd& x, const Eigen::MatrixXd& X0) {
+  x = x.cwiseMax(0.0).cwiseMin(1.0);
+  for (int i = 0; i < x.rows(); ++i) {
+    const double s = x.row(i).sum();
+    if (s > 1e-12) x.row(i) /= s;
+    else x.row(i) = X0.row(i).cwiseMax(0.0) / std::max(X0.row(i).cwiseMax(0.0).sum(), 1e-300);
+  }
+}
+
+// Moves the free entries of x toward xt as far as the bounds allow; returns the step (1: all the way).
+// A blocked step fixes the entries it brought to a bound.
+double step_within_bounds(Status& st, Eigen::MatrixXd& x, const Eigen::MatrixXd& xt) {
+  double alpha = 1.0;
+  for (int k = 0; k < x.size(); ++k) {
+    if (st.data()[k] != 0) continue;
+    const double xk = x.data()[k], tk = xt.data()[k], d = tk - xk;
+    if (tk < 0 && d < 0) alpha = std::min(alpha, -xk / d);
+    if (tk > 1 && d > 0) alpha = std::min(alpha, (1 - xk) / d);
+  }
+  alpha = std::max(alpha, 0.0);
+  for (int k = 0; k < x.size(); ++k)
+    if (st.data()[k] == 0) x.data()[k] += alpha * (xt.data()[k] - x.data()[k]);
+  if (alpha < 1.0) {
+    for (int k = 0; k < x.size(); ++k) {
+      if (st.data()[k] != 0) continue;
+      if (x.data()[k] <= 1e-12) st.data()[k] = -1, x.data()[k] = 0;
+      else if (x.data()[k] >= 1 - 1e-12) st.data()[k] = 1, x.data()[k] = 1;
+    }
+    keep_one_free(st, x);
+  }
+  return alpha;
+}
+
+}  // namespace
+
 ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen::MatrixXd& G,
                                const Eigen::MatrixXd& X0, double tolerance, const std::atomic<bool>* cancel,
                                int max_iterations) {
@@ -143,28 +206,13 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
   auto check_cancel = [&] {
     if (cancel && cancel->load()) throw Cancelled();
   };
-  Status st(n, m);
   Eigen::MatrixXd x = X0;
-  for (int k = 0; k < x.size(); ++k) st.data()[k] = x.data()[k] <= 0 ? -1 : (x.data()[k] >= 1 ? 1 : 0);
-  keep_one_free(st, x);
+  Status st = status_of(x);
   std::vector<int> pivot;
   Eigen::MatrixXd xt;
-  const Eigen::VectorXd hd = H.diagonal();
+  const double tau = 0.1 * tolerance;
 
-  // Multiplier-corrected gradient sign test: returns the number of entries released.
-  auto release_wrong_signs = [&](const Eigen::MatrixXd& xs, double tau) {
-    const Eigen::MatrixXd grad = H * xs + G;
-    int released = 0;
-    for (int i = 0; i < n; ++i) {
-      const double lambda = -grad(i, pivot[i]);
-      for (int j = 0; j < m; ++j) {
-        const double gl = grad(i, j) + lambda;
-        if ((st(i, j) < 0 && gl < -tau * hd(i)) || (st(i, j) > 0 && gl > tau * hd(i))) st(i, j) = 0, ++released;
-      }
-    }
-    return released;
-  };
-
+  // Primal-dual active set steps, until nothing changes or an active set repeats.
   bool done = false;
   std::unordered_set<uint64_t> seen;
   for (int it = 0; it < 60 && !done; ++it) {
@@ -172,7 +220,6 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
     solve_face(H, G, st, x, xt, pivot);
     ++res.iterations;
     x = xt;
-    const double tau = 0.1 * tolerance;
     int changes = 0;
     for (int k = 0; k < x.size(); ++k) {
       signed char& s = st.data()[k];
@@ -180,7 +227,7 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
       else if (s == 0 && x.data()[k] > 1 + 1e-13) s = 1, ++changes;
     }
     Status before = st;
-    changes += release_wrong_signs(x, tau);
+    changes += release_wrong_signs(H, G, pivot, x, tau, st);
     keep_one_free(st, x);
     if ((changes == 0 && st == before) || exact_pou_kkt_residual(H, G, x.cwiseMax(0.0).cwiseMin(1.0)) <= tolerance)
       done = true;
@@ -188,39 +235,15 @@ ExactPouResult solve_exact_pou(const Eigen::SparseMatrix<double>& H, const Eigen
   }
 
   if (!done) {
-    // Monotone fallback from a feasible point: clip and renormalize rows.
-    x = x.cwiseMax(0.0).cwiseMin(1.0);
-    for (int i = 0; i < n; ++i) {
-      const double s = x.row(i).sum();
-      if (s > 1e-12) x.row(i) /= s;
-      else x.row(i) = X0.row(i).cwiseMax(0.0) / std::max(X0.row(i).cwiseMax(0.0).sum(), 1e-300);
-    }
-    for (int k = 0; k < x.size(); ++k) st.data()[k] = x.data()[k] <= 0 ? -1 : (x.data()[k] >= 1 ? 1 : 0);
-    keep_one_free(st, x);
+    // Monotone fallback from a feasible point: feasible descent steps on the faces.
+    clip_and_renormalize(x, X0);
+    st = status_of(x);
     while (res.iterations < max_iterations) {
       check_cancel();
       solve_face(H, G, st, x, xt, pivot);
       ++res.iterations, ++res.fallback_iterations;
-      double alpha = 1.0;
-      for (int k = 0; k < x.size(); ++k) {
-        if (st.data()[k] != 0) continue;
-        const double xk = x.data()[k], tk = xt.data()[k], d = tk - xk;
-        if (tk < 0 && d < 0) alpha = std::min(alpha, -xk / d);
-        if (tk > 1 && d > 0) alpha = std::min(alpha, (1 - xk) / d);
-      }
-      alpha = std::max(alpha, 0.0);
-      for (int k = 0; k < x.size(); ++k)
-        if (st.data()[k] == 0) x.data()[k] += alpha * (xt.data()[k] - x.data()[k]);
-      if (alpha < 1.0) {
-        for (int k = 0; k < x.size(); ++k) {
-          if (st.data()[k] != 0) continue;
-          if (x.data()[k] <= 1e-12) st.data()[k] = -1, x.data()[k] = 0;
-          else if (x.data()[k] >= 1 - 1e-12) st.data()[k] = 1, x.data()[k] = 1;
-        }
-        keep_one_free(st, x);
-        continue;
-      }
-      if (release_wrong_signs(x, 0.1 * tolerance) == 0) {
+      if (step_within_bounds(st, x, xt) < 1.0) continue;
+      if (release_wrong_signs(H, G, pivot, x, tau, st) == 0) {
         done = true;
         break;
       }
