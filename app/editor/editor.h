@@ -15,10 +15,12 @@
 #include "app/editor/file_panel.h"
 #include "app/editor/frame_pacing.h"
 #include "app/editor/paint_tool.h"
+#include "app/editor/pose_panels.h"
 #include "app/editor/pose_tool.h"
 #include "app/editor/scene_view.h"
 #include "app/editor/timeline_ruler.h"
 #include "app/editor/view_model.h"
+#include "app/editor/weight_tools_panel.h"
 #include "core/scene/command.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
@@ -45,22 +47,6 @@ enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
 
 struct ShapeSpacePanel;
 class ItemFlow;
-
-// The Weights panel's weight tools: their settings and the handles locked for normalize and smooth
-// (UI state: the document commands take them as arguments; weight_tools_panel.cpp).
-struct WeightToolsUi {
-  std::vector<int> locked;
-  int limit_k = 4;
-  float limit_radius = 1.0f;
-  int smooth_iterations = 1;
-  float smooth_factor = 0.5f;
-  bool smooth_cotangent = false;
-  int mirror_axis = 0;  // x y z
-  float mirror_offset = 0.0f;
-  int mirror_mode = 0;  // MirrorMode
-  float report_threshold = 1e-3f;
-  std::string last;  // what the last tool did
-};
 
 class Editor {
  public:
@@ -221,6 +207,7 @@ class Editor {
   PoseTool pose_tool_;  // the gizmo and its drag (pose_tool.h)
   PaintTool paint_tool_;  // the brush, its settings and its stroke (paint_tool.h)
   TimelineRuler timeline_ruler_;  // the timeline's ruler and its drags (timeline_ruler.h)
+  PosePanels pose_panels_;  // the Transform and Posing sections (pose_panels.h)
   Eigen::Vector3d drag_point_ = Eigen::Vector3d::Zero();  // handle being dragged (world)
   int drag_handle_ = -1;
   int drag_joint_ = -1;
@@ -246,7 +233,7 @@ class Editor {
   std::uint64_t autosaved_revision_ = 0;
   std::vector<std::string> weight_rows_;  // the picked vertex's weights, formatted
   std::unique_ptr<ShapeSpacePanel> shape_space_;  // the Shape space panel's view state
-  WeightToolsUi weight_tools_;
+  WeightToolsUi weight_tools_;  // the Weights panel's tools (weight_tools_panel.h)
 };
 
 }  // namespace dfm::editor

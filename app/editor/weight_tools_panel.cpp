@@ -1,5 +1,5 @@
-// The Weights panel's "Weight tools" (Blender's weight paint menu): limit total influences, normalize
-// with locked handles, smooth, mirror, and the report of handles with no weight. Each button is one
+// The Weights panel's "Weight tools" (weight_tools_panel.h): limit total influences, normalize with
+// locked handles, smooth, mirror, and the report of handles with no weight. Each button is one
 // document command (core/bind/weight_tools.h through Document::weights_*), so one undo step; the
 // script's weights-* commands run the same ones.
 #include <algorithm>
@@ -8,6 +8,8 @@
 #include <string>
 
 #include <imgui.h>
+
+#include "app/editor/weight_tools_panel.h"
 
 #include "app/editor/editor.h"
 #include "app/editor/theme.h"
@@ -149,25 +151,31 @@ void locks_and_report(const Document& doc, WeightToolsUi& ui) {
 
 }  // namespace
 
-void Editor::draw_weight_tools_section() {
-  WeightToolsUi& ui = weight_tools_;
-  if (!doc_.has_weights()) {
+void WeightToolsUi::draw(Document& doc, const Report& report) {
+  if (!doc.has_weights()) {
     text_disabled_wrapped("bind first: the tools edit the bind's weights");
     return;
   }
-  ui.locked = valid_locks(ui.locked, doc_.num_handles());
+  locked = valid_locks(locked, doc.num_handles());
   const RunTool run = [&](const char* what, const std::function<std::string()>& tool) {
     try {
-      ui.last = tool();
-      status(ui.last);
+      last = tool();
+      report(last, false);
     } catch (const std::exception& e) {
-      error_popup_ = std::string(what) + ": " + e.what();
+      report(std::string(what) + ": " + e.what(), true);
     }
   };
-  limit_smooth_normalize(doc_, ui, run);
-  mirror(doc_, ui, run);
-  locks_and_report(doc_, ui);
-  if (!ui.last.empty()) ImGui::TextWrapped("%s", ui.last.c_str());  // what the last tool did
+  limit_smooth_normalize(doc, *this, run);
+  mirror(doc, *this, run);
+  locks_and_report(doc, *this);
+  if (!last.empty()) ImGui::TextWrapped("%s", last.c_str());  // what the last tool did
+}
+
+void Editor::draw_weight_tools_section() {
+  weight_tools_.draw(doc_, [&](const std::string& message, bool error) {
+    if (error) error_popup_ = message;
+    else status(message);
+  });
 }
 
 }  // namespace dfm::editor

@@ -105,6 +105,43 @@ void for_each_slice_triangle(const AnimationManifold& M, SliceAxis axis_e, doubl
   }
 }
 
+// The weld: the distinct corner keys in increasing order (the slice's vertices), and per corner its
+// vertex. An open-addressing table gives each distinct key a first-seen id; the ids are then renumbered
+// in key order so the vertex order is deterministic (a layer's own order at key times).
+void weld_corners(const std::vector<std::uint64_t>& corners, std::vector<std::uint64_t>& keys,
+                  std::vector<int>& corner_vertex) {
+  size_t cap = 16;
+  while (cap < corners.size()) cap <<= 1;
+  cap <<= 1;  // load factor <= 1/2
+  constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  std::vector<std::uint64_t> slot_key(cap, kEmpty);
+  std::vector<int> slot_id(cap);
+  keys.clear();  // by first-seen id, then sorted
+  std::vector<int> corner_id(corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const std::uint64_t k = corners[i];
+    size_t h = static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & (cap - 1);
+    while (slot_key[h] != kEmpty && slot_key[h] != k) h = (h + 1) & (cap - 1);
+    if (slot_key[h] == kEmpty) {
+      slot_key[h] = k;
+      slot_id[h] = static_cast<int>(keys.size());
+      keys.push_back(k);
+    }
+    corner_id[i] = slot_id[h];
+  }
+  std::vector<int> order(keys.size()), rank(keys.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return keys[a] < keys[b]; });
+  for (size_t i = 0; i < order.size(); ++i) rank[order[i]] = static_cast<int>(i);
+  {
+    std::vector<std::uint64_t> sorted(keys.size());
+    for (size_t i = 0; i < order.size(); ++i) sorted[i] = keys[order[i]];
+    keys.swap(sorted);
+  }
+  corner_vertex.resize(corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) corner_vertex[i] = rank[corner_id[i]];
+}
+
 }  // namespace
 
 int welded_slice_vertex_count(const AnimationManifold& M, SliceAxis axis, double value) {
@@ -129,36 +166,10 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
     corners.insert(corners.end(), key, key + 3);
   });
 
-  // Pass 2: weld. An open-addressing table gives each distinct key a first-seen id; the ids are then
-  // renumbered in key order so the vertex order is deterministic (a layer's own order at key times).
-  size_t cap = 16;
-  while (cap < corners.size()) cap <<= 1;
-  cap <<= 1;  // load factor <= 1/2
-  constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
-  std::vector<std::uint64_t> slot_key(cap, kEmpty);
-  std::vector<int> slot_id(cap);
-  std::vector<std::uint64_t> keys;  // by first-seen id
-  std::vector<int> corner_id(corners.size());
-  for (size_t i = 0; i < corners.size(); ++i) {
-    const std::uint64_t k = corners[i];
-    size_t h = static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & (cap - 1);
-    while (slot_key[h] != kEmpty && slot_key[h] != k) h = (h + 1) & (cap - 1);
-    if (slot_key[h] == kEmpty) {
-      slot_key[h] = k;
-      slot_id[h] = static_cast<int>(keys.size());
-      keys.push_back(k);
-    }
-    corner_id[i] = slot_id[h];
-  }
-  std::vector<int> order(keys.size()), rank(keys.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return keys[a] < keys[b]; });
-  for (size_t i = 0; i < order.size(); ++i) rank[order[i]] = static_cast<int>(i);
-  {
-    std::vector<std::uint64_t> sorted(keys.size());
-    for (size_t i = 0; i < order.size(); ++i) sorted[i] = keys[order[i]];
-    keys.swap(sorted);
-  }
+  // Pass 2: weld.
+  std::vector<std::uint64_t> keys;
+  std::vector<int> corner_vertex;
+  weld_corners(corners, keys, corner_vertex);
 
   ManifoldSlice out;
   const int nv = static_cast<int>(keys.size());
@@ -196,7 +207,7 @@ ManifoldSlice slice_manifold(const AnimationManifold& M, SliceAxis axis_e, doubl
   out.mesh.F.resize(nf, 3);
   for (int f = 0; f < nf; ++f)
     for (int j = 0; j < 3; ++j)
-      out.mesh.F(f, j) = rank[corner_id[3 * f + j]];
+      out.mesh.F(f, j) = corner_vertex[3 * f + j];
 
   return out;
 }
