@@ -110,7 +110,13 @@ AnimationManifold build_manifold_sequence(const std::vector<KeySurface>& keys, c
       TransitionStats ts;
       check_transition_key({keys[i].V, keys[i].F, {}}, keys[i].name);
       check_transition_key({keys[i + 1].V, keys[i + 1].F, {}}, keys[i + 1].name);
-      append_slabs(out, transition_cache().get(keys[i], keys[i + 1], options, &ts));
+      TransitionOptions o = options;
+      if (keys[i].pairs_to_next.rows() > 0) o.pairs = keys[i].pairs_to_next;
+      try {
+        append_slabs(out, transition_cache().get(keys[i], keys[i + 1], o, &ts));
+      } catch (const Error& e) {
+        throw Error(keys[i].name + " to " + keys[i + 1].name + ": " + e.what());
+      }
       local.transition_slabs += 1;
       local.transitions += ts;
       i += 1;
