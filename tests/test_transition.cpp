@@ -488,8 +488,8 @@ TEST_CASE("iso_manifold: the zero set of |p|^2 - r^2 over a 4D triangulation is 
 
 TEST_CASE("transition: sphere to torus", "[transition]") {
   // The torus's regular grid is co-spherical everywhere: fill points cost some of its triangles, where
-  // the key slice takes the tetrahedralization's other faces, so its volume is close (5e-6 off,
-  // held to 1e-3) but not exact.
+  // the key slice takes the tetrahedralization's other faces, so its volume is close (5e-6 off;
+  // aligned, the torus scaled into the sphere's frame, 5e-5; held to 1e-3) but not exact.
   Expect want;
   want.exact_key_volume = false;
   check_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 3), dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 48, 16),
