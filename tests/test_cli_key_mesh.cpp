@@ -177,6 +177,21 @@ TEST_CASE("deform manifold --pairs: a moved key travels, its picked pair followe
   const dfm::TriMesh mid = dfm::read_surface(s / "mid.obj");
   const Eigen::RowVector3d c = 0.5 * (mid.V.colwise().minCoeff() + mid.V.colwise().maxCoeff());
   CHECK(std::abs(c.x() - 1.5) < 0.1);  // halfway along the travel
+  // Three keys: 'pair 1' sends the lines after it to keys 1 and 2 (b -> c, c turned a quarter).
+  dfm::TriMesh ring = dfm::test::torus({0, 0, 0}, 0.5, 0.2, 24, 10);
+  ring.V = (ring.V * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix().transpose()).eval();
+  ring.V.col(0).array() += 6;
+  dfm::test::write_obj_raw(s / "c.obj", ring);
+  const std::string three = write("three.txt", "1 0 0 3.6 0 0\npair 1\n3.6 0 0 6.7 0 0\n");
+  r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", s / "c.obj", "--pairs", three, "--at", "1.5",
+                 "--stats"});
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("closed: yes") != std::string::npos);
+  dfm::test::write_obj_raw(s / "a2.obj", dfm::test::icosphere({2, 0, 0}, 1.0, 1));  // a's triangles: the prism build
+  r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "a2.obj", "--pairs", good, "--at", "0.5", "--stats"});
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("good.txt:2:") != std::string::npos);
+  CHECK(r.err.find("transitions only") != std::string::npos);
   struct Bad {
     std::string text, where, problem;
   };
