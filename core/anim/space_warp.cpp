@@ -72,18 +72,21 @@ Eigen::RowVector3d warp(const SpaceWarp& w, const Eigen::RowVector3d& x, double 
 
 Eigen::RowVector3d unwarp(const SpaceWarp& w, const Eigen::RowVector3d& y) {
   if (w.identity()) return y;
-  Eigen::RowVector3d x = y;
-  const double tol = 1e-14 * (w.spread + y.norm());
+  Eigen::RowVector3d x = y, best = y;
+  const double scale = w.spread + y.norm();
+  double best_r = HUGE_VAL;
   for (int it = 0; it < 60; ++it) {
     const Eigen::RowVector3d r = x + w.displacement(x) - y;
     const Eigen::Matrix3d J = Eigen::Matrix3d::Identity() + w.displacement_jacobian(x);
-    if (r.norm() <= tol) {
-      if (!(J.determinant() > 0)) break;
-      return x;
-    }
+    if (!(J.determinant() > 0)) break;
+    if (r.norm() < best_r) best_r = r.norm(), best = x;
+    if (r.norm() <= 1e-14 * scale) return x;
     x -= (J.partialPivLu().solve(r.transpose())).transpose();
     if (!x.allFinite()) break;
   }
+  // Rounding may stall Newton a little above 1e-14.
+  if (best_r <= 1e-11 * scale && Eigen::Matrix3d(Eigen::Matrix3d::Identity() + w.displacement_jacobian(best)).determinant() > 0)
+    return best;
   throw Error("the picked pairs fold space near " + point_text(y) + ": the warp through them has no inverse there");
 }
 

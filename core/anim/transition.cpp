@@ -546,7 +546,19 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   const SpaceWarp w = fit_space_warp(o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3)));
   TriMesh reference{to_source_frame(p, target.V), target.F, {}};
   for (int v = 0; v < reference.V.rows() && !w.identity(); ++v) reference.V.row(v) = unwarp(w, reference.V.row(v));
-  if (!w.identity()) check_transition_key(reference, "the target key warped by the picked pairs");
+  if (!w.identity()) {
+    // W_u must not turn space inside out where the morph is: det(I + u dD/dx) > 0 on both keys.
+    for (const Eigen::MatrixXd* X : std::initializer_list<const Eigen::MatrixXd*>{&source.V, &reference.V})
+      for (Eigen::Index v = 0; v < X->rows(); ++v) {
+        const Eigen::Matrix3d J = w.displacement_jacobian(X->row(v));
+        for (double u : {0.25, 0.5, 0.75, 1.0})
+          if (!((Eigen::Matrix3d::Identity() + u * J).determinant() > 0))
+            throw Error("the picked pairs fold space near (" + std::to_string((*X)(v, 0)) + " " +
+                        std::to_string((*X)(v, 1)) + " " + std::to_string((*X)(v, 2)) + ") at u = " + std::to_string(u) +
+                        ": pin more of the shape, or move the pairs less");
+      }
+    check_transition_key(reference, "the target key warped by the picked pairs");
+  }
   TransitionOptions layered = o;
   const double turn = Eigen::AngleAxisd(p.R).angle() * 180 / M_PI;
   // In fours: layer k of K sits at (k - 1/2) / K, which then never falls on t = 1/4, 1/2 or 3/4 (a
