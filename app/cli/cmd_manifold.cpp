@@ -45,8 +45,8 @@ const char* kUsage =
     "  point on a key, its partner on the next); a line 'pair K' sends the lines after it to keys K and K+1\n"
     "  (0-based, default 0); blank lines and # comments are skipped. Each point must lie on its key (within 2%\n"
     "  of its bounding-box diagonal); neighbours of one connectivity take no pairs.\n"
-    "  --stats prints the build (prism / transition slabs, Steiner points, seconds per stage: conform,\n"
-    "  field, delaunay, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
+    "  --stats prints the build (prism / transition slabs, Steiner points, the last transition's turn and\n"
+    "  scale, seconds per stage: align, conform, field, delaunay, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
     "  closedness, volume.";
 
 void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, dfm::SliceAxis axis, double at) {
@@ -69,7 +69,8 @@ void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, d
 void print_sequence_stats(const dfm::SequenceStats& s) {
   const dfm::TransitionStats& t = s.transitions;
   std::cout << "prism slabs: " << s.prism_slabs << "\ntransition slabs: " << s.transition_slabs
-            << "\nsteiner points: " << t.source_steiner + t.target_steiner << "\nconform seconds: " << t.conform_seconds
+            << "\nsteiner points: " << t.source_steiner + t.target_steiner << "\nturn degrees: " << t.turn_degrees
+            << "\nscale: " << t.scale << "\nalign seconds: " << t.align_seconds << "\nconform seconds: " << t.conform_seconds
             << "\nfield seconds: " << t.field_seconds << "\ndelaunay seconds: " << t.delaunay_seconds
             << "\nextract seconds: " << t.extract_seconds << "\ntransition seconds: " << t.total_seconds
             << "\ntotal seconds: " << s.seconds << "\n";

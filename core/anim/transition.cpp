@@ -302,6 +302,8 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   field_seconds += o.field_seconds;
   delaunay_seconds += o.delaunay_seconds;
   extract_seconds += o.extract_seconds;
+  turn_degrees = o.turn_degrees;
+  scale = o.scale;
   align_seconds += o.align_seconds;
   total_seconds += o.total_seconds;
   return *this;
