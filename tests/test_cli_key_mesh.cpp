@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -176,4 +177,55 @@ TEST_CASE("deform manifold --inbetween arap: a turning body stays rigid between 
   r = deform(s, {"interpolate", "--keyframes", s / "a.obj", s / "b.obj", "--method", "linear", "--symmetric", "--at",
                  "0.5", "-o", s / "x.obj"});
   CHECK(r.exit_code == 2);
+}
+
+TEST_CASE("deform manifold --pairs: a moved key travels, its picked pair followed; hostile pairs exit 1 naming "
+          "the file, line and problem", "[cli][transition][hostile]") {
+  Scratch s;
+  dfm::test::write_obj_raw(s / "a.obj", sphere());
+  dfm::test::write_obj_raw(s / "b.obj", dfm::test::icosphere({3, 0, 0}, 0.6, 2));
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(s / name) << text;
+    return s / name;
+  };
+  const std::string good = write("good.txt", "# tip to tip\n1 0 0   3.6 0 0\n\n0 1 0 3 0.6 0\n");
+  RunResult r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", "--pairs", good, "--at", "0.5", "-o",
+                           s / "mid.obj", "--stats"});
+  INFO(describe_run(r));
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("closed: yes") != std::string::npos);
+  const dfm::TriMesh mid = dfm::read_surface(s / "mid.obj");
+  const Eigen::RowVector3d c = 0.5 * (mid.V.colwise().minCoeff() + mid.V.colwise().maxCoeff());
+  CHECK(std::abs(c.x() - 1.5) < 0.1);  // halfway along the travel
+  // Three keys: 'pair 1' sends the lines after it to keys 1 and 2 (b -> c, c turned a quarter).
+  dfm::TriMesh ring = dfm::test::torus({0, 0, 0}, 0.5, 0.2, 24, 10);
+  ring.V = (ring.V * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix().transpose()).eval();
+  ring.V.col(0).array() += 6;
+  dfm::test::write_obj_raw(s / "c.obj", ring);
+  const std::string three = write("three.txt", "1 0 0 3.6 0 0\npair 1\n3.6 0 0 6.7 0 0\n");
+  r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", s / "c.obj", "--pairs", three, "--at", "1.5",
+                 "--stats"});
+  CHECK(r.exit_code == 0);
+  CHECK(r.out.find("closed: yes") != std::string::npos);
+  dfm::test::write_obj_raw(s / "a2.obj", dfm::test::icosphere({2, 0, 0}, 1.0, 1));  // a's triangles: the prism build
+  r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "a2.obj", "--pairs", good, "--at", "0.5", "--stats"});
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("good.txt:2:") != std::string::npos);
+  CHECK(r.err.find("transitions only") != std::string::npos);
+  struct Bad {
+    std::string text, where, problem;
+  };
+  const std::vector<Bad> bad = {{"1 0 0 3.6 0 0\n0 1 0 nan 0.6 0\n", ":2:", "not a finite number"},
+                                {"1 0 0 3.6 0 0\n\n0 1 0 3 0.6\n", ":3:", "expected 6 numbers"},
+                                {"1 0 0 3.6 0 0\n0 1.5 0 3 0.6 0\n", ":2:", "from its key"},
+                                {"pair 1\n1 0 0 3.6 0 0\n", ":1:", "pair K"}};
+  for (size_t i = 0; i < bad.size(); ++i) {
+    const std::string f = write("bad" + std::to_string(i) + ".txt", bad[i].text);
+    r = deform(s, {"manifold", "--keyframes", s / "a.obj", s / "b.obj", "--pairs", f, "--at", "0.5", "--stats"});
+    INFO(describe_run(r));
+    CHECK_FALSE(r.signaled);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("bad" + std::to_string(i) + ".txt" + bad[i].where) != std::string::npos);
+    CHECK(r.err.find(bad[i].problem) != std::string::npos);
+  }
 }

@@ -12,6 +12,7 @@
 #include "core/anim/frame_sequence.h"
 #include "core/anim/inbetween.h"
 #include "core/anim/manifold_sequence.h"
+#include "core/anim/pair_file.h"
 #include "core/anim/slice.h"
 #include "core/anim/surface_checks.h"
 #include "core/mesh/io.h"
@@ -28,9 +29,12 @@ const char* kUsage =
     "usage: deform manifold (--keyframes K0.obj K1.obj ... [--times t0 t1 ...] | --manifold M.tet4)\n"
     "                       [--axis t|x|y|z] [--at VALUE -o SLICE.obj] [--save-manifold M.tet4] [--stats]\n"
     "                       [--frames N [--sequence PREFIX] [--strip STRIP.png]] [--inbetween arap|linear [--inbetweens N]]\n"
+    "                       [--pairs P.txt]\n"
     "  Keyframes are meshes of any connectivity (default times 0, 1, 2, ...), joined into 4D tetrahedra\n"
     "  (x, y, z, t): neighbours sharing one triangle list by the exact prism build, others by a transition\n"
-    "  (those keys must be closed, oriented and not self-intersecting). --at slices at that value of --axis (default t; x, y, z give the sweep\n"
+    "  (those keys must be closed, oriented and not self-intersecting; a transition removes the keys' relative\n"
+    "  placement, centroid, rotation and scale, morphs, and puts it back along the way: a moved key travels, a\n"
+    "  turned key turns). --at slices at that value of --axis (default t; x, y, z give the sweep\n"
     "  through time drawn in the other three coordinates) and writes the welded slice with normals.\n"
     "  --inbetween arap puts N (default 8) layers between neighbouring keyframes of one connectivity,\n"
     "  interpolated as rigidly as possible (Alexa 2002, 4.4: a turning limb keeps its shape); linear blends\n"
@@ -38,8 +42,12 @@ const char* kUsage =
     "  --sequence writes N slices on t evenly spaced over the animation as PREFIX0000.obj, ...\n"
     "  (PREFIX ending in .ply, .off or .stl picks that format)\n"
     "  --strip renders those N frames side by side (transitions on the GPU slicer; needs a display: xvfb-run).\n"
-    "  --stats prints the build (prism / transition slabs, Steiner points, seconds per stage: conform,\n"
-    "  field, delaunay, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
+    "  --pairs picks points that travel to each other in transitions: one pair a line, x0 y0 z0 x1 y1 z1 (a\n"
+    "  point on a key, its partner on the next); a line 'pair K' sends the lines after it to keys K and K+1\n"
+    "  (0-based, default 0); blank lines and # comments are skipped. Each point must lie on its key (within 2%\n"
+    "  of its bounding-box diagonal); neighbours of one connectivity take no pairs.\n"
+    "  --stats prints the build (prism / transition slabs, Steiner points, the last transition's turn and\n"
+    "  scale, seconds per stage: align, conform, field, delaunay, extract, total), the tetrahedron count and the slice's triangles, vertices,\n"
     "  closedness, volume.";
 
 void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, dfm::SliceAxis axis, double at) {
@@ -62,7 +70,8 @@ void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, d
 void print_sequence_stats(const dfm::SequenceStats& s) {
   const dfm::TransitionStats& t = s.transitions;
   std::cout << "prism slabs: " << s.prism_slabs << "\ntransition slabs: " << s.transition_slabs
-            << "\nsteiner points: " << t.source_steiner + t.target_steiner << "\nconform seconds: " << t.conform_seconds
+            << "\nsteiner points: " << t.source_steiner + t.target_steiner << "\nturn degrees: " << t.turn_degrees
+            << "\nscale: " << t.scale << "\nalign seconds: " << t.align_seconds << "\nconform seconds: " << t.conform_seconds
             << "\nfield seconds: " << t.field_seconds << "\ndelaunay seconds: " << t.delaunay_seconds
             << "\nextract seconds: " << t.extract_seconds << "\ntransition seconds: " << t.total_seconds
             << "\ntotal seconds: " << s.seconds << "\n";
@@ -109,11 +118,31 @@ void render_strip(const dfm::AnimationManifold& M, int frames, const std::string
   std::printf("wrote %s (%d frames, t = %g .. %g, %s)\n", png.c_str(), frames, t0, t1, ctx.renderer().c_str());
 }
 
+// Reads --pairs into the keys (KeySurface::pairs_to_next), checking each pair against its keys: errors
+// name the file and line.
+void attach_pairs(const std::string& path, std::vector<dfm::KeySurface>& keys) {
+  const dfm::PairFile pf = dfm::read_pair_file(path, static_cast<int>(keys.size()));
+  for (size_t k = 0; k + 1 < keys.size(); ++k) {
+    if (pf.pairs[k].rows() == 0) continue;
+    const int first_line = pf.lines[k].front();
+    if (dfm::same_connectivity(keys[k], keys[k + 1]))
+      throw dfm::file_error(path, first_line, "keys " + std::to_string(k) + " and " + std::to_string(k + 1) + " (" +
+                                                  keys[k].name + ", " + keys[k + 1].name +
+                                                  ") share one triangle list: pairs apply to transitions only");
+    const dfm::TriMesh a{keys[k].V, keys[k].F, {}}, b{keys[k + 1].V, keys[k + 1].F, {}};
+    dfm::check_transition_key(a, keys[k].name);
+    dfm::check_transition_key(b, keys[k + 1].name);
+    if (const auto bad = dfm::transition_pair_problem(a, b, pf.pairs[k]))
+      throw dfm::file_error(path, pf.lines[k][bad->pair], bad->problem + " (keys " + keys[k].name + ", " + keys[k + 1].name + ")");
+    keys[k].pairs_to_next = pf.pairs[k];
+  }
+}
+
 int run(const dfm::cli::Args& args) {
   using dfm::cli::UsageError;
   dfm::cli::ArgReader r(args);
   std::vector<std::string> keyframes, times_text;
-  std::string manifold_in, out, save_manifold, sequence, strip;
+  std::string manifold_in, out, save_manifold, sequence, strip, pairs_file;
   std::optional<double> at;
   dfm::SliceAxis axis = dfm::SliceAxis::T;
   bool stats = false;
@@ -148,10 +177,12 @@ int run(const dfm::cli::Args& args) {
         throw UsageError("--inbetween handles needs pose keys and a rig (the editor's timeline); keyframe files have "
                          "no handles: use arap or linear");
     } else if (f == "--inbetweens") inbetweens = r.integer(f);
+    else if (f == "--pairs") pairs_file = r.value(f);
     else throw UsageError("unknown argument '" + f + "'");
   }
   if (keyframes.empty() == manifold_in.empty()) throw UsageError("give either --keyframes or --manifold");
   if (inbetween && keyframes.empty()) throw UsageError("--inbetween goes with --keyframes");
+  if (!pairs_file.empty() && keyframes.empty()) throw UsageError("--pairs goes with --keyframes");
   if (inbetweens < 0 || inbetweens > 1000) throw UsageError("--inbetweens needs a count in 0..1000");
   if (!manifold_in.empty() && !times_text.empty()) throw UsageError("--times goes with --keyframes");
   if (!out.empty() && !at) throw UsageError("-o needs --at VALUE");
@@ -188,6 +219,7 @@ int run(const dfm::cli::Args& args) {
       if (k.num_faces() == 0) throw dfm::Error(keyframes[i] + ": mesh has no triangles");
       keys.push_back({times[i], std::move(k.V), std::move(k.F), keyframes[i]});
     }
+    if (!pairs_file.empty()) attach_pairs(pairs_file, keys);
     // Neighbours sharing one triangle list: the exact prism build; others: a transition, whose keys
     // build_manifold_sequence checks first (errors name the file).
     // Neighbours of one connectivity: in-between layers as rigid as possible (or linear) when asked.

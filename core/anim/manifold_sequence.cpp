@@ -147,8 +147,14 @@ AnimationManifold build_manifold_sequence(const std::vector<KeySurface>& keys, c
       TransitionStats ts;
       check_transition_key({keys[i].V, keys[i].F, {}}, keys[i].name);
       check_transition_key({keys[i + 1].V, keys[i + 1].F, {}}, keys[i + 1].name);
+      TransitionOptions o = options;
+      if (keys[i].pairs_to_next.rows() > 0) o.pairs = keys[i].pairs_to_next;
       const int first = out.num_vertices();
-      append_slabs(out, transition_cache().get(keys[i], keys[i + 1], options, &ts));
+      try {
+        append_slabs(out, transition_cache().get(keys[i], keys[i + 1], o, &ts));
+      } catch (const Error& e) {
+        throw Error(keys[i].name + " to " + keys[i + 1].name + ": " + e.what());
+      }
       add_key_layer(out, first, keys[i]);
       add_key_layer(out, first, keys[i + 1]);
       local.transition_slabs += 1;

@@ -20,6 +20,9 @@ struct KeySurface {
   Eigen::MatrixXd V;  // #V x 3
   Eigen::MatrixXi F;  // #F x 3, outward
   std::string name;   // for messages (a file name, "key 2", ...)
+  // Picked pairs toward the next key (TransitionOptions::pairs: x y z on this key, x y z on the next),
+  // used where the two are joined by a transition; #pairs x 6 or empty.
+  Eigen::MatrixXd pairs_to_next = Eigen::MatrixXd(0, 6);
 };
 
 struct SequenceStats {

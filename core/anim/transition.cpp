@@ -3,7 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <unordered_map>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -14,10 +18,13 @@
 #include "core/anim/delaunay_4d.h"
 #include "core/anim/face_protection.h"
 #include "core/anim/iso_manifold.h"
+#include "core/anim/key_alignment.h"
 #include "core/anim/key_distance.h"
 #include "core/anim/key_plane.h"
 #include "core/anim/key_time_seal.h"
+#include "core/anim/space_warp.h"
 #include "core/anim/surface_checks.h"
+#include "core/bind/closest_surface_point.h"
 #include "core/bind/handle_geometry.h"
 #include "core/util/error.h"
 
@@ -295,6 +302,9 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   field_seconds += o.field_seconds;
   delaunay_seconds += o.delaunay_seconds;
   extract_seconds += o.extract_seconds;
+  turn_degrees = o.turn_degrees;
+  scale = o.scale;
+  align_seconds += o.align_seconds;
   total_seconds += o.total_seconds;
   return *this;
 }
@@ -326,14 +336,12 @@ void check_transition_key(const TriMesh& key, const std::string& what) {
   if (crossing) throw Error(what + ": the surface intersects itself");
 }
 
-AnimationManifold build_transition(const TriMesh& source_in, double t0, const TriMesh& target_in, double t1,
-                                   const TransitionOptions& o, TransitionStats* stats) {
-  const auto start = Clock::now();
-  if (!(std::isfinite(t0) && std::isfinite(t1) && t0 < t1))
-    throw Error("transition: key times must be finite and increasing");
-  if (o.layers < 1 || !(o.spacing > 0)) throw Error("transition: needs at least one layer and a positive spacing");
-  TransitionStats st;
-  const TriMesh source = compacted(source_in), target = compacted(target_in);
+namespace {
+
+// The field's morph between keys already in one frame (transition.h, "The field"), with o.layers
+// layers. Its vertices in the target key's plane have time t0 + 1.0 * (t1 - t0).
+AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target, double t1, const TransitionOptions& o,
+                        TransitionStats& st) {
   const double h_s = o.spacing * mean_edge_length(source.V, source.F), h_t = o.spacing * mean_edge_length(target.V, target.F);
   const double h_mid = std::max(h_s, h_t);
   Box box{source.V.colwise().minCoeff().cwiseMin(target.V.colwise().minCoeff()),
@@ -437,6 +445,136 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   st.target_chords = T.chords;
   st.simplices = static_cast<int>(D.simplices.rows());
   st.tets = M.num_tets();
+  return M;
+}
+
+}  // namespace
+
+namespace {
+
+double bounding_diagonal(const Eigen::MatrixXd& V) { return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm(); }
+
+// Picked points farther than this from their key, in its bounding-box diagonals, are refused.
+constexpr double kPairReach = 0.02;
+
+// Puts the aligned (and warped) morph's vertices where they belong (transition.h, "The placement"):
+// a vertex at time t goes through the warp and the placement interpolated at its own u. The source
+// key's plane stays as it is; in the target key's plane each vertex of the reference target
+// (`reference`, the morph's input) becomes the target's own vertex, bit for bit, and any other
+// point on it (a surface Steiner point) the point of the target's triangle with its barycentric
+// coordinates, so that the slice there is the target.
+void place(AnimationManifold& M, double t0, double t1, const KeyPlacement& p, const SpaceWarp& w,
+           const TriMesh& reference, const TriMesh& target) {
+  const double T1 = t0 + 1.0 * (t1 - t0);
+  struct Bits {
+    size_t operator()(const Eigen::RowVector3d& x) const {
+      return std::hash<double>()(x[0]) * 31 + std::hash<double>()(x[1]) * 17 + std::hash<double>()(x[2]);
+    }
+  };
+  std::unordered_map<Eigen::RowVector3d, int, Bits> own;
+  for (int v = 0; v < reference.V.rows(); ++v) own.emplace(reference.V.row(v), v);
+  const double diag = bounding_diagonal(reference.V);
+  std::unique_ptr<SurfaceLocator> locate;
+  for (int v = 0; v < M.num_vertices(); ++v) {
+    const double t = M.V(v, 3);
+    if (t == t0) continue;
+    const Eigen::RowVector3d x = M.V.row(v).head<3>();
+    Eigen::RowVector3d y;
+    if (t == T1) {
+      const auto it = own.find(x);
+      if (it != own.end()) {
+        y = target.V.row(it->second);
+      } else if (!w.identity()) {
+        if (!locate) locate = std::make_unique<SurfaceLocator>(reference.V, reference.F, 1e-6 * diag);
+        const SurfaceSample s = locate->closest(x.transpose());
+        if (s.found()) {
+          y.setZero();
+          for (int k = 0; k < 3; ++k) y += s.weight[k] * target.V.row(s.vertex[k]);
+        } else {
+          y = placed_at(p, 1, warp(w, x));
+        }
+      } else {
+        y = placed_at(p, 1, x);
+      }
+    } else {
+      const double u = std::min(1.0, std::max(0.0, (t - t0) / (t1 - t0)));
+      y = placed_at(p, u, warp(w, x, u));
+    }
+    M.V.row(v).head<3>() = y;
+  }
+}
+
+}  // namespace
+
+std::optional<PairProblem> transition_pair_problem(const TriMesh& source, const TriMesh& target,
+                                                   const Eigen::MatrixXd& pairs) {
+  if (pairs.rows() == 0) return std::nullopt;
+  if (pairs.cols() != 6) return PairProblem{0, "a pair needs 6 numbers (x0 y0 z0 x1 y1 z1), got " + std::to_string(pairs.cols())};
+  for (int i = 0; i < pairs.rows(); ++i)
+    if (!pairs.row(i).allFinite()) return PairProblem{i, "a coordinate is not finite (NaN or infinity)"};
+  const SignedDistance d0(source.V, source.F), d1(target.V, target.F);
+  const Eigen::VectorXd e0 = d0(pairs.leftCols(3)).cwiseAbs(), e1 = d1(pairs.rightCols(3)).cwiseAbs();
+  const double r0 = kPairReach * bounding_diagonal(source.V), r1 = kPairReach * bounding_diagonal(target.V);
+  for (int i = 0; i < pairs.rows(); ++i) {
+    if (e0[i] > r0)
+      return PairProblem{i, "the first point is " + std::to_string(e0[i]) + " from its key (more than " +
+                                std::to_string(r0) + ", 2% of the key's bounding-box diagonal)"};
+    if (e1[i] > r1)
+      return PairProblem{i, "the second point is " + std::to_string(e1[i]) + " from its key (more than " +
+                                std::to_string(r1) + ", 2% of the key's bounding-box diagonal)"};
+    for (int j = 0; j < i; ++j)
+      if (pairs.row(j).head<3>() == pairs.row(i).head<3>())
+        return PairProblem{i, "its first point repeats pair " + std::to_string(j + 1) + "'s"};
+  }
+  return std::nullopt;
+}
+
+AnimationManifold build_transition(const TriMesh& source_in, double t0, const TriMesh& target_in, double t1,
+                                   const TransitionOptions& o, TransitionStats* stats) {
+  const auto start = Clock::now();
+  if (!(std::isfinite(t0) && std::isfinite(t1) && t0 < t1))
+    throw Error("transition: key times must be finite and increasing");
+  if (o.layers < 1 || !(o.spacing > 0)) throw Error("transition: needs at least one layer and a positive spacing");
+  if (!(o.max_turn_per_layer > 0)) throw Error("transition: the turn per layer must be positive");
+  TransitionStats st;
+  const TriMesh source = compacted(source_in), target = compacted(target_in);
+  if (const auto bad = transition_pair_problem(source, target, o.pairs))
+    throw Error("picked pair " + std::to_string(bad->pair + 1) + ": " + bad->problem);
+
+  // The placement (key_alignment.h) and the warp (space_warp.h), both in the source's frame.
+  auto t = Clock::now();
+  KeyPlacement p;
+  if (o.align) p = key_placement(solid_moments(source.V, source.F), solid_moments(target.V, target.F));
+  const SpaceWarp w = fit_space_warp(o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3)));
+  TriMesh reference{to_source_frame(p, target.V), target.F, {}};
+  for (int v = 0; v < reference.V.rows() && !w.identity(); ++v) reference.V.row(v) = unwarp(w, reference.V.row(v));
+  if (!w.identity()) {
+    // W_u must not turn space inside out where the morph is: det(I + u dD/dx) > 0 on both keys.
+    for (const Eigen::MatrixXd* X : std::initializer_list<const Eigen::MatrixXd*>{&source.V, &reference.V})
+      for (Eigen::Index v = 0; v < X->rows(); ++v) {
+        const Eigen::Matrix3d J = w.displacement_jacobian(X->row(v));
+        for (double u : {0.25, 0.5, 0.75, 1.0})
+          if (!((Eigen::Matrix3d::Identity() + u * J).determinant() > 0))
+            throw Error("the picked pairs fold space near (" + std::to_string((*X)(v, 0)) + " " +
+                        std::to_string((*X)(v, 1)) + " " + std::to_string((*X)(v, 2)) + ") at u = " + std::to_string(u) +
+                        ": pin more of the shape, or move the pairs less");
+      }
+    check_transition_key(reference, "the target key warped by the picked pairs");
+  }
+  TransitionOptions layered = o;
+  const double turn = Eigen::AngleAxisd(p.R).angle() * 180 / M_PI;
+  // In fours: layer k of K sits at (k - 1/2) / K, which then never falls on t = 1/4, 1/2 or 3/4 (a
+  // slice there would be the layer's own coarse triangulation).
+  const int needed = static_cast<int>(std::ceil(turn / o.max_turn_per_layer - 1e-9));
+  if (needed > o.layers) layered.layers = 4 * ((needed + 3) / 4);
+  st.turn_degrees = turn;
+  st.scale = p.scale;
+  st.align_seconds = seconds_since(t);
+
+  AnimationManifold M = morph(source, t0, reference, t1, layered, st);
+  t = Clock::now();
+  if (o.align || !w.identity()) place(M, t0, t1, p, w, reference, target);
+  st.align_seconds += seconds_since(t);
   st.total_seconds = seconds_since(start);
   if (stats) *stats = st;
   return M;

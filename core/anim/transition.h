@@ -1,7 +1,23 @@
 #pragma once
 // Transitions between keys of different topology and density (Southern 2008, ch. 5 and 8).
 //
-// Each key surface is made conforming Delaunay (5.1.3: surface Steiner points until every triangle is
+// The morph (what a test can compute independently). Keys S (time t0) and T (time t1), u = (t - t0)
+// / (t1 - t0):
+// - The placement (key_alignment.h; TransitionOptions::align): c0, c1 the solids' centroids, R the
+//   rotation between their principal axes of second moments (the smallest turn the moments allow),
+//   scale the ratio of their radii of gyration. A(x) = c0 + R^T (x - c1) / scale maps T into S's
+//   frame; P_u(x) = c0 + u (c1 - c0) + ((1 - u) + u scale) R(u) (x - c0), R(u) turning by u times R's
+//   angle about its axis (Alexa 4.1.1), interpolates it: P_0 = identity, P_1 = A's inverse.
+//   Without alignment A and P_u are the identity.
+// - The warp (space_warp.h; TransitionOptions::pairs): W with W(x0_i) = A(x1_i) for each picked pair,
+//   W_u(x) = x + u (W(x) - x). Without pairs W is the identity.
+// - The field, in S's frame: the reference target T^ has T's triangles and vertices W^-1(A(v)), and
+//   F(r, u) = (1 - u) d_S(r) + u d_T^(r), d the signed distance (negative inside).
+// - The in-between at u is P_u(W_u({r : F(r, u) = 0})). A picked pair's point travels along
+//   P_u(x0 + u (A(x1) - x0)): x0 is on S and (nearly) on T^, so F(x0, u) is about 0 throughout.
+//
+// How the zero set is built (Southern 2008, ch. 5 and 8). Each key surface (S, and T^) is made
+// conforming Delaunay (5.1.3: surface Steiner points until every triangle is
 // a face of the Delaunay tetrahedralization of the key's points; starting from TetGen's constrained
 // tetrahedralization, conforming_tetgen.h; where splits cascade, nearly flat quads take their other
 // diagonal) and filled with points inside and outside (face_protection.h keeps an irregular key's
@@ -9,15 +25,19 @@
 // joined by one Delaunay triangulation (Theorem 5.2.1: each key's tetrahedra survive as facets).
 //
 // Southern strips the 4-simplices that lie outside the keys (8.5) and resolves the ambiguities that
-// leaves (8.5.3) by pushing a Voronoi skeleton through time (8.6). Here the simplices carry a field
+// leaves (8.5.3) by pushing a Voronoi skeleton through time (8.6). Here the simplices carry the field
 // instead: the signed distance to the key at the key's points (its surface vertices just inside), the
-// blend (1 - u) d_source + u d_target of both keys' signed distances at the layers in between, as in
-// distance-field metamorphosis (Payne and Toga 1992; Cohen-Or et al. 1998). The transition is the
-// field's zero level set (iso_manifold.h). It is a closed 3-manifold by construction, its slices
+// blend F at the layers in between, as in distance-field metamorphosis (Payne and Toga 1992; Cohen-Or
+// et al. 1998). The transition is the field's zero level set (iso_manifold.h), each of its vertices
+// then moved by W_u and P_u at its own u. It is a closed 3-manifold by construction, its slices
 // change topology where the blend does, and at a key's time the crossings on the key's own edges are
 // its surface vertices; the level set's boundary in the key's plane is corrected to the key's surface
-// (key_plane.h) and what folds there sealed (key_time_seal.h), so the slice there is the key. Keys are blended
-// where they are (no alignment): keys far apart shrink away and grow back.
+// (key_plane.h) and what folds there sealed (key_time_seal.h), so the slice there is the key (at t1
+// T's own vertices, bit for bit, and its Steiner points carried to T by their barycentric coordinates).
+// Slices interpolate linearly between vertices of different times: a turn by angle a across a layer
+// interval cuts its arcs by chords (1 - cos(a/2) of the radius), so a turning transition gets a layer
+// per max_turn_per_layer degrees. Without alignment, keys far apart shrink away and grow back.
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -35,9 +55,21 @@ struct TransitionOptions {
   double spacing = 2.0;
   // Rounds of surface flips and Steiner points allowed to make a key conforming Delaunay.
   int max_conform_rounds = 12;
+  // Remove the keys' relative placement (centroid, rotation, scale) before the morph and put it back
+  // interpolated along the way (above: "The placement").
+  bool align = true;
+  // Degrees the placement may turn per layer interval: a larger turn gets more layers (a multiple of
+  // 4). A 4 x 1 x 1 box turned 90 degrees over 4 layers lost 2% more volume mid-turn than unturned
+  // (chords of 22.5-degree arcs), over 8 layers 0.3%.
+  double max_turn_per_layer = 15;
+  // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
+  // target); #pairs x 6, or none.
+  Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
 
   bool operator==(const TransitionOptions& o) const {
-    return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds;
+    return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds &&
+           align == o.align && max_turn_per_layer == o.max_turn_per_layer && pairs.rows() == o.pairs.rows() &&
+           pairs.cols() == o.pairs.cols() && pairs == o.pairs;
   }
 };
 
@@ -52,6 +84,8 @@ struct TransitionStats {
   int sealed = 0;                                // folds at the keys' times replaced (key_time_seal.h)
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
   int tets = 0;                                  // of the resulting manifold
+  double turn_degrees = 0, scale = 1;           // the placement's (the last transition's in a sum)
+  double align_seconds = 0;                      // moments, warp, and placing the manifold's vertices
   double conform_seconds = 0, field_seconds = 0, delaunay_seconds = 0, extract_seconds = 0;
   double total_seconds = 0;
 
@@ -64,9 +98,19 @@ struct TransitionStats {
 // `what` (e.g. the file) and the problem.
 void check_transition_key(const TriMesh& key, const std::string& what);
 
+// A picked pair the transition refuses: its row in `pairs` and why (not 6 columns, not finite, a
+// point farther from its key than 2% of the key's bounding-box diagonal, a repeated first point).
+struct PairProblem {
+  int pair = 0;
+  std::string problem;
+};
+std::optional<PairProblem> transition_pair_problem(const TriMesh& source, const TriMesh& target,
+                                                   const Eigen::MatrixXd& pairs);
+
 // The transition manifold between `source` at time t0 and `target` at time t1 (t0 < t1), in one slab
 // per layer interval. Its slice at t0 is the source surface (with its surface Steiner points), at t1
-// the target's.
+// the target's. Throws dfm::Error on a bad option or pair (transition_pair_problem), or picked pairs
+// whose warp folds space.
 AnimationManifold build_transition(const TriMesh& source, double t0, const TriMesh& target, double t1,
                                    const TransitionOptions& options = {}, TransitionStats* stats = nullptr);
 

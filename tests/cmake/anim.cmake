@@ -5,3 +5,5 @@ dfm_test(test_gpu_slice SOURCES test_gpu_slice.cpp LIBS dfm_render dfm_anim GL)
 dfm_test(test_transition SOURCES test_transition.cpp LIBS dfm_anim dfm_mesh TIMEOUT 900)
 # As-rigid-as-possible interpolation of same-connectivity keys (Alexa 2002, 4.4; TetGen).
 dfm_test(test_arap_interpolation SOURCES test_arap_interpolation.cpp LIBS dfm_anim)
+# Transitions that travel, turn and meet by picked pairs (issue 30; key_alignment.h, space_warp.h).
+dfm_test(test_transition_align SOURCES test_transition_align.cpp LIBS dfm_anim dfm_mesh TIMEOUT 900)

@@ -1,0 +1,39 @@
+#pragma once
+// A smooth space warp through picked pairs of points (Cohen-Or, Solomovici and Levin 1998: a warp the
+// user guides by corresponding features, interpolated over the morph; Southern 10.1.1, guiding
+// shapes). Radial basis functions with the triharmonic kernel r^3 plus an affine part (the smoothest
+// interpolant in 3D, C2, exact on affine maps):
+//   W(x) = x + D(x),  D(x) = sum_i w_i |x^ - c^_i|^3 + a + B x^,  x^ = (x - mean) / spread
+// (mean and spread of the `from` points: the fit does not depend on the frame or the units), with
+// D(from_i) = to_i - from_i, sum_i w_i = 0 and sum_i w_i c^_i^T = 0. Fewer than 4 pairs, or pairs in
+// a plane, leave the affine part underdetermined: the fit takes the least-norm solution (one pair:
+// a translation; two: a translation and a stretch along the pair's line).
+#include <Eigen/Core>
+
+namespace dfm {
+
+struct SpaceWarp {
+  Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+  double spread = 1;
+  Eigen::MatrixXd centres = Eigen::MatrixXd(0, 3);  // c^_i, normalised
+  Eigen::MatrixXd weights = Eigen::MatrixXd(0, 3);  // w_i
+  Eigen::Matrix<double, 4, 3> affine = Eigen::Matrix<double, 4, 3>::Zero();  // rows a, then B^T's rows
+
+  bool identity() const { return centres.rows() == 0; }
+  Eigen::RowVector3d displacement(const Eigen::RowVector3d& x) const;  // D(x)
+  Eigen::Matrix3d displacement_jacobian(const Eigen::RowVector3d& x) const;  // dD/dx (rows: components of D)
+};
+
+// The warp with W(from_i) = to_i (#pairs x 3 each; none: the identity). Throws dfm::Error when two
+// `from` points coincide or a value is not finite.
+SpaceWarp fit_space_warp(const Eigen::MatrixXd& from, const Eigen::MatrixXd& to);
+
+// W(x), and W interpolated linearly to u in [0, 1]: x + u D(x) (Cohen-Or et al. 1998, the warp's
+// in-betweens).
+Eigen::RowVector3d warp(const SpaceWarp& w, const Eigen::RowVector3d& x, double u = 1);
+
+// The x with W(x) = y (Newton's method from y). Throws dfm::Error when it does not converge or the
+// warp turns space inside out there (det dW/dx <= 0).
+Eigen::RowVector3d unwarp(const SpaceWarp& w, const Eigen::RowVector3d& y);
+
+}  // namespace dfm

@@ -1,0 +1,513 @@
+// Transitions that travel, turn and meet by picked pairs (issue 30): the solid's moments, the
+// placement and its interpolation (Alexa 4.1.1), the space warp through picked pairs (Cohen-Or et al.
+// 1998), and the acceptance on whole transitions. References are written here: box moments by hand,
+// rotations by Rodrigues' formula, moments of slices by a divergence-theorem sum of their own.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <unordered_set>
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include "core/anim/key_alignment.h"
+#include "core/anim/manifold_sequence.h"
+#include "core/anim/slice.h"
+#include "core/anim/space_warp.h"
+#include "core/anim/surface_checks.h"
+#include "core/anim/transition.h"
+#include "core/util/error.h"
+#include "tests/transition_test_meshes.h"
+
+using namespace dfm;
+using dfm::test::euler_characteristic;
+
+namespace {
+
+// Rodrigues: the rotation by `degrees` about the unit axis a.
+Eigen::Matrix3d rodrigues(Eigen::Vector3d a, double degrees) {
+  a.normalize();
+  const double th = degrees * M_PI / 180;
+  Eigen::Matrix3d K;
+  K << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return Eigen::Matrix3d::Identity() + std::sin(th) * K + (1 - std::cos(th)) * K * K;
+}
+
+double angle_degrees(const Eigen::Matrix3d& R) {
+  return std::acos(std::max(-1.0, std::min(1.0, (R.trace() - 1) / 2))) * 180 / M_PI;
+}
+
+// The box [lo, hi] with n[k] quads along axis k on each face, each quad cut along one diagonal or the
+// other: the same solid triangulated differently.
+TriMesh grid_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3i& n, bool other_diagonal) {
+  std::map<std::array<int, 3>, int> id;
+  std::vector<Eigen::RowVector3d> V;
+  std::vector<Eigen::RowVector3i> F;
+  auto vert = [&](std::array<int, 3> g) {
+    auto [it, fresh] = id.emplace(g, static_cast<int>(V.size()));
+    if (fresh) {
+      Eigen::RowVector3d p;
+      for (int k = 0; k < 3; ++k) p[k] = lo[k] + (hi[k] - lo[k]) * g[k] / n[k];
+      V.push_back(p);
+    }
+    return it->second;
+  };
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;  // e_b x e_c = e_a
+      for (int p = 0; p < n[b]; ++p)
+        for (int q = 0; q < n[c]; ++q) {
+          auto at = [&](int dp, int dq) {
+            std::array<int, 3> g;
+            g[a] = side * n[a], g[b] = p + dp, g[c] = q + dq;
+            return vert(g);
+          };
+          int v00 = at(0, 0), v10 = at(1, 0), v11 = at(1, 1), v01 = at(0, 1);
+          if (side == 0) std::swap(v10, v01);  // facing -e_a
+          if (!other_diagonal) F.push_back({v00, v10, v11}), F.push_back({v00, v11, v01});
+          else F.push_back({v00, v10, v01}), F.push_back({v10, v11, v01});
+        }
+    }
+  TriMesh m;
+  m.V.resize(static_cast<Eigen::Index>(V.size()), 3);
+  for (size_t i = 0; i < V.size(); ++i) m.V.row(static_cast<Eigen::Index>(i)) = V[i];
+  m.F.resize(static_cast<Eigen::Index>(F.size()), 3);
+  for (size_t i = 0; i < F.size(); ++i) m.F.row(static_cast<Eigen::Index>(i)) = F[i];
+  return m;
+}
+
+TriMesh transformed(TriMesh m, const Eigen::Matrix3d& R, const Eigen::Vector3d& shift) {
+  m.V = ((m.V * R.transpose()).rowwise() + shift.transpose()).eval();
+  return m;
+}
+
+// Volume, centroid and central second moments of a closed surface's solid: tetrahedra from the
+// vertices' mean, each integrated by the 4-point rule exact for quadratics (barycentrics a, b, b, b),
+// a different quadrature from solid_moments' closed form.
+struct Moments {
+  double volume = 0;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+};
+Moments moments(const TriMesh& m) {
+  const Eigen::Vector3d o = m.V.colwise().mean().transpose();
+  const double a = 0.5854101966249685, b = 0.1381966011250105;
+  double vol = 0;
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const Eigen::Vector3d p[4] = {o, m.V.row(m.F(f, 0)).transpose(), m.V.row(m.F(f, 1)).transpose(),
+                                  m.V.row(m.F(f, 2)).transpose()};
+    const double v = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6;
+    vol += v;
+    for (int q = 0; q < 4; ++q) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 4; ++k) x += (k == q ? a : b) * p[k];
+      first += v / 4 * x;
+      second += v / 4 * x * x.transpose();
+    }
+  }
+  Moments r;
+  r.volume = vol;
+  r.centroid = first / vol;
+  r.second = second - vol * r.centroid * r.centroid.transpose();
+  return r;
+}
+
+// Connected pieces of a triangle list (by shared vertices).
+int pieces(const Eigen::MatrixXi& F, int n) {
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> find = [&](int x) { return parent[x] == x ? x : parent[x] = find(parent[x]); };
+  std::vector<char> used(n, 0);
+  for (int f = 0; f < F.rows(); ++f)
+    for (int j = 0; j < 3; ++j) {
+      used[F(f, j)] = 1;
+      parent[find(F(f, j))] = find(F(f, (j + 1) % 3));
+    }
+  int c = 0;
+  for (int v = 0; v < n; ++v) c += used[v] && find(v) == v;
+  return c;
+}
+
+struct Bits {
+  size_t operator()(const Eigen::Vector3d& p) const {
+    return std::hash<double>()(p.x()) * 31 + std::hash<double>()(p.y()) * 17 + std::hash<double>()(p.z());
+  }
+};
+
+// The key slices are the keys: every key vertex bit for bit, every slice vertex on the key, closed with
+// the key's volume. Where the conforming step leaves a key's triangles missing (exact = false: the
+// slice there takes the tetrahedralization's faces, transition.h) the volume is held to 1e-3 and
+// closedness reported.
+void check_key_slices(const AnimationManifold& M, const TriMesh& S, double t0, const TriMesh& T, double t1,
+                      bool exact = true) {
+  for (int k = 0; k < 2; ++k) {
+    const TriMesh& key = k == 0 ? S : T;
+    INFO("key " << k);
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, k == 0 ? t0 : t1);
+    if (exact) CHECK(is_closed_and_oriented(s.mesh.F));
+    else if (!is_closed_and_oriented(s.mesh.F)) WARN("key " << k << " slice not closed");
+    const double diag = (key.V.colwise().maxCoeff() - key.V.colwise().minCoeff()).norm();
+    CHECK(dfm::test::max_distance_to_surface(s.mesh.V, key) <= 1e-12 * diag);
+    std::unordered_set<Eigen::Vector3d, Bits> at;
+    for (int v = 0; v < s.mesh.V.rows(); ++v) at.insert(s.mesh.V.row(v).transpose());
+    int absent = 0;
+    for (int v = 0; v < key.V.rows(); ++v) absent += !at.count(key.V.row(v).transpose());
+    CHECK(absent == 0);
+    CHECK(std::abs(enclosed_volume(s.mesh.V, s.mesh.F) - enclosed_volume(key.V, key.F)) <=
+          (exact ? 1e-9 : 1e-3) * enclosed_volume(key.V, key.F));
+  }
+}
+
+// The longest principal axis of a solid (unit).
+Eigen::Vector3d longest_axis(const Eigen::Matrix3d& second) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> e(second);
+  return e.eigenvectors().col(2);
+}
+
+}  // namespace
+
+// ---- formulas ------------------------------------------------------------------------------------
+
+TEST_CASE("solid moments: a box's volume, centroid and second moments, whatever its triangulation", "[align]") {
+  const Eigen::Vector3d lo(1, -2, 0.5), size(4, 1, 2);
+  for (bool other : {false, true}) {
+    const TriMesh box = grid_box(lo, lo + size, Eigen::Vector3i(5, 2, 3), other);
+    const SolidMoments m = solid_moments(box.V, box.F);
+    const double V = size.prod();
+    CHECK(m.volume == Approx(V).epsilon(1e-13));
+    CHECK((m.centroid - (lo + size / 2)).norm() < 1e-13);
+    // Integral of (x - c)^2 over [-a/2, a/2] x ... is V a^2 / 12; the products vanish.
+    const Eigen::Matrix3d ref = (V / 12 * size.cwiseProduct(size)).asDiagonal();
+    CHECK((m.second - ref).norm() < 1e-12 * ref.norm());
+  }
+  // Turned and moved: R M R^T about the moved centroid.
+  const Eigen::Matrix3d R = rodrigues(Eigen::Vector3d(1, 2, 3), 37);
+  const TriMesh box = grid_box(lo, lo + size, Eigen::Vector3i(3, 1, 2), false);
+  const SolidMoments a = solid_moments(box.V, box.F), b = solid_moments(transformed(box, R, {5, 6, 7}).V, box.F);
+  CHECK((b.centroid - (R * a.centroid + Eigen::Vector3d(5, 6, 7))).norm() < 1e-12);
+  CHECK((b.second - R * a.second * R.transpose()).norm() < 1e-12 * a.second.norm());
+  // The quadrature reference agrees on an icosphere (a check of the reference itself).
+  const TriMesh ico = dfm::test::icosphere(Eigen::Vector3d(0.3, 0, 0), 0.7, 2);
+  const SolidMoments s = solid_moments(ico.V, ico.F);
+  const Moments q = moments(ico);
+  CHECK(s.volume == Approx(q.volume).epsilon(1e-12));
+  CHECK((s.second - q.second).norm() < 1e-12 * q.second.norm());
+}
+
+TEST_CASE("principal rotation: the smallest turn the moments allow", "[align]") {
+  const Eigen::Matrix3d M0 = Eigen::Vector3d(1, 2, 5).asDiagonal();
+  SECTION("distinct moments: the turn itself") {
+    const Eigen::Matrix3d R = rodrigues(Eigen::Vector3d(1, -1, 2), 30);
+    CHECK((principal_rotation(M0, R * M0 * R.transpose()) - R).norm() < 1e-12);
+  }
+  SECTION("distinct moments, turned 170 degrees about an axis: the axis flips are free, 10 degrees back") {
+    const Eigen::Matrix3d R = rodrigues(Eigen::Vector3d::UnitZ(), 170);
+    const Eigen::Matrix3d got = principal_rotation(M0, 3.0 * R * M0 * R.transpose());  // scale does not matter
+    CHECK((got - rodrigues(Eigen::Vector3d::UnitZ(), -10)).norm() < 1e-12);
+  }
+  SECTION("one distinct axis (a square section): the shortest turn between the distinct axes") {
+    const Eigen::Matrix3d A = Eigen::Vector3d(1, 1, 5).asDiagonal();
+    const Eigen::Matrix3d R = rodrigues(Eigen::Vector3d(1, 0, 0), 90) * rodrigues(Eigen::Vector3d(0, 0, 1), 25);
+    const Eigen::Matrix3d got = principal_rotation(A, R * A * R.transpose());
+    CHECK(angle_degrees(got) == Approx(90).margin(1e-9));
+    CHECK(std::abs((got * Eigen::Vector3d::UnitZ()).dot(Eigen::Vector3d::UnitY())) == Approx(1).margin(1e-12));
+    CHECK(std::abs(Eigen::AngleAxisd(got).axis().x()) == Approx(1).margin(1e-9));
+  }
+  SECTION("no distinct axis (a sphere): no turn") {
+    const Eigen::Matrix3d R = rodrigues(Eigen::Vector3d(1, 1, 0), 60);
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    CHECK(principal_rotation(I, R * (1.01 * I) * R.transpose()).isApprox(I, 1e-15));
+  }
+}
+
+TEST_CASE("placement: identity at 0, the key's at 1, a half turn is a half turn", "[align]") {
+  KeyPlacement p;
+  p.c0 = Eigen::Vector3d(1, 2, 3);
+  p.c1 = Eigen::Vector3d(-4, 0, 2);
+  p.scale = 0.5;
+  p.R = rodrigues(Eigen::Vector3d(0, 0, 1), 180);
+  const Eigen::RowVector3d x(2.5, 2, 3);  // 1.5 from c0 along x
+  CHECK((placed_at(p, 0, x).array() == x.array()).all());
+  // u = 1: c1 + scale R (x - c0), and to_source_frame undoes it.
+  const Eigen::RowVector3d one = placed_at(p, 1, x);
+  CHECK((one - Eigen::RowVector3d(-4 - 0.75, 0, 2)).norm() < 1e-15 * 10);
+  CHECK((to_source_frame(p, one) - x).norm() < 1e-14);
+  // u = 1/2: halfway, scale (1 + 0.5) / 2, turned a quarter (about +z or -z: the half turn's axis has
+  // no sign).
+  const Eigen::RowVector3d half = placed_at(p, 0.5, x);
+  const Eigen::RowVector3d mid = (p.c0 + p.c1).transpose() / 2;
+  CHECK((half - mid).norm() == Approx(0.75 * 1.5).epsilon(1e-12));
+  CHECK(std::abs((half - mid).x()) < 1e-12);
+  CHECK(std::abs((half - mid).z()) < 1e-12);
+  // A general turn: R(u) is Rodrigues about R's axis by u times its angle.
+  p.R = rodrigues(Eigen::Vector3d(1, 2, 2), 120);
+  p.scale = 2;
+  for (double u : {0.1, 0.25, 0.7}) {
+    const Eigen::Vector3d ref = (1 - u) * p.c0 + u * p.c1 +
+                                ((1 - u) + u * 2) * rodrigues(Eigen::Vector3d(1, 2, 2), 120 * u) * (x.transpose() - p.c0);
+    CHECK((placed_at(p, u, x).transpose() - ref).norm() < 1e-12);
+  }
+}
+
+TEST_CASE("space warp: through its pairs, affine maps exactly, its inverse, its derivative", "[align]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> r(-1, 1);
+  Eigen::MatrixXd from(7, 3), to(7, 3);
+  for (int i = 0; i < 7; ++i)
+    for (int k = 0; k < 3; ++k) from(i, k) = r(rng) + 5, to(i, k) = from(i, k) + 0.2 * r(rng);
+  const SpaceWarp w = fit_space_warp(from, to);
+  for (int i = 0; i < 7; ++i) CHECK((warp(w, from.row(i)) - to.row(i)).norm() < 1e-12);
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::RowVector3d x(r(rng) + 5, r(rng) + 5, r(rng) + 5);
+    CHECK((warp(w, unwarp(w, x)) - x).norm() < 1e-12);
+    CHECK((warp(w, x, 0.25) - (x + 0.25 * (warp(w, x) - x))).norm() < 1e-14);
+    // Central differences of D.
+    Eigen::Matrix3d J;
+    for (int k = 0; k < 3; ++k) {
+      Eigen::RowVector3d e = Eigen::RowVector3d::Zero();
+      e[k] = 1e-6;
+      J.col(k) = (w.displacement(x + e) - w.displacement(x - e)).transpose() / 2e-6;
+    }
+    CHECK((J - w.displacement_jacobian(x)).norm() < 1e-6);
+  }
+  // Pairs on an affine map: the warp is that map everywhere.
+  Eigen::Matrix3d A;
+  A << 1.1, 0.2, 0, -0.1, 0.9, 0.05, 0, 0.1, 1.2;
+  const Eigen::RowVector3d b(0.3, -0.2, 0.1);
+  const Eigen::MatrixXd to_affine = (from * A.transpose()).rowwise() + b;
+  const SpaceWarp wa = fit_space_warp(from, to_affine);
+  for (int i = 0; i < 10; ++i) {
+    const Eigen::RowVector3d x(3 * r(rng), 3 * r(rng), 3 * r(rng));
+    CHECK((warp(wa, x) - (x * A.transpose() + b)).norm() < 1e-9);
+  }
+  // One pair: a translation.
+  const SpaceWarp one = fit_space_warp(from.topRows(1), to.topRows(1));
+  CHECK((warp(one, Eigen::RowVector3d(9, 9, 9)) - (Eigen::RowVector3d(9, 9, 9) + to.row(0) - from.row(0))).norm() < 1e-12);
+  // A reflection has no inverse that keeps space's orientation.
+  Eigen::MatrixXd mirrored = from;
+  mirrored.col(0) = (10 - from.col(0).array()).matrix();
+  CHECK_THROWS_WITH(unwarp(fit_space_warp(from, mirrored), Eigen::RowVector3d(5, 5, 5)), Catch::Contains("fold"));
+  CHECK_THROWS_WITH(fit_space_warp(from.topRows(2).replicate(2, 1), to.topRows(4)), Catch::Contains("coincide"));
+}
+
+// ---- acceptance (issue 30) -----------------------------------------------------------------------
+
+TEST_CASE("transition travels: a small sphere 3 away", "[transition][align]") {
+  // Before alignment the slices at 0.25 .. 0.75 were empty (the blend of two far-apart distances).
+  const TriMesh S = dfm::test::icosphere(Eigen::Vector3d::Zero(), 1, 3);
+  const TriMesh T = dfm::test::icosphere(Eigen::Vector3d(3, 0, 0), 0.6, 2);
+  TransitionStats st;
+  const AnimationManifold M = build_transition(S, 0, T, 1, {}, &st);
+  validate_manifold(M, "travel");
+  INFO(st.tets << " tets, " << st.total_seconds << " s");
+  check_key_slices(M, S, 0, T, 1);
+  const double V0 = enclosed_volume(S.V, S.F), V1 = enclosed_volume(T.V, T.F);
+  for (double t : {0.1, 0.25, 0.5, 0.75, 0.9}) {
+    INFO("t = " << t);
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, t);
+    REQUIRE(s.mesh.F.rows() > 0);
+    CHECK(is_closed_and_oriented(s.mesh.F));
+    CHECK(pieces(s.mesh.F, static_cast<int>(s.mesh.V.rows())) == 1);
+    CHECK(euler_characteristic(s.mesh.F) == 2);
+    const Moments m = moments(s.mesh);
+    INFO("centroid " << m.centroid.transpose() << ", volume " << m.volume << " (keys " << V0 << ", " << V1 << ")");
+    CHECK((m.centroid - Eigen::Vector3d(3 * t, 0, 0)).norm() <= 0.02 * 3);
+    CHECK(m.volume >= 0.95 * V1);
+    CHECK(m.volume <= 1.05 * V0);
+    // The documented morph: unit spheres in the source's frame, placed by P_t: a sphere of radius
+    // (1 - t) + 0.6 t about (3t, 0, 0).
+    const double radius = (1 - t) + 0.6 * t;
+    double worst = 0;
+    for (int v = 0; v < s.mesh.V.rows(); ++v)
+      worst = std::max(worst, std::abs((s.mesh.V.row(v) - Eigen::RowVector3d(3 * t, 0, 0)).norm() - radius));
+    // The middle layers sample the field at twice the coarser key's edge (0.6 of the aligned radius
+    // here), and the slice's facets cut inside the sphere: 7-14% of the radius measured.
+    INFO("farthest from the reference sphere: " << worst);
+    CHECK(worst <= 0.2 * radius);
+  }
+}
+
+TEST_CASE("transition turns: a 4 x 1 x 1 box turned a quarter about z, moved, triangulated differently",
+          "[transition][align]") {
+  // Quads of 1/16 and 1/12: the middle layers' spacing (twice the coarser key's edge) rounds the
+  // box's edges; at quads of 1/4 and 1/3 the slice lost 38% of the volume, turned or not (the issue's
+  // fidelity item). Here 2.4% unturned.
+  const TriMesh S = grid_box(Eigen::Vector3d(-2, -0.5, -0.5), Eigen::Vector3d(2, 0.5, 0.5), Eigen::Vector3i(64, 16, 16), false);
+  const Eigen::Vector3d shift(1.5, 2, 0.5);
+  const TriMesh T = transformed(grid_box(Eigen::Vector3d(-2, -0.5, -0.5), Eigen::Vector3d(2, 0.5, 0.5),
+                                         Eigen::Vector3i(48, 12, 12), true),
+                                rodrigues(Eigen::Vector3d::UnitZ(), 90), shift);
+  TransitionStats st;
+  const AnimationManifold M = build_transition(S, 0, T, 1, {}, &st);
+  validate_manifold(M, "turn");
+  INFO(st.tets << " tets, turn " << st.turn_degrees << " degrees, " << M.num_slabs() << " slabs, " << st.total_seconds << " s");
+  CHECK(st.turn_degrees == Approx(90).margin(1e-6));
+  check_key_slices(M, S, 0, T, 1);
+  for (double t : {0.25, 0.5, 0.75}) {
+    INFO("t = " << t);
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, t);
+    CHECK(is_closed_and_oriented(s.mesh.F));
+    CHECK(pieces(s.mesh.F, static_cast<int>(s.mesh.V.rows())) == 1);
+    const Moments m = moments(s.mesh);
+    const Eigen::Vector3d a = longest_axis(m.second);
+    const double deg = std::acos(std::min(1.0, std::abs(a.x()))) * 180 / M_PI;
+    INFO("longest axis " << a.transpose() << ": " << deg << " degrees from x; volume " << m.volume);
+    CHECK(deg == Approx(90 * t).margin(5));
+    CHECK(std::abs(a.z()) < 0.05);
+    CHECK(m.volume == Approx(4).epsilon(0.05));
+    CHECK((m.centroid - t * shift).norm() < 0.02 * shift.norm());
+  }
+}
+
+namespace {
+
+// An ellipsoid with radii (2, 0.8, 0.8) with bumps of relative height h around the unit directions q
+// and its mirror image in y (of the sphere it is scaled from: icosphere vertices p move to
+// p (1 + h sum exp(-|p - q|^2 / 0.35^2))). Symmetric in y and z, so z and y are principal axes.
+TriMesh bumpy(int level, Eigen::Vector3d q, double h) {
+  TriMesh m = dfm::test::icosphere(Eigen::Vector3d::Zero(), 1, level);
+  q.normalize();
+  const Eigen::Vector3d q2(q.x(), -q.y(), q.z());
+  for (int v = 0; v < m.V.rows(); ++v) {
+    const Eigen::Vector3d p = m.V.row(v).transpose();
+    const double bump = std::exp(-(p - q).squaredNorm() / (0.35 * 0.35)) + std::exp(-(p - q2).squaredNorm() / (0.35 * 0.35));
+    m.V.row(v) = (p * (1 + h * bump)).cwiseProduct(Eigen::Vector3d(2, 0.8, 0.8)).transpose();
+  }
+  return m;
+}
+
+int nearest_vertex(const TriMesh& m, const Eigen::Vector3d& x) {
+  int best = 0;
+  for (int v = 1; v < m.V.rows(); ++v)
+    if ((m.V.row(v).transpose() - x).norm() < (m.V.row(best).transpose() - x).norm()) best = v;
+  return best;
+}
+
+// The distance from p to the nearest triangle of m.
+double distance_to(const TriMesh& m, const Eigen::Vector3d& p) {
+  double best = 1e300;
+  for (int f = 0; f < m.F.rows(); ++f)
+    best = std::min(best, dfm::test::point_triangle_distance(p, m.V.row(m.F(f, 0)).transpose(), m.V.row(m.F(f, 1)).transpose(),
+                                                             m.V.row(m.F(f, 2)).transpose()));
+  return best;
+}
+
+// The placement of keys symmetric under z -> -z (z a principal axis), by the documented definition
+// with a closed-form 2D principal axis: centroids, the ratio of radii of gyration, and the turn about
+// z between the long axes' directions in the xy plane (the smaller of the two ways).
+struct PlanarPlacement {
+  Eigen::Vector3d c0, c1;
+  double scale, degrees;
+  Eigen::Vector3d to_source(const Eigen::Vector3d& x) const {
+    return c0 + rodrigues(Eigen::Vector3d::UnitZ(), -degrees) * (x - c1) / scale;
+  }
+  Eigen::Vector3d at(double u, const Eigen::Vector3d& x) const {
+    return (1 - u) * c0 + u * c1 + ((1 - u) + u * scale) * rodrigues(Eigen::Vector3d::UnitZ(), u * degrees) * (x - c0);
+  }
+};
+PlanarPlacement planar_placement(const TriMesh& a, const TriMesh& b) {
+  const Moments ma = moments(a), mb = moments(b);
+  auto direction = [](const Eigen::Matrix3d& M) {  // of the largest moment in the xy plane, degrees
+    return 0.5 * std::atan2(2 * M(0, 1), M(0, 0) - M(1, 1)) * 180 / M_PI;
+  };
+  double d = direction(mb.second) - direction(ma.second);
+  while (d > 90) d -= 180;
+  while (d <= -90) d += 180;
+  return {ma.centroid, mb.centroid, std::sqrt((mb.second.trace() / mb.volume) / (ma.second.trace() / ma.volume)), d};
+}
+
+}  // namespace
+
+TEST_CASE("transition pairs: bumps that move along the top and bottom follow their picked pairs",
+          "[transition][align]") {
+  // Two bumps (above and below) near the +x end of the source and near the -x end of the target (a
+  // coarser icosphere's, so a transition). The keys are mirror images: alignment only shifts the
+  // target by the centroids' difference, and the morph alone fades the bumps and grows the others. A
+  // pair from tip to tip for each bump, with pairs pinning the ends, front and back, carries them over.
+  const Eigen::Vector3d q0(0.35, 0.94, 0), q1(-0.35, 0.94, 0);
+  const TriMesh S = bumpy(4, q0, 0.6), T = bumpy(3, q1, 0.6);
+  // The in-between's sampling (the middle layers' spacing) blunts the ellipsoid's ends and the tips
+  // by 1.5-3% of the diagonal at the default spacing (2), 1.2-1.7% at 1.5 (the issue's fidelity item,
+  // with or without pairs): the test samples at 1.
+  TransitionOptions with, without;
+  with.spacing = without.spacing = 1;
+  const double diag = (S.V.colwise().maxCoeff().cwiseMax(T.V.colwise().maxCoeff()) -
+                       S.V.colwise().minCoeff().cwiseMin(T.V.colwise().minCoeff())).norm();
+  const Eigen::Vector3d tip = q0.normalized().cwiseProduct(Eigen::Vector3d(3.2, 1.28, 1.28));
+  // The ends must be pinned: the tips and the front and back alone fit an affine map that mirrors x.
+  const std::vector<Eigen::Vector3d> spots = {tip, {tip.x(), -tip.y(), 0}, {0, 0, 0.8}, {0, 0, -0.8}, {2, 0, 0}, {-2, 0, 0}};
+  Eigen::MatrixXd pairs(static_cast<Eigen::Index>(spots.size()), 6);
+  for (size_t i = 0; i < spots.size(); ++i) {
+    const Eigen::Vector3d other = i < 2 ? Eigen::Vector3d(-spots[i].x(), spots[i].y(), 0) : spots[i];
+    pairs.row(static_cast<Eigen::Index>(i)) << S.V.row(nearest_vertex(S, spots[i])), T.V.row(nearest_vertex(T, other));
+  }
+  INFO("tip pair " << pairs.row(0));
+  const PlanarPlacement P = planar_placement(S, T);
+  INFO("placement: turn " << P.degrees << " degrees, scale " << P.scale << ", centroids " << P.c0.transpose() << " / "
+                          << P.c1.transpose());
+  auto path = [&](int i, double u) {
+    const Eigen::Vector3d x0 = pairs.row(i).head<3>().transpose(), x1 = pairs.row(i).tail<3>().transpose();
+    return P.at(u, x0 + u * (P.to_source(x1) - x0));
+  };
+  with.pairs = pairs;
+  TransitionStats st, sp;
+  const AnimationManifold M = build_transition(S, 0, T, 1, with, &st), plain = build_transition(S, 0, T, 1, without, &sp);
+  INFO(st.total_seconds << " s; triangles not conforming: with pairs " << st.source_missing << " + " << st.target_missing
+       << ", without " << sp.source_missing << " + " << sp.target_missing);
+  validate_manifold(M, "pairs");
+  CHECK(st.turn_degrees == Approx(std::abs(P.degrees)).margin(1e-6));
+  // The bumps' flanks cost the conforming step triangles (4 of the target's stay missing, 17 of the warped
+  // target's, whose key slice is then not closed; without pairs the key volumes are 1.5e-7 and 2e-4 off):
+  // the key slices are held as transition.h's non-conforming keys are.
+  check_key_slices(plain, S, 0, T, 1, false);
+  check_key_slices(M, S, 0, T, 1, false);
+  for (double t : {0.25, 0.5, 0.75}) {
+    INFO("t = " << t);
+    const ManifoldSlice s = slice_manifold(M, SliceAxis::T, t), s_plain = slice_manifold(plain, SliceAxis::T, t);
+    CHECK(is_closed_and_oriented(s.mesh.F));
+    CHECK(pieces(s.mesh.F, static_cast<int>(s.mesh.V.rows())) == 1);
+    for (int i = 0; i < pairs.rows(); ++i) {
+      const double d = distance_to(s.mesh, path(i, t));
+      INFO("pair " << i + 1 << " at " << path(i, t).transpose() << ": " << d / diag << " of the diagonal");
+      CHECK(d <= 0.01 * diag);
+    }
+    // Alignment alone: the tips' paths are far from the slice in the middle of the move.
+    for (int i = 0; i < 2; ++i) {
+      const double alone = distance_to(s_plain.mesh, path(i, t));
+      INFO("alignment alone: tip " << i + 1 << "'s path is " << alone / diag << " of the diagonal from the slice");
+      if (t == 0.5) CHECK(alone > 0.03 * diag);
+    }
+  }
+}
+
+TEST_CASE("transition pairs: hostile pairs name the pair and the problem", "[transition][align]") {
+  const TriMesh S = dfm::test::icosphere(Eigen::Vector3d::Zero(), 1, 2), T = dfm::test::icosphere(Eigen::Vector3d(3, 0, 0), 0.6, 1);
+  Eigen::MatrixXd p(2, 6);
+  p << 1, 0, 0, 3.6, 0, 0, 0, 1, 0, 3, 0.6, 0;
+  CHECK_FALSE(transition_pair_problem(S, T, p).has_value());
+  Eigen::MatrixXd nan = p;
+  nan(1, 4) = std::nan("");
+  CHECK(transition_pair_problem(S, T, nan)->pair == 1);
+  CHECK_THAT(transition_pair_problem(S, T, nan)->problem, Catch::Contains("finite"));
+  Eigen::MatrixXd far = p;
+  far(0, 0) = 1.5;
+  CHECK(transition_pair_problem(S, T, far)->pair == 0);
+  CHECK_THAT(transition_pair_problem(S, T, far)->problem, Catch::Contains("first point") && Catch::Contains("from its key"));
+  TransitionOptions o;
+  o.pairs = far;
+  CHECK_THROWS_WITH(build_transition(S, 0, T, 1, o), Catch::Contains("picked pair 1"));
+  // Pairs that turn space inside out (the source's +x and -x ends swapped, the rest pinned).
+  Eigen::MatrixXd flip(4, 6);
+  flip << 1, 0, 0, 2.4, 0, 0, -1, 0, 0, 3.6, 0, 0, 0, 1, 0, 3, 0.6, 0, 0, 0, 1, 3, 0, 0.6;
+  o.pairs = flip;
+  CHECK_THROWS_WITH(build_transition(S, 0, T, 1, o), Catch::Contains("fold"));
+  // The sequence names the keys.
+  std::vector<KeySurface> keys = {{0, S.V, S.F, "a.obj"}, {1, T.V, T.F, "b.obj"}};
+  keys[0].pairs_to_next = far;
+  CHECK_THROWS_WITH(build_manifold_sequence(keys), Catch::Contains("a.obj to b.obj") && Catch::Contains("picked pair 1"));
+}
