@@ -83,7 +83,11 @@ class Writer {
       v = vertex_of(anchors_, static_cast<std::uint64_t>(pa), [&] { return f_.points.row(pa).eval(); });
     } else {
       const std::uint64_t key = static_cast<std::uint64_t>(pa) << 32 | static_cast<std::uint32_t>(pb);
-      v = vertex_of(edges_, key, [&] { return ((1 - la) * f_.points.row(pa) + la * f_.points.row(pb)).eval(); });
+      v = vertex_of(edges_, key, [&] {
+        Eigen::RowVector4d x = (1 - la) * f_.points.row(pa) + la * f_.points.row(pb);
+        if (f_.points(pa, 3) == f_.points(pb, 3)) x[3] = f_.points(pa, 3);  // a layer's crossing stays in its layer
+        return x;
+      });
     }
     slots_[nslots_] = {v, w};
     id_[nslots_] = v;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <cmath>
 #include <memory>
 #include <unordered_map>
@@ -22,6 +23,7 @@
 #include "core/anim/key_distance.h"
 #include "core/anim/key_plane.h"
 #include "core/anim/key_time_seal.h"
+#include "core/anim/layer_extrusion.h"
 #include "core/anim/space_warp.h"
 #include "core/anim/surface_checks.h"
 #include "core/bind/closest_surface_point.h"
@@ -135,6 +137,56 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> band_points(const Box& box, double h
   Eigen::MatrixXd P(static_cast<Eigen::Index>(pts.size()), 3);
   for (size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = pts[i];
   return {P, Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()))};
+}
+
+// The middle layers' points: a body-centred cubic lattice of cube edge a (its Delaunay tetrahedra
+// are congruent and well shaped, so the blend's zero set is cut cleanly) where g < band, and a
+// coarse jittered grid of spacing 2a where g >= band. g: 1-Lipschitz (a distance, or the smallest
+// |blend| over the middle layers), evaluated first on the coarse grid to find the cells the band
+// may reach.
+template <class Field>
+Eigen::MatrixXd lattice_band_points(const Box& box, double a, double band, const Field& g) {
+  const double H = 2 * a;
+  const Eigen::Array3i n = (((box.hi - box.lo) / H).array().ceil().cast<int>() + 1).transpose();
+  if (static_cast<double>(n.prod()) > 4e6) throw Error("transition: the point spacing is too fine for the keys' size");
+  Eigen::MatrixXd C(n.prod(), 3);
+  for (int x = 0, i = 0; x < n[0]; ++x)
+    for (int y = 0; y < n[1]; ++y)
+      for (int z = 0; z < n[2]; ++z, ++i)
+        C.row(i) = box.lo + Eigen::RowVector3d(x, y, z) * H + 0.3 * a * jitter(static_cast<std::uint64_t>(i), 7);
+  const Eigen::VectorXd gc = g(C);
+  auto coarse = [&](int x, int y, int z) { return gc[(static_cast<Eigen::Index>(x) * n[1] + y) * n[2] + z]; };
+  std::vector<Eigen::RowVector3d> pts;
+  for (Eigen::Index i = 0; i < C.rows(); ++i)
+    if (gc[i] >= band) pts.push_back(C.row(i));
+  // Lattice points in half-edge units: cube corners at even coordinates, centres at odd ones. A
+  // coarse cell owns its near faces (its far ones belong to the next cell, where there is one).
+  std::vector<Eigen::RowVector3d> fine;
+  const double reach = band + 2 * H;
+  for (int x = 0; x + 1 < n[0]; ++x)
+    for (int y = 0; y + 1 < n[1]; ++y)
+      for (int z = 0; z + 1 < n[2]; ++z) {
+        double m = 1e300;
+        for (int c = 0; c < 8; ++c) m = std::min(m, coarse(x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1)));
+        if (m > reach) continue;
+        const int last[3] = {x + 2 == n[0], y + 2 == n[1], z + 2 == n[2]};
+        for (int dx = 0; dx <= 4; ++dx)
+          for (int dy = 0; dy <= 4; ++dy)
+            for (int dz = 0; dz <= 4; ++dz) {
+              const int odd = (dx & 1) + (dy & 1) + (dz & 1);
+              if (odd != 0 && odd != 3) continue;
+              if ((dx == 4 && !last[0]) || (dy == 4 && !last[1]) || (dz == 4 && !last[2])) continue;
+              fine.push_back(box.lo + Eigen::RowVector3d(4 * x + dx, 4 * y + dy, 4 * z + dz) * (0.5 * a));
+            }
+      }
+  Eigen::MatrixXd Fm(static_cast<Eigen::Index>(fine.size()), 3);
+  for (size_t i = 0; i < fine.size(); ++i) Fm.row(static_cast<Eigen::Index>(i)) = fine[i];
+  const Eigen::VectorXd gf = g(Fm);
+  for (Eigen::Index i = 0; i < Fm.rows(); ++i)
+    if (gf[i] < band) pts.push_back(Fm.row(i));
+  Eigen::MatrixXd P(static_cast<Eigen::Index>(pts.size()), 3);
+  for (size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = pts[i];
+  return P;
 }
 
 // Field values are kept at least this far from 0 (relative to the spacing), so that no crossing
@@ -343,7 +395,7 @@ namespace {
 AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target, double t1, const TransitionOptions& o,
                         TransitionStats& st) {
   const double h_s = o.spacing * mean_edge_length(source.V, source.F), h_t = o.spacing * mean_edge_length(target.V, target.F);
-  const double h_mid = std::max(h_s, h_t);
+  const double h_mid = std::min(std::max(h_s, h_t), 2 * std::min(h_s, h_t));
   Box box{source.V.colwise().minCoeff().cwiseMin(target.V.colwise().minCoeff()),
           source.V.colwise().maxCoeff().cwiseMax(target.V.colwise().maxCoeff())};
   box.lo.array() -= 2 * h_mid;
@@ -352,36 +404,39 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
 
   auto t = Clock::now();
   const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
-  KeyLayer S, T;
-  try {
-    S = key_layer(source, d_s, box, h_s, h_mid, o.max_conform_rounds, 0);
-  } catch (const Error& e) {
-    throw Error(std::string("source key: ") + e.what());
-  }
-  try {
-    T = key_layer(target, d_t, box, h_t, h_mid, o.max_conform_rounds, o.layers + 1);
-  } catch (const Error& e) {
-    throw Error(std::string("target key: ") + e.what());
-  }
+  // The two keys are independent: the target's on a second thread.
+  auto layer_of = [&](const char* which, const TriMesh& key, const SignedDistance& d, double h, int layer) {
+    try {
+      return key_layer(key, d, box, h, h_mid, o.max_conform_rounds, layer);
+    } catch (const Error& e) {
+      throw Error(std::string(which) + " key: " + e.what());
+    }
+  };
+  auto target_layer = std::async(std::launch::async, layer_of, "target", std::cref(target), std::cref(d_t), h_t, o.layers + 1);
+  KeyLayer S = layer_of("source", source, d_s, h_s, 0);
+  KeyLayer T = target_layer.get();
   st.conform_seconds = seconds_since(t);
 
   // Layer k of K sits at local time (k - 1/2) / K, away from the round times a user scrubs to.
   t = Clock::now();
+  const int K = o.layers;
   std::vector<double> u = {0.0};
-  for (int k = 1; k <= o.layers; ++k) u.push_back((k - 0.5) / o.layers);
+  for (int k = 1; k <= K; ++k) u.push_back((k - 0.5) / K);
   u.push_back(1.0);
-  std::vector<std::pair<Eigen::MatrixXd, Eigen::VectorXd>> middle;
-  for (int k = 1; k <= o.layers; ++k) {
-    const double w = u[k];
-    middle.push_back(band_points(box, h_mid, 0, 1.2 * h_mid, 1.2 * h_mid, k, [&](const Eigen::MatrixXd& X) {
-      return ((1 - w) * d_s(X) + w * d_t(X)).eval();
-    }));
-  }
+  // One point set for every middle layer: the lattice where any middle layer's zero set may pass.
+  const Eigen::MatrixXd X = lattice_band_points(box, h_mid, 1.2 * h_mid, [&](const Eigen::MatrixXd& Y) {
+    const Eigen::VectorXd s = d_s(Y), e = d_t(Y);
+    Eigen::VectorXd g(Y.rows());
+    for (Eigen::Index i = 0; i < Y.rows(); ++i) {
+      const double a = (1 - u[1]) * s[i] + u[1] * e[i], b = (1 - u[K]) * s[i] + u[K] * e[i];
+      g[i] = (a < 0) != (b < 0) ? 0.0 : std::min(std::abs(a), std::abs(b));
+    }
+    return g;
+  });
+  const Eigen::VectorXd xs = d_s(X), xt = d_t(X);
   st.field_seconds = seconds_since(t);
 
-  // The field on every point; 4D positions with time scaled so a layer gap is four middle spacings
-  // (a 4-simplex then joins neighbouring layers only: a circumsphere reaching past a layer would hold
-  // that layer's points).
+  // The field on every point; 4D positions with time scaled so a layer gap is four middle spacings.
   std::vector<Eigen::RowVector4d> pts;
   std::vector<double> vals;
   std::vector<char> anchored;
@@ -389,34 +444,69 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   // (Snapping such points onto the level set instead, as Raman and Wenger's snap marching cubes do,
   // can pinch it where the field has a saddle; moving the level set by `away` cannot.) The keys'
   // surface vertices are anchored: the level set passes through them.
-  auto add = [&](const Eigen::MatrixXd& X, double time, const Eigen::VectorXd* f, double away) {
-    for (Eigen::Index i = 0; i < X.rows(); ++i) {
-      pts.push_back(Eigen::RowVector4d(X(i, 0), X(i, 1), X(i, 2), time));
+  auto add = [&](const Eigen::MatrixXd& P, double time, const Eigen::VectorXd* f, double away) {
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      pts.push_back(Eigen::RowVector4d(P(i, 0), P(i, 1), P(i, 2), time));
       vals.push_back(f ? clamp_away_from_zero((*f)[i], away) : -eps);
       anchored.push_back(f == nullptr);
     }
   };
   add(S.surface.V, 0.0, nullptr, eps);
   add(S.surface.fill, 0.0, &S.fill_values, kAway * h_s);
-  const int n0 = static_cast<int>(pts.size());
-  for (int k = 1; k <= o.layers; ++k) add(middle[k - 1].first, u[k], &middle[k - 1].second, kAway * h_mid);
-  const int n_mid = static_cast<int>(pts.size()) - n0;
+  const int n0 = static_cast<int>(pts.size()), nx = static_cast<int>(X.rows());
+  std::vector<int> bases;
+  for (int k = 1; k <= K; ++k) {
+    const Eigen::VectorXd f = (1 - u[k]) * xs + u[k] * xt;
+    bases.push_back(static_cast<int>(pts.size()));
+    add(X, u[k], &f, kAway * h_mid);
+  }
+  const int n_end = static_cast<int>(pts.size());
   add(T.surface.V, 1.0, nullptr, eps);
   add(T.surface.fill, 1.0, &T.fill_values, kAway * h_t);
-  const double time_scale = 4.0 * h_mid * o.layers;
-  MatrixX4dRow P4(static_cast<Eigen::Index>(pts.size()), 4);
+  const double time_scale = 4.0 * h_mid * K;
   IsoField field;
-  field.points.resize(P4.rows(), 4);
-  for (size_t i = 0; i < pts.size(); ++i) {
-    const Eigen::Index r = static_cast<Eigen::Index>(i);
-    P4.row(r) << pts[i].head<3>(), pts[i][3] * time_scale;
-    field.points.row(r) << pts[i].head<3>(), t0 + pts[i][3] * (t1 - t0);
-  }
+  field.points.resize(static_cast<Eigen::Index>(pts.size()), 4);
+  for (size_t i = 0; i < pts.size(); ++i)
+    field.points.row(static_cast<Eigen::Index>(i)) << pts[i].head<3>(), t0 + pts[i][3] * (t1 - t0);
   field.values = Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()));
   field.anchored = anchored;
 
+  // The end intervals by 4D Delaunay triangulations of a key and the nearest middle layer; their
+  // facets in that layer are the middle points' tetrahedralization K, extruded between the layers.
   t = Clock::now();
-  const Delaunay4 D = delaunay_4d(P4);
+  auto end_interval = [&](int first_a, int last_a, int first_b, int last_b) {
+    MatrixX4dRow P4(last_a - first_a + last_b - first_b, 4);
+    std::vector<int> global;
+    for (int r : {0, 1})
+      for (int i = r ? first_b : first_a; i < (r ? last_b : last_a); ++i) {
+        P4.row(static_cast<Eigen::Index>(global.size())) << pts[i].head<3>(), pts[i][3] * time_scale;
+        global.push_back(i);
+      }
+    Delaunay4 D = delaunay_4d(P4);
+    return std::make_pair(std::move(D), std::move(global));
+  };
+  auto last_end = std::async(std::launch::async, end_interval, bases.back(), bases.back() + nx, n_end,
+                             static_cast<int>(pts.size()));
+  auto [D0, g0] = end_interval(0, n0, bases.front(), bases.front() + nx);
+  auto [D1, g1] = last_end.get();
+  const MatrixX4iRow Kt = hull_facets_in(D0, n0, n0 + nx);
+  if (!(hull_facets_in(D1, 0, nx) == Kt))
+    throw Error("transition: the middle points' tetrahedralization differs between the two ends");
+  const Eigen::VectorXd& fv = field.values;
+  const MatrixX5iRow middle = extrude_tets(Kt, bases, [&](Eigen::Index tet, int k) {
+    int neg = 0;
+    for (int c = 0; c < 4; ++c) neg += (fv[bases[k] + Kt(tet, c)] < 0) + (fv[bases[k + 1] + Kt(tet, c)] < 0);
+    return neg > 0 && neg < 8;
+  });
+  Delaunay4 D;
+  D.simplices.resize(D0.simplices.rows() + middle.rows() + D1.simplices.rows(), 5);
+  Eigen::Index row = 0;
+  for (const auto* part : {&D0, &D1}) {
+    const std::vector<int>& g = part == &D0 ? g0 : g1;
+    for (Eigen::Index r = 0; r < part->simplices.rows(); ++r, ++row)
+      for (int c = 0; c < 5; ++c) D.simplices(row, c) = g[part->simplices(r, c)];
+  }
+  D.simplices.bottomRows(middle.rows()) = middle;
   st.delaunay_seconds = seconds_since(t);
   t = Clock::now();
   std::vector<double> layer_times;
@@ -431,8 +521,8 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   st.extract_seconds = seconds_since(t);
 
   st.source_points = n0;
-  st.middle_points = n_mid;
-  st.target_points = static_cast<int>(pts.size()) - n0 - n_mid;
+  st.middle_points = nx;
+  st.target_points = static_cast<int>(pts.size()) - n_end;
   st.source_steiner = S.surface.steiner;
   st.target_steiner = T.surface.steiner;
   st.source_flipped = static_cast<int>(S.surface.flipped.size());

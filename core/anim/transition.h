@@ -17,12 +17,21 @@
 //   P_u(x0 + u (A(x1) - x0)): x0 is on S and (nearly) on T^, so F(x0, u) is about 0 throughout.
 //
 // How the zero set is built (Southern 2008, ch. 5 and 8). Each key surface (S, and T^) is made
-// conforming Delaunay (5.1.3: surface Steiner points until every triangle is
-// a face of the Delaunay tetrahedralization of the key's points; starting from TetGen's constrained
-// tetrahedralization, conforming_tetgen.h; where splits cascade, nearly flat quads take their other
-// diagonal) and filled with points inside and outside (face_protection.h keeps an irregular key's
-// triangles Delaunay faces while it is filled); the keys are embedded in 4D at their times, with layers of grid points in between, and
-// joined by one Delaunay triangulation (Theorem 5.2.1: each key's tetrahedra survive as facets).
+// conforming Delaunay (5.1.3: surface Steiner points until every triangle is a face of the Delaunay
+// tetrahedralization of the key's points; starting from TetGen's constrained tetrahedralization,
+// conforming_tetgen.h; where splits cascade, nearly flat quads take their other diagonal) and filled
+// with points inside and outside (face_protection.h keeps an irregular key's triangles Delaunay faces
+// while it is filled). Between the keys sit `layers` middle layers at u_k = (k - 1/2) / layers, all
+// holding one point set: a body-centred cubic lattice (cube edge h, the coarser key's spacing but at
+// most twice the finer key's) wherever some middle layer's zero set may pass, coarser jittered points
+// elsewhere, each carrying F(x, u_k) exactly (F is linear in u at a fixed point).
+//
+// The 4D triangulation: each key and its nearest middle layer are joined by one 4D Delaunay
+// triangulation (Theorem 5.2.1: the key's tetrahedra and the layer's, the lattice's well-shaped
+// Delaunay tetrahedra K, survive as facets); between middle layers K x [u_k, u_k+1] is split into the
+// staircase 4-simplices of layer_extrusion.h. (One Delaunay triangulation of jittered points in every
+// layer, as before issue 30, cut slices with many slivers: 90th/99th percentiles of neighbouring
+// normals 31/92 degrees mid-way from a sphere to a torus against 8/15 now; bench_transition_quality.)
 //
 // Southern strips the 4-simplices that lie outside the keys (8.5) and resolves the ambiguities that
 // leaves (8.5.3) by pushing a Voronoi skeleton through time (8.6). Here the simplices carry the field
@@ -34,9 +43,11 @@
 // its surface vertices; the level set's boundary in the key's plane is corrected to the key's surface
 // (key_plane.h) and what folds there sealed (key_time_seal.h), so the slice there is the key (at t1
 // T's own vertices, bit for bit, and its Steiner points carried to T by their barycentric coordinates).
-// Slices interpolate linearly between vertices of different times: a turn by angle a across a layer
-// interval cuts its arcs by chords (1 - cos(a/2) of the radius), so a turning transition gets a layer
-// per max_turn_per_layer degrees. Without alignment, keys far apart shrink away and grow back.
+// At a middle layer's time the slice is marching tetrahedra of F on K; in between, the staircase
+// interpolates. Slices interpolate linearly between vertices of different times: a turn by angle a
+// across a layer interval cuts its arcs by chords (1 - cos(a/2) of the radius), so a turning
+// transition gets a layer per max_turn_per_layer degrees. Without alignment, keys far apart shrink
+// away and grow back.
 #include <optional>
 #include <string>
 
@@ -48,10 +59,10 @@
 namespace dfm {
 
 struct TransitionOptions {
-  // Layers of blended points between the keys.
-  int layers = 4;
-  // Grid spacing of the points off the surfaces, in mean surface edge lengths: each key's own near
-  // it, the coarser key's in the layers between.
+  // Middle layers between the keys (one lattice, its blend at each layer's time; layer_extrusion.h).
+  int layers = 8;
+  // Spacing of the points off the surfaces, in mean surface edge lengths: each key's own near it;
+  // the middle lattice's cube edge is the coarser key's, at most twice the finer key's.
   double spacing = 2.0;
   // Rounds of surface flips and Steiner points allowed to make a key conforming Delaunay.
   int max_conform_rounds = 12;
@@ -59,8 +70,7 @@ struct TransitionOptions {
   // interpolated along the way (above: "The placement").
   bool align = true;
   // Degrees the placement may turn per layer interval: a larger turn gets more layers (a multiple of
-  // 4). A 4 x 1 x 1 box turned 90 degrees over 4 layers lost 2% more volume mid-turn than unturned
-  // (chords of 22.5-degree arcs), over 8 layers 0.3%.
+  // 4), each cutting its arcs by chords (bench_transition: a box turned a quarter).
   double max_turn_per_layer = 15;
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
