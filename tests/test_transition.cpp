@@ -490,8 +490,11 @@ TEST_CASE("transition: sphere to torus", "[transition]") {
   // The torus's regular grid is co-spherical everywhere: fill points cost some of its triangles, where
   // the key slice takes the tetrahedralization's other faces, so its volume is close (5e-6 off;
   // aligned, the torus scaled into the sphere's frame, 5e-5; held to 1e-3) but not exact.
+  // Slices cross vertex times anywhere between the layers: at t = 19/21 one passes so close to one that
+  // its triangles there are under 1e-14 diag^2, well shaped (held by thinnest), their size reported.
   Expect want;
   want.exact_key_volume = false;
+  want.no_slivers = false;
   check_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 3), dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 48, 16),
                    "sphere to torus", want);
 }

@@ -14,6 +14,7 @@
 #include "app/editor/bind_worker.h"
 #include "app/editor/file_panel.h"
 #include "app/editor/frame_pacing.h"
+#include "app/editor/pair_tool.h"
 #include "app/editor/paint_tool.h"
 #include "app/editor/pose_panels.h"
 #include "app/editor/pose_tool.h"
@@ -43,7 +44,7 @@ struct EditorOptions {
   int msaa = -1;           // --msaa N: multisample count (-1: 4, or 0 on a software renderer)
 };
 
-enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose };
+enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose, Pair };
 
 struct ShapeSpacePanel;
 class ItemFlow;
@@ -120,6 +121,7 @@ class Editor {
   void tool_place_point(bool clicked);
   void tool_draw_bone(bool clicked);
   void tool_paint(bool down, bool clicked, bool released);
+  void tool_pair(bool clicked);
   void tool_pose(bool clicked, bool released);
   Eigen::Vector2d mouse_in_viewport() const;
   // editor_panels.cpp
@@ -206,6 +208,7 @@ class Editor {
   Eigen::Vector2d drag_last_ = Eigen::Vector2d::Zero();
   PoseTool pose_tool_;  // the gizmo and its drag (pose_tool.h)
   PaintTool paint_tool_;  // the brush, its settings and its stroke (paint_tool.h)
+  PairTool pair_tool_;    // a picked pair in the making (pair_tool.h)
   TimelineRuler timeline_ruler_;  // the timeline's ruler and its drags (timeline_ruler.h)
   PosePanels pose_panels_;  // the Transform and Posing sections (pose_panels.h)
   Eigen::Vector3d drag_point_ = Eigen::Vector3d::Zero();  // handle being dragged (world)

@@ -154,6 +154,7 @@ void Editor::apply_ui_options(const std::string& spec) {
       else if (v == "paint") tool_ = Tool::Paint;
       else if (v == "move") tool_ = Tool::Pose, gizmo_rotate_ = false;
       else if (v == "rotate") tool_ = Tool::Pose, gizmo_rotate_ = true;
+      else if (v == "pair") tool_ = Tool::Pair;
       else throw bad();
     } else if (k == "weights") {
       if (v == "off") weight_view_ = WeightView::Off;

@@ -91,7 +91,7 @@ void Editor::handle_shortcuts() {
     if (pressed(GLFW_KEY_R)) tool_ = Tool::Pose, gizmo_rotate_ = true;
     if (pressed(GLFW_KEY_K)) doc_.set_key(doc_.time());
     if (pressed(GLFW_KEY_SPACE)) playing_ = !playing_;
-    if (pressed(GLFW_KEY_ESCAPE)) bone_chain_.clear();
+    if (pressed(GLFW_KEY_ESCAPE)) bone_chain_.clear(), pair_tool_.cancel();
     if ((pressed(GLFW_KEY_ENTER) || pressed(GLFW_KEY_KP_ENTER)) && tool_ == Tool::DrawBone && bone_chain_.size() >= 2) {
       const int first = doc_.add_bone_chain(bone_chain_, bone_chain_parent_);
       select_handle(num_point_handles(doc_.rig()) + first, false);
@@ -148,6 +148,7 @@ void Editor::handle_viewport_input() {
       case Tool::DrawBone: tool_draw_bone(clicked); break;
       case Tool::Paint: tool_paint(down, clicked, released); break;
       case Tool::Pose: tool_pose(clicked, released); break;
+      case Tool::Pair: tool_pair(clicked); break;
     }
   } catch (const std::exception& e) {
     if (drag_ != Drag::None) doc_.end_gesture();
@@ -222,6 +223,17 @@ void Editor::tool_select(bool clicked, bool released) {
       drag_joint_ = drag_handle_ = -1;
     }
   }
+}
+
+void Editor::tool_pair(bool clicked) {
+  if (pair_tool_.first()) view_->add_overlay_points({gl::overlay_vertex(*pair_tool_.first(), rgba(1, 0.62f, 0.2f))}, 12.0f);
+  if (!clicked) return;
+  const Eigen::Vector2d m = mouse_in_viewport();
+  const view::SurfaceHit h = view::pick_surface(view::pixel_ray(cam_, m.x(), m.y()), view_->display_vertices(), view_->display_faces());
+  const PairTool::Step s = pair_tool_.click(doc_, h.hit() ? std::optional<Eigen::Vector3d>(h.point) : std::nullopt);
+  if (!s.command.empty()) run_ui_command(s.command);
+  if (s.go_to) doc_.set_time(*s.go_to);
+  if (!s.status.empty()) status(s.status);
 }
 
 void Editor::tool_place_point(bool clicked) {

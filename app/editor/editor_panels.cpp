@@ -220,6 +220,10 @@ void Editor::draw_tools_panel() {
   if (tool_button("Move  G", tool_ == Tool::Pose && !gizmo_rotate_, "Pose: translate along axes / planes", w)) tool_ = Tool::Pose, gizmo_rotate_ = false;
   ImGui::SameLine();
   if (tool_button("Rotate  R", tool_ == Tool::Pose && gizmo_rotate_, "Pose: rotate with the ring (view axis) or the trackball inside it", w)) tool_ = Tool::Pose, gizmo_rotate_ = true;
+  if (tool_button("Pair", tool_ == Tool::Pair, "Pick a point on a key and its partner on the next: a transition sends one to the other", w)) {
+    tool_ = Tool::Pair;
+    pair_tool_.cancel();
+  }
 
   ImGui::Separator();
   switch (tool_) {
@@ -238,6 +242,10 @@ void Editor::draw_tools_panel() {
     case Tool::Pose:
       ImGui::TextWrapped("Select a handle, then drag the gizmo. Method: %s", skin_method_name(doc_.method()));
       if (ImGui::Button("Reset pose")) run_ui_command({"reset-pose"});
+      break;
+    case Tool::Pair:
+      ImGui::TextWrapped("%s", pair_tool_.hint(doc_).c_str());
+      if (ImGui::Button("Clear pairs")) run_ui_command({"clear-pairs"});
       break;
     case Tool::Select:
       ImGui::TextWrapped("Click to select (Shift: add). Drag handles before binding. Click the surface to list a vertex's weights.");

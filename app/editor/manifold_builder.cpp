@@ -37,6 +37,7 @@ std::uint64_t manifold_signature(const Document& doc) {
   for (size_t i = 0; i < keys.size(); ++i) {
     h = fnv1a(h, &keys[i].time, sizeof(double));
     h = fnv1a(h, &keys[i].inbetween, sizeof(InbetweenMethod));
+    h = mix_matrix(h, keys[i].pairs_to_next);
     if (keys[i].is_mesh()) {
       h = fnv1a(h, "mesh", 4);
       h = mix_matrix(h, keys[i].mesh.V);

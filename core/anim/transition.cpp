@@ -395,7 +395,7 @@ namespace {
 AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target, double t1, const TransitionOptions& o,
                         TransitionStats& st) {
   const double h_s = o.spacing * mean_edge_length(source.V, source.F), h_t = o.spacing * mean_edge_length(target.V, target.F);
-  const double h_mid = std::min(std::max(h_s, h_t), 2 * std::min(h_s, h_t));
+  const double h_mid = std::min(h_s, h_t);
   Box box{source.V.colwise().minCoeff().cwiseMin(target.V.colwise().minCoeff()),
           source.V.colwise().maxCoeff().cwiseMax(target.V.colwise().maxCoeff())};
   box.lo.array() -= 2 * h_mid;

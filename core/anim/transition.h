@@ -22,16 +22,15 @@
 // conforming_tetgen.h; where splits cascade, nearly flat quads take their other diagonal) and filled
 // with points inside and outside (face_protection.h keeps an irregular key's triangles Delaunay faces
 // while it is filled). Between the keys sit `layers` middle layers at u_k = (k - 1/2) / layers, all
-// holding one point set: a body-centred cubic lattice (cube edge h, the coarser key's spacing but at
-// most twice the finer key's) wherever some middle layer's zero set may pass, coarser jittered points
-// elsewhere, each carrying F(x, u_k) exactly (F is linear in u at a fixed point).
+// holding one point set: a body-centred cubic lattice (cube edge the finer key's spacing) wherever
+// some middle layer's zero set may pass, coarser jittered points elsewhere, each carrying F(x, u_k)
+// exactly (F is linear in u at a fixed point).
 //
 // The 4D triangulation: each key and its nearest middle layer are joined by one 4D Delaunay
 // triangulation (Theorem 5.2.1: the key's tetrahedra and the layer's, the lattice's well-shaped
 // Delaunay tetrahedra K, survive as facets); between middle layers K x [u_k, u_k+1] is split into the
-// staircase 4-simplices of layer_extrusion.h. (One Delaunay triangulation of jittered points in every
-// layer, as before issue 30, cut slices with many slivers: 90th/99th percentiles of neighbouring
-// normals 31/92 degrees mid-way from a sphere to a torus against 8/15 now; bench_transition_quality.)
+// staircase 4-simplices of layer_extrusion.h. (A 4D Delaunay triangulation of jittered points in
+// every layer cuts slices full of slivers; bench_transition_quality measures the slices.)
 //
 // Southern strips the 4-simplices that lie outside the keys (8.5) and resolves the ambiguities that
 // leaves (8.5.3) by pushing a Voronoi skeleton through time (8.6). Here the simplices carry the field
@@ -62,7 +61,7 @@ struct TransitionOptions {
   // Middle layers between the keys (one lattice, its blend at each layer's time; layer_extrusion.h).
   int layers = 8;
   // Spacing of the points off the surfaces, in mean surface edge lengths: each key's own near it;
-  // the middle lattice's cube edge is the coarser key's, at most twice the finer key's.
+  // the middle lattice's cube edge is the finer key's (in-betweens as finely sampled as it).
   double spacing = 2.0;
   // Rounds of surface flips and Steiner points allowed to make a key conforming Delaunay.
   int max_conform_rounds = 12;

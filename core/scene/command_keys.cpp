@@ -1,6 +1,7 @@
 // The table's key and time commands (SCRIPT.md).
 #include "core/anim/inbetween_method.h"
 #include "core/scene/command_parts.h"
+#include "core/scene/key_pairs.h"
 #include "core/scene/shape_space_keys.h"
 #include "core/util/error.h"
 
@@ -32,6 +33,17 @@ void set_inbetween(CommandContext& x, const CommandWords& w) {
   x.doc.set_key_inbetween(k, parse_inbetween_method(w[2]));
 }
 
+// A pair from the key whose interval holds TIME (default: the current time) to the next key.
+void key_pair(CommandContext& x, const CommandWords& w) {
+  Eigen::Matrix<double, 1, 6> p;
+  for (int c = 0; c < 6; ++c) p[c] = num(w, 1 + c);
+  add_key_pair(x.doc, pair_interval(x.doc, time_or_now(x.doc, w, 7)), p);
+}
+
+void clear_pairs(CommandContext& x, const CommandWords& w) {
+  x.doc.set_key_pairs(pair_interval(x.doc, time_or_now(x.doc, w, 1)), Eigen::MatrixXd(0, 6));
+}
+
 ArgSpec morph_arg() {
   return {ArgKind::Word, [](const std::string& m, const std::string& usage) {
             if (m != "linear" && m != "arap") throw Error("the morph must be linear or arap, got '" + m + "'; usage: " + usage);
@@ -54,6 +66,8 @@ void add_key_commands(std::vector<Command>& t) {
       shape_space_key);
   add(t, "delete-key", "delete-key [TIME]", 0, 1, {number_arg()}, delete_key);
   add(t, "set-inbetween", "set-inbetween TIME handles|arap|linear", 2, 2, {number_arg(), inbetween_arg()}, set_inbetween);
+  add(t, "key-pair", "key-pair X0 Y0 Z0 X1 Y1 Z1 [TIME]", 6, 7, {number_arg()}, key_pair);
+  add(t, "clear-pairs", "clear-pairs [TIME]", 0, 1, {number_arg()}, clear_pairs);
   c = &add(t, "set-time", "set-time T", 1, 1, {number_arg()},
            [](CommandContext& x, const CommandWords& w) { x.doc.set_time(num(w, 1)); });
   c->undoable = false;  // scrubbing is view state

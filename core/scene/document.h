@@ -71,6 +71,9 @@ struct SceneKey {
   std::string mesh_path;  // where the mesh came from (informational; the data is in the scene)
   // From this key to the next (inbetween.h); arap and linear apply when both keys have one connectivity.
   InbetweenMethod inbetween = InbetweenMethod::Handles;
+  // Picked pairs for a transition to the next key (transition.h, "The warp"): one a row, x0 y0 z0 on
+  // this key, x1 y1 z1 on the next; #pairs x 6, or none.
+  Eigen::MatrixXd pairs_to_next = Eigen::MatrixXd(0, 6);
   bool is_mesh() const { return mesh.num_vertices() > 0; }
 };
 
@@ -286,6 +289,9 @@ class Document {
   void delete_key(int index);
   // How the animation passes from key `index` to the next one (one undo step).
   void set_key_inbetween(int index, InbetweenMethod method);
+  // The picked pairs from key `index` to the next (#pairs x 6, finite; one undo step). Whether each
+  // point lies on its key is the transition's check (scene/key_pairs.h checks it first).
+  void set_key_pairs(int index, const Eigen::MatrixXd& pairs);
   void move_key(int index, double new_time);  // throws if another key sits at new_time
   // Applies the key's params as the current pose (a pose edit). A mesh key has no pose: dfm::Error.
   void go_to_key(int index);

@@ -246,6 +246,15 @@ void Document::set_key_inbetween(int index, InbetweenMethod method) {
           [&](SceneData& s) { s.keys[index].inbetween = method; });
 }
 
+void Document::set_key_pairs(int index, const Eigen::MatrixXd& pairs) {
+  if (index < 0 || index + 1 >= static_cast<int>(s_.keys.size()))
+    throw Error("picked pairs join a key to the next: no key after key " + std::to_string(index));
+  if (pairs.rows() > 0 && pairs.cols() != 6) throw Error("a picked pair needs 6 numbers (x0 y0 z0 x1 y1 z1)");
+  if (!pairs.allFinite()) throw Error("a picked pair's coordinate is not finite");
+  const Eigen::MatrixXd p = pairs.rows() > 0 ? pairs : Eigen::MatrixXd(0, 6);
+  execute(p.rows() > 0 ? "picked pairs" : "clear picked pairs", kKeys, "", [&](SceneData& s) { s.keys[index].pairs_to_next = p; });
+}
+
 void Document::move_key(int index, double t) {
   if (index < 0 || index >= static_cast<int>(s_.keys.size())) throw Error("no key " + std::to_string(index));
   if (!std::isfinite(t)) throw Error("key time is not finite");

@@ -108,6 +108,7 @@ std::vector<KeySurface> key_surfaces(const Document& doc) {
   std::vector<KeySurface> out;
   for (size_t i = 0; i < keys.size(); ++i) {
     out.push_back(std::move(baked[key[i]]));
+    out.back().pairs_to_next = keys[i].pairs_to_next;
     if (i + 1 == keys.size()) break;
     const KeySurface& next = baked[key[i + 1]];
     if (keys[i].inbetween != InbetweenMethod::Handles && same_connectivity(out.back(), next)) {

@@ -262,6 +262,16 @@ void read_keys(const SceneReader& R, const json& j, long long version, SceneData
         R.fail("'" + c + ".inbetween': " + e.what());
       }
     }
+    if (keys[i].is_object() && keys[i].contains("pairs")) {
+      if (i + 1 == keys.size()) R.fail("'" + c + ".pairs': the last key has no next key to pair with");
+      const json& pairs = R.array(keys[i]["pairs"], c + ".pairs");
+      k.pairs_to_next.resize(static_cast<Eigen::Index>(pairs.size()), 6);
+      for (size_t r = 0; r < pairs.size(); ++r) {
+        const std::string cr = c + ".pairs[" + std::to_string(r) + "]";
+        R.array(pairs[r], cr, 6);
+        for (int col = 0; col < 6; ++col) k.pairs_to_next(static_cast<Eigen::Index>(r), col) = R.number(pairs[r][col], cr);
+      }
+    }
     s.keys.push_back(std::move(k));
   }
 }
@@ -414,6 +424,15 @@ void write_scene(const std::string& json_path, const SceneData& s) {
     if (k.is_mesh()) key["mesh"] = {{"source", k.mesh_path}, {"V", blob.add(k.mesh.V)}, {"F", blob.add(k.mesh.F)}};
     // Optional: the in-between to the next key, when it is not the default.
     if (k.inbetween != InbetweenMethod::Handles) key["inbetween"] = inbetween_method_name(k.inbetween);
+    // Optional: picked pairs to the next key, [x0, y0, z0, x1, y1, z1] each.
+    if (k.pairs_to_next.rows() > 0) {
+      key["pairs"] = json::array();
+      for (Eigen::Index r = 0; r < k.pairs_to_next.rows(); ++r) {
+        json row = json::array();
+        for (int c = 0; c < 6; ++c) row.push_back(k.pairs_to_next(r, c));
+        key["pairs"].push_back(row);
+      }
+    }
     j["keys"].push_back(key);
   }
   j["method"] = skin_method_name(s.method);

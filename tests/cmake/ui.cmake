@@ -26,3 +26,5 @@ dfm_test(test_editor_bind SOURCES test_editor_bind.cpp ${PROJECT_SOURCE_DIR}/app
 
 # The editor loop's pacing (idle sleeps, 30 Hz while a job runs) and the HUD's frame figures.
 dfm_test(test_editor_pacing SOURCES test_editor_pacing.cpp ${PROJECT_SOURCE_DIR}/app/editor/frame_pacing.cpp)
+# Picked pairs (issue 30): the key-pair command, the scene file, the editor's Pair tool (app/editor/pair_tool).
+dfm_test(test_key_pairs SOURCES test_key_pairs.cpp ${PROJECT_SOURCE_DIR}/app/editor/pair_tool.cpp LIBS dfm_core)
