@@ -112,6 +112,7 @@ class Editor {
   };
   bool next_job_frame(JobFrameClock& clock);
   void play_benchmark(int frames);
+  void print_mid_frame();
   void apply_ui_options(const std::string& spec);
   // editor_input.cpp
   void handle_shortcuts();
