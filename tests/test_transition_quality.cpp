@@ -3,6 +3,7 @@
 // distance (both ways) to the zero set of the morph transition.h documents, found by bisection on a
 // grid, and the Euler characteristic over t = 0, 0.05, ..., 1 against the keys'.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -11,7 +12,9 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include "core/anim/delaunay_4d.h"
 #include "core/anim/key_distance.h"
+#include "core/anim/layer_extrusion.h"
 #include "core/anim/slice.h"
 #include "core/anim/surface_checks.h"
 #include "core/anim/transition.h"
@@ -238,4 +241,81 @@ TEST_CASE("in-betweens: bunny to 3holes, smooth, on the documented field's zero 
   o.align = false;
   check_in_betweens(dfm::test::into_unit_box(read_surface(bunny)), dfm::test::into_unit_box(read_surface(holes)), o,
                     "bunny to 3holes");
+}
+
+TEST_CASE("layer extrusion: the staircase fills tet x interval; neighbours split their shared face alike", "[transition]") {
+  // Two tetrahedra sharing face (1, 2, 3), layer 0 at t = 0 (points 0..4), layer 1 at t = 2 (5..9).
+  Eigen::MatrixXd P(5, 3);
+  P << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1;
+  MatrixX4iRow K(2, 4);
+  K << 0, 1, 2, 3, 1, 2, 3, 4;
+  const MatrixX5iRow S = extrude_tets(K, {0, 5}, [](Eigen::Index, int) { return true; });
+  REQUIRE(S.rows() == 8);
+  auto point4 = [&](int i) { return Eigen::Vector4d(P(i % 5, 0), P(i % 5, 1), P(i % 5, 2), i < 5 ? 0.0 : 2.0); };
+  auto tet_volume = [&](int t) {
+    Eigen::Matrix3d E;
+    for (int c = 0; c < 3; ++c) E.col(c) = (P.row(K(t, c + 1)) - P.row(K(t, 0))).transpose();
+    return std::abs(E.determinant()) / 6;
+  };
+  for (int t = 0; t < 2; ++t) {
+    double sum = 0;
+    for (int s = 4 * t; s < 4 * t + 4; ++s) {
+      Eigen::Matrix4d E;
+      for (int c = 0; c < 4; ++c) E.col(c) = point4(S(s, c + 1)) - point4(S(s, 0));
+      const double v = std::abs(E.determinant()) / 24;
+      CHECK(v > 0);
+      sum += v;
+    }
+    CHECK(sum == Approx(tet_volume(t) * 2).epsilon(1e-12));  // the prism's 4-volume: base x height
+  }
+  // Every facet inside the prism stack is shared by exactly two simplices: the shared face's prism
+  // (1, 2, 3) x [0, 2] is split the same way from both sides.
+  std::map<std::array<int, 4>, int> facets;
+  for (Eigen::Index s = 0; s < S.rows(); ++s)
+    for (int skip = 0; skip < 5; ++skip) {
+      std::array<int, 4> f;
+      for (int c = 0, n = 0; c < 5; ++c)
+        if (c != skip) f[n++] = S(s, c);
+      std::sort(f.begin(), f.end());
+      ++facets[f];
+    }
+  int shared_face = 0;
+  for (const auto& [f, n] : facets) {
+    bool on_shared = true;
+    for (int v : f) on_shared = on_shared && (v % 5 >= 1 && v % 5 <= 3);
+    if (on_shared) {
+      ++shared_face;
+      CHECK(n == 2);
+    }
+    CHECK(n <= 2);
+  }
+  CHECK(shared_face == 3);  // a triangular prism in three tetrahedra
+}
+
+TEST_CASE("hull facets: a two-layer 4D Delaunay triangulation's tetrahedra in a layer are that layer's Delaunay tetrahedra",
+          "[transition]") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> U(0, 1);
+  MatrixX4dRow P(60, 4);
+  for (int i = 0; i < 60; ++i) P.row(i) << U(rng), U(rng), U(rng), i < 30 ? 0.0 : 0.7;
+  const Delaunay4 D = delaunay_4d(P);
+  const MatrixX4iRow top = hull_facets_in(D, 30, 60);
+  REQUIRE(top.rows() > 0);
+  std::vector<char> used(30, 0);
+  for (Eigen::Index t = 0; t < top.rows(); ++t) {
+    // The circumsphere (brute force: equidistant centre) holds no other top point.
+    Eigen::Vector3d q[4];
+    for (int c = 0; c < 4; ++c) q[c] = P.row(30 + top(t, c)).head<3>().transpose(), used[top(t, c)] = 1;
+    Eigen::Matrix3d A;
+    Eigen::Vector3d b;
+    for (int r = 0; r < 3; ++r) A.row(r) = 2 * (q[r + 1] - q[0]).transpose(), b[r] = q[r + 1].squaredNorm() - q[0].squaredNorm();
+    const Eigen::Vector3d c = A.fullPivLu().solve(b);
+    const double r2 = (q[0] - c).squaredNorm();
+    for (int i = 0; i < 30; ++i) {
+      bool corner = false;
+      for (int k = 0; k < 4; ++k) corner = corner || top(t, k) == i;
+      if (!corner) CHECK((P.row(30 + i).head<3>().transpose() - c).squaredNorm() > r2 * (1 - 1e-9));
+    }
+  }
+  for (int i = 0; i < 30; ++i) CHECK(used[i]);
 }
