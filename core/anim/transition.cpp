@@ -25,12 +25,15 @@
 #include "core/anim/key_time_seal.h"
 #include "core/anim/layer_extrusion.h"
 #include "core/anim/space_warp.h"
+#include "core/anim/transition_points.h"
 #include "core/anim/surface_checks.h"
 #include "core/bind/closest_surface_point.h"
 #include "core/bind/handle_geometry.h"
 #include "core/util/error.h"
 
 namespace dfm {
+
+using namespace transition_detail;
 
 namespace {
 
@@ -66,231 +69,6 @@ TriMesh compacted(const TriMesh& key) {
   return out;
 }
 
-
-// ---- the points and the field ------------------------------------------------------------------
-
-struct Box {
-  Eigen::RowVector3d lo, hi;
-};
-
-// A deterministic jitter in [-0.5, 0.5)^3 per grid point and layer (a grid is cospherical
-// everywhere, which the 4D Delaunay triangulation resolves slowly and the field does not need).
-Eigen::RowVector3d jitter(std::uint64_t i, std::uint64_t layer) {
-  Eigen::RowVector3d j;
-  std::uint64_t x = i * 0x9E3779B97F4A7C15ull ^ (layer + 1) * 0xC2B2AE3D27D4EB4Full;
-  for (int d = 0; d < 3; ++d) {
-    x ^= x >> 33;
-    x *= 0xFF51AFD7ED558CCDull;
-    x ^= x >> 29;
-    j[d] = static_cast<double>(x >> 11) * 0x1.0p-53 - 0.5;
-  }
-  return j;
-}
-
-// Points off a level set, on a grid of spacing h: those where lo <= |field| < hi (found from a
-// coarse grid of spacing 2h: a signed distance, or a blend of them, changes by at most the distance
-// moved), and the coarse grid's points where |field| >= far (none when far is infinite).
-template <class Field>
-std::pair<Eigen::MatrixXd, Eigen::VectorXd> band_points(const Box& box, double h, double lo, double hi, double far,
-                                                         int layer, const Field& field) {
-  const double H = 2 * h;
-  const Eigen::Array3i n = (((box.hi - box.lo) / H).array().ceil().cast<int>() + 1).transpose();
-  if (static_cast<double>(n.prod()) > 4e6) throw Error("transition: the point spacing is too fine for the keys' size");
-  auto at = [&](int x, int y, int z) {  // fine grid coordinates
-    const std::uint64_t i = (static_cast<std::uint64_t>(x) * (2 * n[1] + 1) + y) * (2 * n[2] + 1) + z;
-    return (box.lo + Eigen::RowVector3d(x, y, z) * h + 0.3 * h * jitter(i, layer)).eval();
-  };
-  Eigen::MatrixXd C(n.prod(), 3);
-  for (int x = 0, i = 0; x < n[0]; ++x)
-    for (int y = 0; y < n[1]; ++y)
-      for (int z = 0; z < n[2]; ++z) C.row(i++) = at(2 * x, 2 * y, 2 * z);
-  const Eigen::VectorXd fc = field(C);
-  auto coarse = [&](int x, int y, int z) { return fc[(static_cast<Eigen::Index>(x) * n[1] + y) * n[2] + z]; };
-  std::vector<Eigen::RowVector3d> pts;
-  std::vector<double> vals;
-  for (Eigen::Index i = 0; i < C.rows(); ++i)
-    if (std::abs(fc[i]) >= far) pts.push_back(C.row(i)), vals.push_back(fc[i]);
-  if (hi > lo) {
-    // Every fine point of a coarse cell the band may reach (a cell's far faces belong to the next).
-    std::vector<Eigen::RowVector3d> fine;
-    const double reach = hi + 2 * H;
-    for (int x = 0; x + 1 < n[0]; ++x)
-      for (int y = 0; y + 1 < n[1]; ++y)
-        for (int z = 0; z + 1 < n[2]; ++z) {
-          double m = 1e300;
-          for (int c = 0; c < 8; ++c) m = std::min(m, std::abs(coarse(x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1))));
-          if (m > reach) continue;
-          for (int c = 0; c < 27; ++c) {
-            const int dx = c % 3, dy = c / 3 % 3, dz = c / 9;
-            if ((dx == 2 && x + 2 < n[0]) || (dy == 2 && y + 2 < n[1]) || (dz == 2 && z + 2 < n[2])) continue;
-            fine.push_back(at(2 * x + dx, 2 * y + dy, 2 * z + dz));
-          }
-        }
-    Eigen::MatrixXd Fm(static_cast<Eigen::Index>(fine.size()), 3);
-    for (size_t i = 0; i < fine.size(); ++i) Fm.row(static_cast<Eigen::Index>(i)) = fine[i];
-    const Eigen::VectorXd ff = field(Fm);
-    for (Eigen::Index i = 0; i < Fm.rows(); ++i) {
-      const double a = std::abs(ff[i]);
-      if (a >= lo && a < hi && a < far) pts.push_back(Fm.row(i)), vals.push_back(ff[i]);
-    }
-  }
-  Eigen::MatrixXd P(static_cast<Eigen::Index>(pts.size()), 3);
-  for (size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = pts[i];
-  return {P, Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()))};
-}
-
-// The middle layers' points: a body-centred cubic lattice of cube edge a (its Delaunay tetrahedra
-// are congruent and well shaped, so the blend's zero set is cut cleanly) where g < band, and a
-// coarse jittered grid of spacing 2a where g >= band. g: 1-Lipschitz (a distance, or the smallest
-// |blend| over the middle layers), evaluated first on the coarse grid to find the cells the band
-// may reach.
-template <class Field>
-Eigen::MatrixXd lattice_band_points(const Box& box, double a, double band, const Field& g) {
-  const double H = 2 * a;
-  const Eigen::Array3i n = (((box.hi - box.lo) / H).array().ceil().cast<int>() + 1).transpose();
-  if (static_cast<double>(n.prod()) > 4e6) throw Error("transition: the point spacing is too fine for the keys' size");
-  Eigen::MatrixXd C(n.prod(), 3);
-  for (int x = 0, i = 0; x < n[0]; ++x)
-    for (int y = 0; y < n[1]; ++y)
-      for (int z = 0; z < n[2]; ++z, ++i)
-        C.row(i) = box.lo + Eigen::RowVector3d(x, y, z) * H + 0.3 * a * jitter(static_cast<std::uint64_t>(i), 7);
-  const Eigen::VectorXd gc = g(C);
-  auto coarse = [&](int x, int y, int z) { return gc[(static_cast<Eigen::Index>(x) * n[1] + y) * n[2] + z]; };
-  std::vector<Eigen::RowVector3d> pts;
-  for (Eigen::Index i = 0; i < C.rows(); ++i)
-    if (gc[i] >= band) pts.push_back(C.row(i));
-  // Lattice points in half-edge units: cube corners at even coordinates, centres at odd ones. A
-  // coarse cell owns its near faces (its far ones belong to the next cell, where there is one).
-  std::vector<Eigen::RowVector3d> fine;
-  const double reach = band + 2 * H;
-  for (int x = 0; x + 1 < n[0]; ++x)
-    for (int y = 0; y + 1 < n[1]; ++y)
-      for (int z = 0; z + 1 < n[2]; ++z) {
-        double m = 1e300;
-        for (int c = 0; c < 8; ++c) m = std::min(m, coarse(x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1)));
-        if (m > reach) continue;
-        const int last[3] = {x + 2 == n[0], y + 2 == n[1], z + 2 == n[2]};
-        for (int dx = 0; dx <= 4; ++dx)
-          for (int dy = 0; dy <= 4; ++dy)
-            for (int dz = 0; dz <= 4; ++dz) {
-              const int odd = (dx & 1) + (dy & 1) + (dz & 1);
-              if (odd != 0 && odd != 3) continue;
-              if ((dx == 4 && !last[0]) || (dy == 4 && !last[1]) || (dz == 4 && !last[2])) continue;
-              fine.push_back(box.lo + Eigen::RowVector3d(4 * x + dx, 4 * y + dy, 4 * z + dz) * (0.5 * a));
-            }
-      }
-  Eigen::MatrixXd Fm(static_cast<Eigen::Index>(fine.size()), 3);
-  for (size_t i = 0; i < fine.size(); ++i) Fm.row(static_cast<Eigen::Index>(i)) = fine[i];
-  const Eigen::VectorXd gf = g(Fm);
-  for (Eigen::Index i = 0; i < Fm.rows(); ++i)
-    if (gf[i] < band) pts.push_back(Fm.row(i));
-  Eigen::MatrixXd P(static_cast<Eigen::Index>(pts.size()), 3);
-  for (size_t i = 0; i < pts.size(); ++i) P.row(static_cast<Eigen::Index>(i)) = pts[i];
-  return P;
-}
-
-// Field values are kept at least this far from 0 (relative to the spacing), so that no crossing
-// sits on a point and no piece of the level set is flat.
-constexpr double kMinValue = 1e-4;
-constexpr double kAway = 0.05;  // middle points, in middle spacings
-// How far a key's chord-cover points are pushed from 0, in the key's spacings. At the key's time only
-// their signs matter where the key is conforming (every crossing there is an anchored surface vertex).
-// Pushed away (a shift, not a clamp: equal values would put many crossings at one time), a point in a
-// narrow concavity puts no crossing just after the key's time, where it would make short-lived specks
-// and handles.
-constexpr double kChordAway = 0.5;
-
-// |v| at least eps; positive values at least sqrt(2) eps, so that two clamped values never put a
-// crossing halfway between layers (a round time a user scrubs to, where a slice would pass through
-// the crossing itself).
-double clamp_away_from_zero(double v, double eps) {
-  if (v >= 0) return std::max(v, std::sqrt(2.0) * eps);
-  return std::min(v, -eps);
-}
-
-// One key's points at its time: the conforming surface (anchored, just inside), its fill near the
-// surface at the key's own spacing and farther out at the middle spacing, and the centroids that
-// keep concavities from being bridged.
-struct KeyLayer {
-  ConformingSurface surface;
-  Eigen::VectorXd fill_values;
-  Eigen::Index banded = 0;  // fill points before the chord cover's
-  int chords = 0;
-};
-
-// How far a nearly flat quad's diagonals may pass from each other for flip_nearly_flat, in the
-// key's bounding-box diagonals.
-constexpr double kFlipGap = 1e-3;
-
-// The key made conforming from TetGen's constrained tetrahedralization when TetGen takes it, else
-// from the key itself. Where splits cascade, nearly flat quads take their other diagonal, as long as
-// that leaves fewer triangles missing and every Steiner point on the key (d: its signed distance).
-ConformingSurface conforming_key(const TriMesh& key, const SignedDistance& d, int max_rounds) {
-  ConformingSurface s;
-  try {
-    s = tetgen_conforming_start(key.V, key.F);
-    make_conforming(s, max_rounds);
-  } catch (const Error&) {
-    s = conforming_delaunay_surface(key.V, key.F, max_rounds);
-  }
-  const double diag = (key.V.colwise().maxCoeff() - key.V.colwise().minCoeff()).norm();
-  for (int round = 0; round < 4 && s.missing > 0; ++round) {
-    ConformingSurface t = s;
-    if (flip_nearly_flat(t, kFlipGap * diag) == 0) break;
-    try {
-      if (t.missing > 0) make_conforming(t, max_rounds);
-    } catch (const Error&) {
-      break;
-    }
-    const Eigen::Index steiner = t.V.rows() - key.V.rows();
-    if (t.missing >= s.missing || (steiner > 0 && d(t.V.bottomRows(steiner)).cwiseAbs().maxCoeff() > 1e-12 * diag)) break;
-    s = std::move(t);
-  }
-  return s;
-}
-
-// The conforming key with the fill points the rule admits and its chords covered, split again where
-// either cost triangles.
-KeyLayer filled_layer(const ConformingSurface& conforming, const Eigen::MatrixXd& candidates, FillRule rule,
-                      int max_rounds) {
-  KeyLayer k;
-  k.surface = conforming;
-  // Split what the points broke, where a split does not land on a fill point.
-  auto mend = [&] {
-    if (k.surface.missing == 0) return;
-    ConformingSurface again = k.surface;
-    try {
-      make_conforming(again, max_rounds);
-      if (again.missing < k.surface.missing) k.surface = std::move(again);
-    } catch (const Error&) {
-    }
-  };
-  add_fill_points(k.surface, candidates, rule);
-  mend();
-  k.banded = k.surface.fill.rows();
-  k.chords = cover_outside_chords(k.surface, rule);
-  mend();
-  return k;
-}
-
-KeyLayer key_layer(const TriMesh& key, const SignedDistance& d, const Box& box, double h_key, double h_mid,
-                   int max_rounds, int layer) {
-  const ConformingSurface surface = conforming_key(key, d, max_rounds);
-  // Near the surface the key's own spacing; away from it the middle layers' (the far field).
-  const auto near = band_points(box, h_key, 0.5 * h_key, 1.5 * h_key, HUGE_VAL, layer, d);
-  const auto far = band_points(box, h_mid, 0, 0, 1.5 * h_key + h_mid, layer + 100, d);
-  Eigen::MatrixXd C(near.first.rows() + far.first.rows(), 3);
-  C << near.first, far.first;
-  // Repairing after the fact fills co-spherical surfaces (regular grids) best, where protecting
-  // balls are tight. A surface whose splits cascaded (not conforming, or conforming only after
-  // flips) would lose its triangles again: it is protected.
-  const bool irregular = surface.missing > 0 || !surface.flipped.empty();
-  KeyLayer k = filled_layer(surface, C, irregular ? FillRule::Protect : FillRule::Repair, max_rounds);
-  k.fill_values = d(k.surface.fill);
-  for (Eigen::Index i = k.banded; i < k.fill_values.size(); ++i)
-    k.fill_values[i] += std::copysign(kChordAway * h_key, k.fill_values[i]);
-  return k;
-}
 
 // The manifold's tetrahedra in one slab per layer interval where none crosses a layer time (else
 // the intervals merge).
@@ -390,21 +168,10 @@ void check_transition_key(const TriMesh& key, const std::string& what) {
 
 namespace {
 
-// The field's morph between keys already in one frame (transition.h, "The field"), with o.layers
-// layers. Its vertices in the target key's plane have time t0 + 1.0 * (t1 - t0).
-AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target, double t1, const TransitionOptions& o,
-                        TransitionStats& st) {
-  const double h_s = o.spacing * mean_edge_length(source.V, source.F), h_t = o.spacing * mean_edge_length(target.V, target.F);
-  const double h_mid = std::min(h_s, h_t);
-  Box box{source.V.colwise().minCoeff().cwiseMin(target.V.colwise().minCoeff()),
-          source.V.colwise().maxCoeff().cwiseMax(target.V.colwise().maxCoeff())};
-  box.lo.array() -= 2 * h_mid;
-  box.hi.array() += 2 * h_mid;
-  const double eps = kMinValue * h_mid;
-
-  auto t = Clock::now();
-  const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
-  // The two keys are independent: the target's on a second thread.
+// The keys' points, the target's on a second thread (they are independent).
+std::pair<KeyLayer, KeyLayer> key_layers(const TriMesh& source, const SignedDistance& d_s, double h_s, const TriMesh& target,
+                                         const SignedDistance& d_t, double h_t, const Box& box, double h_mid,
+                                         const TransitionOptions& o) {
   auto layer_of = [&](const char* which, const TriMesh& key, const SignedDistance& d, double h, int layer) {
     try {
       return key_layer(key, d, box, h, h_mid, o.max_conform_rounds, layer);
@@ -414,125 +181,185 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   };
   auto target_layer = std::async(std::launch::async, layer_of, "target", std::cref(target), std::cref(d_t), h_t, o.layers + 1);
   KeyLayer S = layer_of("source", source, d_s, h_s, 0);
-  KeyLayer T = target_layer.get();
-  st.conform_seconds = seconds_since(t);
+  return {std::move(S), target_layer.get()};
+}
 
-  // Layer k of K sits at local time (k - 1/2) / K, away from the round times a user scrubs to.
-  t = Clock::now();
-  const int K = o.layers;
-  std::vector<double> u = {0.0};
-  for (int k = 1; k <= K; ++k) u.push_back((k - 0.5) / K);
-  u.push_back(1.0);
-  // One point set for every middle layer: the lattice where any middle layer's zero set may pass.
-  const Eigen::MatrixXd X = lattice_band_points(box, h_mid, 1.2 * h_mid, [&](const Eigen::MatrixXd& Y) {
+// Every point of the transition with its field value and local time u: the source key's (at 0), the
+// middle lattice once per layer (at u[1..K]), the target key's (at 1), with where each part starts.
+struct FieldPoints {
+  std::vector<Eigen::RowVector4d> points;  // x, y, z, u
+  std::vector<double> values;
+  std::vector<char> anchored;
+  int source_end = 0, lattice_size = 0, target_begin = 0;
+  std::vector<int> layer_begin;  // per middle layer
+
+  // Values are kept at least `away` from 0: a crossing that close to a point would make slivers.
+  // (Snapping such points onto the level set instead, as Raman and Wenger's snap marching cubes do,
+  // can pinch it where the field has a saddle; moving the level set by `away` cannot.) A key's surface
+  // vertices are anchored (f null): the level set passes through them.
+  void add(const Eigen::MatrixXd& P, double u, const Eigen::VectorXd* f, double away, double anchor_value) {
+    for (Eigen::Index i = 0; i < P.rows(); ++i) {
+      points.push_back(Eigen::RowVector4d(P(i, 0), P(i, 1), P(i, 2), u));
+      values.push_back(f ? clamp_away_from_zero((*f)[i], away) : anchor_value);
+      anchored.push_back(f == nullptr);
+    }
+  }
+};
+
+// The middle lattice where any middle layer's zero set may pass (transition.h), and its points'
+// signed distances to both keys.
+struct Lattice {
+  Eigen::MatrixXd X;
+  Eigen::VectorXd d_s, d_t;
+};
+
+Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
+                       double u_last) {
+  Lattice L;
+  // The smallest |blend| over [u_first, u_last]: 0 where it changes sign (it is linear in u).
+  L.X = lattice_band_points(box, h_mid, 1.2 * h_mid, [&](const Eigen::MatrixXd& Y) {
     const Eigen::VectorXd s = d_s(Y), e = d_t(Y);
     Eigen::VectorXd g(Y.rows());
     for (Eigen::Index i = 0; i < Y.rows(); ++i) {
-      const double a = (1 - u[1]) * s[i] + u[1] * e[i], b = (1 - u[K]) * s[i] + u[K] * e[i];
+      const double a = (1 - u_first) * s[i] + u_first * e[i], b = (1 - u_last) * s[i] + u_last * e[i];
       g[i] = (a < 0) != (b < 0) ? 0.0 : std::min(std::abs(a), std::abs(b));
     }
     return g;
   });
-  const Eigen::VectorXd xs = d_s(X), xt = d_t(X);
-  st.field_seconds = seconds_since(t);
+  L.d_s = d_s(L.X);
+  L.d_t = d_t(L.X);
+  return L;
+}
 
-  // The field on every point; 4D positions with time scaled so a layer gap is four middle spacings.
-  std::vector<Eigen::RowVector4d> pts;
-  std::vector<double> vals;
-  std::vector<char> anchored;
-  // Values are kept at least `away` from 0: a crossing that close to a point would make slivers.
-  // (Snapping such points onto the level set instead, as Raman and Wenger's snap marching cubes do,
-  // can pinch it where the field has a saddle; moving the level set by `away` cannot.) The keys'
-  // surface vertices are anchored: the level set passes through them.
-  auto add = [&](const Eigen::MatrixXd& P, double time, const Eigen::VectorXd* f, double away) {
-    for (Eigen::Index i = 0; i < P.rows(); ++i) {
-      pts.push_back(Eigen::RowVector4d(P(i, 0), P(i, 1), P(i, 2), time));
-      vals.push_back(f ? clamp_away_from_zero((*f)[i], away) : -eps);
-      anchored.push_back(f == nullptr);
-    }
-  };
-  add(S.surface.V, 0.0, nullptr, eps);
-  add(S.surface.fill, 0.0, &S.fill_values, kAway * h_s);
-  const int n0 = static_cast<int>(pts.size()), nx = static_cast<int>(X.rows());
-  std::vector<int> bases;
-  for (int k = 1; k <= K; ++k) {
-    const Eigen::VectorXd f = (1 - u[k]) * xs + u[k] * xt;
-    bases.push_back(static_cast<int>(pts.size()));
-    add(X, u[k], &f, kAway * h_mid);
+FieldPoints field_points(const KeyLayer& S, const KeyLayer& T, const Lattice& L, const std::vector<double>& u, double h_s,
+                         double h_t, double h_mid) {
+  FieldPoints p;
+  const double eps = kMinValue * h_mid;
+  p.add(S.surface.V, 0.0, nullptr, eps, -eps);
+  p.add(S.surface.fill, 0.0, &S.fill_values, kAway * h_s, -eps);
+  p.source_end = static_cast<int>(p.points.size());
+  p.lattice_size = static_cast<int>(L.X.rows());
+  for (size_t k = 1; k + 1 < u.size(); ++k) {
+    const Eigen::VectorXd f = (1 - u[k]) * L.d_s + u[k] * L.d_t;
+    p.layer_begin.push_back(static_cast<int>(p.points.size()));
+    p.add(L.X, u[k], &f, kAway * h_mid, -eps);
   }
-  const int n_end = static_cast<int>(pts.size());
-  add(T.surface.V, 1.0, nullptr, eps);
-  add(T.surface.fill, 1.0, &T.fill_values, kAway * h_t);
-  const double time_scale = 4.0 * h_mid * K;
-  IsoField field;
-  field.points.resize(static_cast<Eigen::Index>(pts.size()), 4);
-  for (size_t i = 0; i < pts.size(); ++i)
-    field.points.row(static_cast<Eigen::Index>(i)) << pts[i].head<3>(), t0 + pts[i][3] * (t1 - t0);
-  field.values = Eigen::Map<Eigen::VectorXd>(vals.data(), static_cast<Eigen::Index>(vals.size()));
-  field.anchored = anchored;
+  p.target_begin = static_cast<int>(p.points.size());
+  p.add(T.surface.V, 1.0, nullptr, eps, -eps);
+  p.add(T.surface.fill, 1.0, &T.fill_values, kAway * h_t, -eps);
+  return p;
+}
 
-  // The end intervals by 4D Delaunay triangulations of a key and the nearest middle layer; their
-  // facets in that layer are the middle points' tetrahedralization K, extruded between the layers.
-  t = Clock::now();
-  auto end_interval = [&](int first_a, int last_a, int first_b, int last_b) {
-    MatrixX4dRow P4(last_a - first_a + last_b - first_b, 4);
-    std::vector<int> global;
-    for (int r : {0, 1})
-      for (int i = r ? first_b : first_a; i < (r ? last_b : last_a); ++i) {
-        P4.row(static_cast<Eigen::Index>(global.size())) << pts[i].head<3>(), pts[i][3] * time_scale;
-        global.push_back(i);
-      }
-    Delaunay4 D = delaunay_4d(P4);
-    return std::make_pair(std::move(D), std::move(global));
-  };
-  auto last_end = std::async(std::launch::async, end_interval, bases.back(), bases.back() + nx, n_end,
-                             static_cast<int>(pts.size()));
-  auto [D0, g0] = end_interval(0, n0, bases.front(), bases.front() + nx);
-  auto [D1, g1] = last_end.get();
-  const MatrixX4iRow Kt = hull_facets_in(D0, n0, n0 + nx);
-  if (!(hull_facets_in(D1, 0, nx) == Kt))
+// The 4D Delaunay triangulation of points [a0, a1) and [b0, b1) with u scaled by time_scale, in global
+// point numbers.
+Delaunay4 end_triangulation(const FieldPoints& p, int a0, int a1, int b0, int b1, double time_scale) {
+  MatrixX4dRow P4(a1 - a0 + b1 - b0, 4);
+  std::vector<int> global;
+  for (int r : {0, 1})
+    for (int i = r ? b0 : a0; i < (r ? b1 : a1); ++i) {
+      P4.row(static_cast<Eigen::Index>(global.size())) << p.points[i].head<3>(), p.points[i][3] * time_scale;
+      global.push_back(i);
+    }
+  Delaunay4 D = delaunay_4d(P4);
+  for (Eigen::Index s = 0; s < D.simplices.rows(); ++s)
+    for (int c = 0; c < 5; ++c) D.simplices(s, c) = global[D.simplices(s, c)];
+  return D;
+}
+
+// The whole 4D triangulation (transition.h, "The 4D triangulation"): each key and its nearest layer by
+// a Delaunay triangulation (on two threads), whose facets in that layer are the lattice's
+// tetrahedra K; K x each middle layer interval where the field changes sign, by staircase prisms.
+Delaunay4 transition_triangulation(const FieldPoints& p, double time_scale) {
+  const int first = p.layer_begin.front(), last = p.layer_begin.back(), n = p.lattice_size;
+  auto target_end = std::async(std::launch::async, end_triangulation, std::cref(p), last, last + n, p.target_begin,
+                               static_cast<int>(p.points.size()), time_scale);
+  const Delaunay4 D0 = end_triangulation(p, 0, p.source_end, first, first + n, time_scale);
+  const Delaunay4 D1 = target_end.get();
+  Delaunay4 local0 = D0, local1 = D1;  // in lattice numbers, to read K from each end
+  local0.simplices.array() -= first;
+  local1.simplices.array() -= last;
+  const MatrixX4iRow K = hull_facets_in(local0, 0, n);
+  if (!(hull_facets_in(local1, 0, n) == K))
     throw Error("transition: the middle points' tetrahedralization differs between the two ends");
-  const Eigen::VectorXd& fv = field.values;
-  const MatrixX5iRow middle = extrude_tets(Kt, bases, [&](Eigen::Index tet, int k) {
+  const MatrixX5iRow middle = extrude_tets(K, p.layer_begin, [&](Eigen::Index tet, int k) {
     int neg = 0;
-    for (int c = 0; c < 4; ++c) neg += (fv[bases[k] + Kt(tet, c)] < 0) + (fv[bases[k + 1] + Kt(tet, c)] < 0);
+    for (int c = 0; c < 4; ++c) neg += (p.values[p.layer_begin[k] + K(tet, c)] < 0) + (p.values[p.layer_begin[k + 1] + K(tet, c)] < 0);
     return neg > 0 && neg < 8;
   });
   Delaunay4 D;
   D.simplices.resize(D0.simplices.rows() + middle.rows() + D1.simplices.rows(), 5);
-  Eigen::Index row = 0;
-  for (const auto* part : {&D0, &D1}) {
-    const std::vector<int>& g = part == &D0 ? g0 : g1;
-    for (Eigen::Index r = 0; r < part->simplices.rows(); ++r, ++row)
-      for (int c = 0; c < 5; ++c) D.simplices(row, c) = g[part->simplices(r, c)];
-  }
-  D.simplices.bottomRows(middle.rows()) = middle;
-  st.delaunay_seconds = seconds_since(t);
-  t = Clock::now();
-  std::vector<double> layer_times;
-  for (double x : u) layer_times.push_back(t0 + x * (t1 - t0));
-  layer_times.back() = t1;
-  IsoManifold iso = iso_manifold(field, D);
-  const KeyPlaneStats plane_s = correct_key_plane(iso.V, iso.T, t0, key_tets(S.surface, S.fill_values));
-  const KeyPlaneStats plane_t = correct_key_plane(iso.V, iso.T, t1, key_tets(T.surface, T.fill_values));
-  const double seal = 1e-6 * (t1 - t0);  // how far inside the slab a sealing cone's point sits
-  st.sealed = seal_key_time(iso.V, iso.T, t0, t0 + seal) + seal_key_time(iso.V, iso.T, t1, t1 - seal);
-  AnimationManifold M = into_slabs(iso, layer_times);
-  st.extract_seconds = seconds_since(t);
+  D.simplices << D0.simplices, middle, D1.simplices;
+  return D;
+}
 
-  st.source_points = n0;
-  st.middle_points = nx;
-  st.target_points = static_cast<int>(pts.size()) - n_end;
+IsoField iso_field(const FieldPoints& p, double t0, double t1) {
+  IsoField field;
+  field.points.resize(static_cast<Eigen::Index>(p.points.size()), 4);
+  for (size_t i = 0; i < p.points.size(); ++i)
+    field.points.row(static_cast<Eigen::Index>(i)) << p.points[i].head<3>(), t0 + p.points[i][3] * (t1 - t0);
+  field.values = Eigen::Map<const Eigen::VectorXd>(p.values.data(), static_cast<Eigen::Index>(p.values.size()));
+  field.anchored = p.anchored;
+  return field;
+}
+
+void record_keys(const KeyLayer& S, const KeyLayer& T, TransitionStats& st) {
   st.source_steiner = S.surface.steiner;
   st.target_steiner = T.surface.steiner;
   st.source_flipped = static_cast<int>(S.surface.flipped.size());
   st.target_flipped = static_cast<int>(T.surface.flipped.size());
   st.source_missing = S.surface.missing;
   st.target_missing = T.surface.missing;
-  st.source_plane_fixes = plane_s.bridges + plane_s.carved;
-  st.target_plane_fixes = plane_t.bridges + plane_t.carved;
   st.source_chords = S.chords;
   st.target_chords = T.chords;
+}
+
+// The field's morph between keys already in one frame (transition.h, "The field"), with o.layers
+// middle layers. Its vertices in the target key's plane have time t0 + 1.0 * (t1 - t0).
+AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target, double t1, const TransitionOptions& o,
+                        TransitionStats& st) {
+  const double h_s = o.spacing * mean_edge_length(source.V, source.F), h_t = o.spacing * mean_edge_length(target.V, target.F);
+  const double h_mid = std::min(h_s, h_t);
+  Box box{source.V.colwise().minCoeff().cwiseMin(target.V.colwise().minCoeff()),
+          source.V.colwise().maxCoeff().cwiseMax(target.V.colwise().maxCoeff())};
+  box.lo.array() -= 2 * h_mid;
+  box.hi.array() += 2 * h_mid;
+
+  auto t = Clock::now();
+  const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
+  const auto [S, T] = key_layers(source, d_s, h_s, target, d_t, h_t, box, h_mid, o);
+  st.conform_seconds = seconds_since(t);
+
+  // Layer k of K sits at local time (k - 1/2) / K, away from the round times a user scrubs to.
+  t = Clock::now();
+  std::vector<double> u = {0.0};
+  for (int k = 1; k <= o.layers; ++k) u.push_back((k - 0.5) / o.layers);
+  u.push_back(1.0);
+  const FieldPoints p = field_points(S, T, middle_lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]), u, h_s, h_t, h_mid);
+  st.field_seconds = seconds_since(t);
+
+  // Time scaled so that a key and its nearest layer lie two lattice spacings apart.
+  t = Clock::now();
+  const Delaunay4 D = transition_triangulation(p, 4.0 * h_mid * o.layers);
+  st.delaunay_seconds = seconds_since(t);
+
+  t = Clock::now();
+  IsoManifold iso = iso_manifold(iso_field(p, t0, t1), D);
+  const KeyPlaneStats plane_s = correct_key_plane(iso.V, iso.T, t0, key_tets(S.surface, S.fill_values));
+  const KeyPlaneStats plane_t = correct_key_plane(iso.V, iso.T, t1, key_tets(T.surface, T.fill_values));
+  const double seal = 1e-6 * (t1 - t0);  // how far inside the slab a sealing cone's point sits
+  st.sealed = seal_key_time(iso.V, iso.T, t0, t0 + seal) + seal_key_time(iso.V, iso.T, t1, t1 - seal);
+  std::vector<double> layer_times;
+  for (double x : u) layer_times.push_back(t0 + x * (t1 - t0));
+  layer_times.back() = t1;
+  AnimationManifold M = into_slabs(iso, layer_times);
+  st.extract_seconds = seconds_since(t);
+
+  record_keys(S, T, st);
+  st.source_points = p.source_end;
+  st.middle_points = p.lattice_size;
+  st.target_points = static_cast<int>(p.points.size()) - p.target_begin;
+  st.source_plane_fixes = plane_s.bridges + plane_s.carved;
+  st.target_plane_fixes = plane_t.bridges + plane_t.carved;
   st.simplices = static_cast<int>(D.simplices.rows());
   st.tets = M.num_tets();
   return M;

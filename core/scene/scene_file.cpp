@@ -386,6 +386,34 @@ std::string autosave_path(const std::string& scene_path) {
   return scene_path + ".autosave.json";
 }
 
+namespace {
+
+// Keys in time order: time and params; a mesh key's surface (version 2); the in-between and the
+// picked pairs to the next key when set.
+json keys_json(const std::vector<SceneKey>& scene_keys, BlobWriter& blob) {
+  json keys = json::array();
+  for (const SceneKey& k : scene_keys) {
+    json key = {{"time", k.time}, {"params", params_json(k.params)}};
+    // Version 2: a mesh key's own surface (a pose key has no "mesh").
+    if (k.is_mesh()) key["mesh"] = {{"source", k.mesh_path}, {"V", blob.add(k.mesh.V)}, {"F", blob.add(k.mesh.F)}};
+    // Optional: the in-between to the next key, when it is not the default.
+    if (k.inbetween != InbetweenMethod::Handles) key["inbetween"] = inbetween_method_name(k.inbetween);
+    // Optional: picked pairs to the next key, [x0, y0, z0, x1, y1, z1] each.
+    if (k.pairs_to_next.rows() > 0) {
+      key["pairs"] = json::array();
+      for (Eigen::Index r = 0; r < k.pairs_to_next.rows(); ++r) {
+        json row = json::array();
+        for (int c = 0; c < 6; ++c) row.push_back(k.pairs_to_next(r, c));
+        key["pairs"].push_back(row);
+      }
+    }
+    keys.push_back(key);
+  }
+  return keys;
+}
+
+}  // namespace
+
 void write_scene(const std::string& json_path, const SceneData& s) {
   BlobWriter blob;
   json j;
@@ -417,24 +445,7 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   j["rig"] = rig;
 
   j["pose"] = params_json(s.pose);
-  j["keys"] = json::array();
-  for (const SceneKey& k : s.keys) {
-    json key = {{"time", k.time}, {"params", params_json(k.params)}};
-    // Version 2: a mesh key's own surface (a pose key has no "mesh").
-    if (k.is_mesh()) key["mesh"] = {{"source", k.mesh_path}, {"V", blob.add(k.mesh.V)}, {"F", blob.add(k.mesh.F)}};
-    // Optional: the in-between to the next key, when it is not the default.
-    if (k.inbetween != InbetweenMethod::Handles) key["inbetween"] = inbetween_method_name(k.inbetween);
-    // Optional: picked pairs to the next key, [x0, y0, z0, x1, y1, z1] each.
-    if (k.pairs_to_next.rows() > 0) {
-      key["pairs"] = json::array();
-      for (Eigen::Index r = 0; r < k.pairs_to_next.rows(); ++r) {
-        json row = json::array();
-        for (int c = 0; c < 6; ++c) row.push_back(k.pairs_to_next(r, c));
-        key["pairs"].push_back(row);
-      }
-    }
-    j["keys"].push_back(key);
-  }
+  j["keys"] = keys_json(s.keys, blob);
   j["method"] = skin_method_name(s.method);
   j["inbetweens"] = s.inbetweens;
   {
