@@ -27,6 +27,20 @@ Eigen::RowVector3d jitter(std::uint64_t i, std::uint64_t layer) {
   return j;
 }
 
+// Calls visit(x, y, z) for each cell of an n[0] x n[1] x n[2] grid of values (x-major) with a corner
+// whose |value| is at most reach.
+template <class Visit>
+void cells_within(const Eigen::Array3i& n, const Eigen::VectorXd& values, double reach, const Visit& visit) {
+  auto at = [&](int x, int y, int z) { return std::abs(values[(static_cast<Eigen::Index>(x) * n[1] + y) * n[2] + z]); };
+  for (int x = 0; x + 1 < n[0]; ++x)
+    for (int y = 0; y + 1 < n[1]; ++y)
+      for (int z = 0; z + 1 < n[2]; ++z) {
+        double m = 1e300;
+        for (int c = 0; c < 8; ++c) m = std::min(m, at(x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1)));
+        if (m <= reach) visit(x, y, z);
+      }
+}
+
 // Points off a level set, on a grid of spacing h: those where lo <= |field| < hi (found from a
 // coarse grid of spacing 2h: a signed distance, or a blend of them, changes by at most the distance
 // moved), and the coarse grid's points where |field| >= far (none when far is infinite).
@@ -44,7 +58,6 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> band_points(const Box& box, double h
     for (int y = 0; y < n[1]; ++y)
       for (int z = 0; z < n[2]; ++z) C.row(i++) = at(2 * x, 2 * y, 2 * z);
   const Eigen::VectorXd fc = field(C);
-  auto coarse = [&](int x, int y, int z) { return fc[(static_cast<Eigen::Index>(x) * n[1] + y) * n[2] + z]; };
   std::vector<Eigen::RowVector3d> pts;
   std::vector<double> vals;
   for (Eigen::Index i = 0; i < C.rows(); ++i)
@@ -53,18 +66,13 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> band_points(const Box& box, double h
     // Every fine point of a coarse cell the band may reach (a cell's far faces belong to the next).
     std::vector<Eigen::RowVector3d> fine;
     const double reach = hi + 2 * H;
-    for (int x = 0; x + 1 < n[0]; ++x)
-      for (int y = 0; y + 1 < n[1]; ++y)
-        for (int z = 0; z + 1 < n[2]; ++z) {
-          double m = 1e300;
-          for (int c = 0; c < 8; ++c) m = std::min(m, std::abs(coarse(x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1))));
-          if (m > reach) continue;
-          for (int c = 0; c < 27; ++c) {
-            const int dx = c % 3, dy = c / 3 % 3, dz = c / 9;
-            if ((dx == 2 && x + 2 < n[0]) || (dy == 2 && y + 2 < n[1]) || (dz == 2 && z + 2 < n[2])) continue;
-            fine.push_back(at(2 * x + dx, 2 * y + dy, 2 * z + dz));
-          }
-        }
+    cells_within(n, fc, reach, [&](int x, int y, int z) {
+      for (int c = 0; c < 27; ++c) {
+        const int dx = c % 3, dy = c / 3 % 3, dz = c / 9;
+        if ((dx == 2 && x + 2 < n[0]) || (dy == 2 && y + 2 < n[1]) || (dz == 2 && z + 2 < n[2])) continue;
+        fine.push_back(at(2 * x + dx, 2 * y + dy, 2 * z + dz));
+      }
+    });
     Eigen::MatrixXd Fm(static_cast<Eigen::Index>(fine.size()), 3);
     for (size_t i = 0; i < fine.size(); ++i) Fm.row(static_cast<Eigen::Index>(i)) = fine[i];
     const Eigen::VectorXd ff = field(Fm);
@@ -90,7 +98,6 @@ Eigen::MatrixXd lattice_band_points(const Box& box, double a, double band, const
       for (int z = 0; z < n[2]; ++z, ++i)
         C.row(i) = box.lo + Eigen::RowVector3d(x, y, z) * H + 0.3 * a * jitter(static_cast<std::uint64_t>(i), 7);
   const Eigen::VectorXd gc = g(C);
-  auto coarse = [&](int x, int y, int z) { return gc[(static_cast<Eigen::Index>(x) * n[1] + y) * n[2] + z]; };
   std::vector<Eigen::RowVector3d> pts;
   for (Eigen::Index i = 0; i < C.rows(); ++i)
     if (gc[i] >= band) pts.push_back(C.row(i));
@@ -98,22 +105,17 @@ Eigen::MatrixXd lattice_band_points(const Box& box, double a, double band, const
   // coarse cell owns its near faces (its far ones belong to the next cell, where there is one).
   std::vector<Eigen::RowVector3d> fine;
   const double reach = band + 2 * H;
-  for (int x = 0; x + 1 < n[0]; ++x)
-    for (int y = 0; y + 1 < n[1]; ++y)
-      for (int z = 0; z + 1 < n[2]; ++z) {
-        double m = 1e300;
-        for (int c = 0; c < 8; ++c) m = std::min(m, coarse(x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1)));
-        if (m > reach) continue;
-        const int last[3] = {x + 2 == n[0], y + 2 == n[1], z + 2 == n[2]};
-        for (int dx = 0; dx <= 4; ++dx)
-          for (int dy = 0; dy <= 4; ++dy)
-            for (int dz = 0; dz <= 4; ++dz) {
-              const int odd = (dx & 1) + (dy & 1) + (dz & 1);
-              if (odd != 0 && odd != 3) continue;
-              if ((dx == 4 && !last[0]) || (dy == 4 && !last[1]) || (dz == 4 && !last[2])) continue;
-              fine.push_back(box.lo + Eigen::RowVector3d(4 * x + dx, 4 * y + dy, 4 * z + dz) * (0.5 * a));
-            }
-      }
+  cells_within(n, gc, reach, [&](int x, int y, int z) {
+    const int last[3] = {x + 2 == n[0], y + 2 == n[1], z + 2 == n[2]};
+    for (int dx = 0; dx <= 4; ++dx)
+      for (int dy = 0; dy <= 4; ++dy)
+        for (int dz = 0; dz <= 4; ++dz) {
+          const int odd = (dx & 1) + (dy & 1) + (dz & 1);
+          if (odd != 0 && odd != 3) continue;
+          if ((dx == 4 && !last[0]) || (dy == 4 && !last[1]) || (dz == 4 && !last[2])) continue;
+          fine.push_back(box.lo + Eigen::RowVector3d(4 * x + dx, 4 * y + dy, 4 * z + dz) * (0.5 * a));
+        }
+  });
   Eigen::MatrixXd Fm(static_cast<Eigen::Index>(fine.size()), 3);
   for (size_t i = 0; i < fine.size(); ++i) Fm.row(static_cast<Eigen::Index>(i)) = fine[i];
   const Eigen::VectorXd gf = g(Fm);
