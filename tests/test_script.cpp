@@ -442,3 +442,19 @@ TEST_CASE("scripts take handle names wherever they take handle numbers", "[scrip
   CHECK(a.rig().pseudo_edges == b.rig().pseudo_edges);
   CHECK_THROWS_WITH(run_text(a, "weights-normalize rihgt\n"), Catch::Contains("right (1)"));
 }
+
+TEST_CASE("delete-handles: by number or name, one undo step, as the Delete key on a selection") {
+  Document d;
+  d.set_surface(tetra(), "tetra");
+  run_script(d, parse_script("add-point 0.1 0.1 0.1\nadd-point 0.2 0.1 0.1\nadd-point 0.1 0.2 0.1\npseudo-edge 0 1\n", "s.txt"), "s.txt");
+  REQUIRE(d.num_handles() == 3);
+  run_script(d, parse_script("delete-handles 0 2\n", "s.txt"), "s.txt");
+  CHECK(d.num_handles() == 1);
+  CHECK(d.rig().pseudo_edges.empty());  // point 0 took its pseudo-edge along
+  CHECK(d.rig().points[0].position.isApprox(Eigen::Vector3d(0.2, 0.1, 0.1)));
+  d.undo();
+  CHECK(d.num_handles() == 3);
+  CHECK(d.rig().pseudo_edges.size() == 1);
+  CHECK_THROWS_WITH(run_script(d, parse_script("delete-handles 7\n", "s.txt"), "s.txt"), Catch::Contains("s.txt:1"));
+  CHECK(d.num_handles() == 3);
+}

@@ -64,10 +64,13 @@ void Editor::handle_shortcuts() {
   auto pressed = [](int key) { return ImGui::IsKeyPressed(key, false); };
   try {
     if (ctrl && pressed(GLFW_KEY_Z)) {
-      if (shift) doc_.redo(); else doc_.undo();
+      run_ui_command({shift ? "redo" : "undo"});
       return;
     }
-    if (ctrl && pressed(GLFW_KEY_Y)) return doc_.redo();
+    if (ctrl && pressed(GLFW_KEY_Y)) {
+      run_ui_command({"redo"});
+      return;
+    }
     if (ctrl && pressed(GLFW_KEY_S)) {
       if (doc_.path().empty()) files_.show(FilePanel::Mode::Save, "Save scene as", "save-scene", "scene.scene.json");
       else save_scene_as(doc_.path());
@@ -89,7 +92,7 @@ void Editor::handle_shortcuts() {
     if (pressed(GLFW_KEY_V)) tool_ = Tool::Paint;
     if (pressed(GLFW_KEY_G)) tool_ = Tool::Pose, gizmo_rotate_ = false;
     if (pressed(GLFW_KEY_R)) tool_ = Tool::Pose, gizmo_rotate_ = true;
-    if (pressed(GLFW_KEY_K)) doc_.set_key(doc_.time());
+    if (pressed(GLFW_KEY_K)) run_ui_command({"set-key"});
     if (pressed(GLFW_KEY_SPACE)) playing_ = !playing_;
     if (pressed(GLFW_KEY_ESCAPE)) bone_chain_.clear(), pair_tool_.cancel();
     if ((pressed(GLFW_KEY_ENTER) || pressed(GLFW_KEY_KP_ENTER)) && tool_ == Tool::DrawBone && bone_chain_.size() >= 2) {
@@ -97,8 +100,11 @@ void Editor::handle_shortcuts() {
       select_handle(num_point_handles(doc_.rig()) + first, false);
       bone_chain_.clear();
     }
-    if ((pressed(GLFW_KEY_DELETE) || pressed(GLFW_KEY_X)) && !doc_.selection().handles.empty())
-      doc_.delete_handles(doc_.selection().handles);
+    if ((pressed(GLFW_KEY_DELETE) || pressed(GLFW_KEY_X)) && !doc_.selection().handles.empty()) {
+      CommandWords words = {"delete-handles"};
+      for (int h : doc_.selection().handles) words.push_back(std::to_string(h));
+      run_ui_command(words);
+    }
     sync_camera_to_doc();
   } catch (const std::exception& e) {
     error_popup_ = e.what();

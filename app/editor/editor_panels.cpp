@@ -17,6 +17,7 @@
 #include "core/mesh/io.h"
 #include "core/scene/command.h"
 #include "core/util/error.h"
+#include "core/view/color.h"
 #include "core/view/colormap.h"
 
 namespace dfm::editor {
@@ -37,8 +38,8 @@ bool tool_button(const char* label, bool active, const char* tip, float w) {
 }
 
 ImU32 to_u32(const Eigen::Vector3f& linear) {
-  return ImGui::GetColorU32(ImVec4(std::pow(linear.x(), 1 / 2.2f), std::pow(linear.y(), 1 / 2.2f),
-                                   std::pow(linear.z(), 1 / 2.2f), 1.0f));
+  const Eigen::Vector3f c = view::linear_to_display(linear);
+  return ImGui::GetColorU32(ImVec4(c.x(), c.y(), c.z(), 1.0f));
 }
 
 // The rig's handles as tree nodes by type, each drawn by row(h) (h: its number, what scripts take).

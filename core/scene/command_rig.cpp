@@ -84,6 +84,12 @@ void add_rig_commands(std::vector<Command>& t) {
            [](CommandContext& x, const CommandWords& w) { x.doc.load_cage(w[1]); });
   c->remember_file = true;
   add(t, "pseudo-edge", "pseudo-edge POINT_A POINT_B", 2, 2, {handle_arg()}, pseudo_edge);
+  add(t, "delete-handles", "delete-handles HANDLE [HANDLE ...]", 1, 1000, {handle_arg()},
+      [](CommandContext& x, const CommandWords& w) {
+        std::vector<int> handles;
+        for (size_t i = 1; i < w.size(); ++i) handles.push_back(handle_at(x.doc, w, static_cast<int>(i)));
+        x.doc.delete_handles(handles);
+      });
   add(t, "paint-mask", "paint-mask X Y Z RADIUS VALUE [FALLOFF]", 5, 6, {number_arg()}, paint).poll = needs_surface;
   add(t, "paint-dab", "paint-dab X Y Z RADIUS STRENGTH FALLOFF [erase]", 6, 7,
       {number_arg(), number_arg(), number_arg(), number_arg(), number_arg(), number_arg(), word_arg()}, paint)
