@@ -457,4 +457,11 @@ TEST_CASE("delete-handles: by number or name, one undo step, as the Delete key o
   CHECK(d.rig().pseudo_edges.size() == 1);
   CHECK_THROWS_WITH(run_script(d, parse_script("delete-handles 7\n", "s.txt"), "s.txt"), Catch::Contains("s.txt:1"));
   CHECK(d.num_handles() == 3);
+  // rename-handle: the rest of the line is the name; the UI's words (command_words) are the same line.
+  run_script(d, parse_script("rename-handle 1 left ear\n", "s.txt"), "s.txt");
+  CHECK(d.rig().points[1].name == "left ear");
+  run_command(d, command_words("rename-handle", {1, std::string("tip")}));
+  CHECK(d.rig().points[1].name == "tip");
+  run_command(d, command_words("delete-handles", std::vector<int>{1}));
+  CHECK(d.num_handles() == 2);
 }

@@ -100,11 +100,8 @@ void Editor::handle_shortcuts() {
       select_handle(num_point_handles(doc_.rig()) + first, false);
       bone_chain_.clear();
     }
-    if ((pressed(GLFW_KEY_DELETE) || pressed(GLFW_KEY_X)) && !doc_.selection().handles.empty()) {
-      CommandWords words = {"delete-handles"};
-      for (int h : doc_.selection().handles) words.push_back(std::to_string(h));
-      run_ui_command(words);
-    }
+    if ((pressed(GLFW_KEY_DELETE) || pressed(GLFW_KEY_X)) && !doc_.selection().handles.empty())
+      run_ui_command(command_words("delete-handles", doc_.selection().handles));
     sync_camera_to_doc();
   } catch (const std::exception& e) {
     error_popup_ = e.what();

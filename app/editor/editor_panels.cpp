@@ -178,7 +178,7 @@ void Editor::draw_menu_bar() {
     if (ImGui::MenuItem(r.c_str(), "Ctrl+Shift+Z", false, available("redo"))) run_ui_command({"redo"});
     ImGui::Separator();
     if (ImGui::MenuItem("Delete selected", "Del", false, !doc_.selection().handles.empty()))
-      doc_.delete_handles(doc_.selection().handles);
+      run_ui_command(command_words("delete-handles", doc_.selection().handles));
     if (ImGui::MenuItem("Reset pose")) run_ui_command({"reset-pose"});
     ImGui::EndMenu();
   }
@@ -293,10 +293,10 @@ void Editor::draw_outliner() {
       if (ImGui::IsWindowAppearing()) std::snprintf(buf, sizeof buf, "%s", handle_name(rig, h).c_str());
       ImGui::SetNextItemWidth(180);
       if (ImGui::InputText("Name", buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue)) {
-        doc_.rename_handle(h, buf);
+        run_ui_command(command_words("rename-handle", {h, std::string(buf)}));
         ImGui::CloseCurrentPopup();
       }
-      if (ImGui::MenuItem("Delete")) doc_.delete_handles({h});
+      if (ImGui::MenuItem("Delete")) run_ui_command(command_words("delete-handles", std::vector<int>{h}));
       ImGui::EndPopup();
     }
     ImGui::PopID();
@@ -304,7 +304,7 @@ void Editor::draw_outliner() {
   outliner_tree(rig, row);
   if (!sel.empty()) {
     ImGui::Separator();
-    if (ImGui::Button("Delete selected")) doc_.delete_handles(sel);
+    if (ImGui::Button("Delete selected")) run_ui_command(command_words("delete-handles", sel));
     if (sel.size() == 2 && handle_ref(rig, sel[0]).kind == HandleKind::Point &&
         handle_ref(rig, sel[1]).kind == HandleKind::Point) {
       ImGui::SameLine();

@@ -1,20 +1,8 @@
 #include "app/editor/pair_tool.h"
 
-#include <cstdio>
-
 #include "core/scene/key_pairs.h"
 
 namespace dfm::editor {
-
-namespace {
-
-std::string word(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
-}  // namespace
 
 PairTool::Step PairTool::click(const Document& doc, const std::optional<Eigen::Vector3d>& hit) {
   const auto& keys = doc.keys();
@@ -32,10 +20,9 @@ PairTool::Step PairTool::click(const Document& doc, const std::optional<Eigen::V
     return {{}, {}, "Pair: the keys changed; start again on a key"};
   }
   if (!hit) return {{}, {}, "Pair: click on this key's surface for the partner (Esc cancels)"};
-  CommandWords w = {"key-pair"};
-  for (int c = 0; c < 3; ++c) w.push_back(word((*first_)[c]));
-  for (int c = 0; c < 3; ++c) w.push_back(word((*hit)[c]));
-  w.push_back(word(keys[interval_].time));
+  const Eigen::Vector3d& a = *first_;
+  const Eigen::Vector3d& b = *hit;
+  const CommandWords w = command_words("key-pair", {a.x(), a.y(), a.z(), b.x(), b.y(), b.z(), keys[interval_].time});
   const double back = keys[interval_].time;
   first_.reset();
   return {w, back, ""};

@@ -143,6 +143,12 @@ CommandWords command_words(const std::string& name, std::initializer_list<Comman
   return w;
 }
 
+CommandWords command_words(const std::string& name, const std::vector<int>& handles) {
+  CommandWords w{name};
+  for (int h : handles) w.push_back(CommandArg(h).word);
+  return w;
+}
+
 void run_command(Document& doc, const CommandWords& words, const ScriptHost& host) {
   try {
     run_checked(check_command(words), doc, words, host);

@@ -97,6 +97,8 @@ struct CommandArg {
   CommandArg(const char* w) : word(w) {}
 };
 CommandWords command_words(const std::string& name, std::initializer_list<CommandArg> args = {});
+// The same with a list of handle numbers (select, delete-handles).
+CommandWords command_words(const std::string& name, const std::vector<int>& handles);
 
 // What a menu item or button does: checks the line and runs it, as a script line runs. Throws
 // dfm::Error "name: problem".

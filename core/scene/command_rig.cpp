@@ -90,6 +90,13 @@ void add_rig_commands(std::vector<Command>& t) {
         for (size_t i = 1; i < w.size(); ++i) handles.push_back(handle_at(x.doc, w, static_cast<int>(i)));
         x.doc.delete_handles(handles);
       });
+  // The name is the rest of the line (one space between words).
+  add(t, "rename-handle", "rename-handle HANDLE NAME", 2, 1000, {handle_arg(), word_arg()},
+      [](CommandContext& x, const CommandWords& w) {
+        std::string name = w[2];
+        for (size_t i = 3; i < w.size(); ++i) name += " " + w[i];
+        x.doc.rename_handle(handle_at(x.doc, w, 1), name);
+      });
   add(t, "paint-mask", "paint-mask X Y Z RADIUS VALUE [FALLOFF]", 5, 6, {number_arg()}, paint).poll = needs_surface;
   add(t, "paint-dab", "paint-dab X Y Z RADIUS STRENGTH FALLOFF [erase]", 6, 7,
       {number_arg(), number_arg(), number_arg(), number_arg(), number_arg(), number_arg(), word_arg()}, paint)
