@@ -138,9 +138,8 @@ void attach_pairs(const std::string& path, std::vector<dfm::KeySurface>& keys) {
   }
 }
 
-int run(const dfm::cli::Args& args) {
-  using dfm::cli::UsageError;
-  dfm::cli::ArgReader r(args);
+// What the command line asks for.
+struct Options {
   std::vector<std::string> keyframes, times_text;
   std::string manifold_in, out, save_manifold, sequence, strip, pairs_file;
   std::optional<double> at;
@@ -149,99 +148,121 @@ int run(const dfm::cli::Args& args) {
   int frames = 0;
   std::optional<dfm::InbetweenMethod> inbetween;
   int inbetweens = 8;
+};
+
+template <class Parse>
+auto parsed(const Parse& parse) {
+  try {
+    return parse();
+  } catch (const dfm::Error& e) {
+    throw dfm::cli::UsageError(e.what());
+  }
+}
+
+Options parse_options(const dfm::cli::Args& args) {
+  using dfm::cli::UsageError;
+  dfm::cli::ArgReader r(args);
+  Options o;
   while (!r.done()) {
     const std::string f = r.next();
-    if (f == "--keyframes") keyframes = r.values(f);
-    else if (f == "--times") times_text = r.values(f);
-    else if (f == "--manifold") manifold_in = r.value(f);
-    else if (f == "--axis") {
-      try {
-        axis = dfm::parse_slice_axis(r.value(f));
-      } catch (const dfm::Error& e) {
-        throw UsageError(e.what());
-      }
-    } else if (f == "--at") at = r.number(f);
-    else if (f == "-o" || f == "--output") out = r.value(f);
-    else if (f == "--save-manifold") save_manifold = r.value(f);
-    else if (f == "--stats") stats = true;
-    else if (f == "--frames") frames = r.integer(f);
-    else if (f == "--sequence") sequence = r.value(f);
-    else if (f == "--strip") strip = r.value(f);
+    if (f == "--keyframes") o.keyframes = r.values(f);
+    else if (f == "--times") o.times_text = r.values(f);
+    else if (f == "--manifold") o.manifold_in = r.value(f);
+    else if (f == "--axis") o.axis = parsed([&] { return dfm::parse_slice_axis(r.value(f)); });
+    else if (f == "--at") o.at = r.number(f);
+    else if (f == "-o" || f == "--output") o.out = r.value(f);
+    else if (f == "--save-manifold") o.save_manifold = r.value(f);
+    else if (f == "--stats") o.stats = true;
+    else if (f == "--frames") o.frames = r.integer(f);
+    else if (f == "--sequence") o.sequence = r.value(f);
+    else if (f == "--strip") o.strip = r.value(f);
     else if (f == "--inbetween") {
-      try {
-        inbetween = dfm::parse_inbetween_method(r.value(f));
-      } catch (const dfm::Error& e) {
-        throw UsageError(e.what());
-      }
-      if (*inbetween == dfm::InbetweenMethod::Handles)
+      o.inbetween = parsed([&] { return dfm::parse_inbetween_method(r.value(f)); });
+      if (*o.inbetween == dfm::InbetweenMethod::Handles)
         throw UsageError("--inbetween handles needs pose keys and a rig (the editor's timeline); keyframe files have "
                          "no handles: use arap or linear");
-    } else if (f == "--inbetweens") inbetweens = r.integer(f);
-    else if (f == "--pairs") pairs_file = r.value(f);
+    } else if (f == "--inbetweens") o.inbetweens = r.integer(f);
+    else if (f == "--pairs") o.pairs_file = r.value(f);
     else throw UsageError("unknown argument '" + f + "'");
   }
-  if (keyframes.empty() == manifold_in.empty()) throw UsageError("give either --keyframes or --manifold");
-  if (inbetween && keyframes.empty()) throw UsageError("--inbetween goes with --keyframes");
-  if (!pairs_file.empty() && keyframes.empty()) throw UsageError("--pairs goes with --keyframes");
-  if (inbetweens < 0 || inbetweens > 1000) throw UsageError("--inbetweens needs a count in 0..1000");
-  if (!manifold_in.empty() && !times_text.empty()) throw UsageError("--times goes with --keyframes");
-  if (!out.empty() && !at) throw UsageError("-o needs --at VALUE");
-  if (at && out.empty() && !stats) throw UsageError("--at needs -o SLICE.obj (or --stats)");
-  if ((frames != 0) != (!sequence.empty() || !strip.empty()))
+  return o;
+}
+
+void check_options(const Options& o) {
+  using dfm::cli::UsageError;
+  if (o.keyframes.empty() == o.manifold_in.empty()) throw UsageError("give either --keyframes or --manifold");
+  if (o.inbetween && o.keyframes.empty()) throw UsageError("--inbetween goes with --keyframes");
+  if (!o.pairs_file.empty() && o.keyframes.empty()) throw UsageError("--pairs goes with --keyframes");
+  if (o.inbetweens < 0 || o.inbetweens > 1000) throw UsageError("--inbetweens needs a count in 0..1000");
+  if (!o.manifold_in.empty() && !o.times_text.empty()) throw UsageError("--times goes with --keyframes");
+  if (!o.out.empty() && !o.at) throw UsageError("-o needs --at VALUE");
+  if (o.at && o.out.empty() && !o.stats) throw UsageError("--at needs -o SLICE.obj (or --stats)");
+  if ((o.frames != 0) != (!o.sequence.empty() || !o.strip.empty()))
     throw UsageError("--frames N goes with --sequence PREFIX and/or --strip STRIP.png");
-  if (frames < 0 || frames > 100000) throw UsageError("--frames needs a count >= 1");
-  if (!at && sequence.empty() && strip.empty() && save_manifold.empty())
+  if (o.frames < 0 || o.frames > 100000) throw UsageError("--frames needs a count >= 1");
+  if (!o.at && o.sequence.empty() && o.strip.empty() && o.save_manifold.empty())
     throw UsageError("nothing to do: give --at, --sequence, --strip or --save-manifold");
+  if (!o.keyframes.empty() && o.keyframes.size() < 2) throw UsageError("--keyframes needs at least 2 meshes");
+}
 
-  dfm::AnimationManifold M;
-  if (!manifold_in.empty()) {
-    M = dfm::read_manifold(manifold_in);
-  } else {
-    if (keyframes.size() < 2) throw UsageError("--keyframes needs at least 2 meshes");
-    std::vector<double> times;
-    if (times_text.empty()) {
-      for (size_t i = 0; i < keyframes.size(); ++i) times.push_back(static_cast<double>(i));
-    } else {
-      if (times_text.size() != keyframes.size())
-        throw UsageError("--times has " + std::to_string(times_text.size()) + " values for " +
-                         std::to_string(keyframes.size()) + " keyframes");
-      for (const auto& s : times_text) {
-        char* end = nullptr;
-        const double t = std::strtod(s.c_str(), &end);
-        if (end == s.c_str() || *end || !std::isfinite(t)) throw UsageError("--times: not a number '" + s + "'");
-        if (!times.empty() && !(t > times.back())) throw UsageError("--times must be strictly increasing");
-        times.push_back(t);
-      }
-    }
-    std::vector<dfm::KeySurface> keys;
-    for (size_t i = 0; i < keyframes.size(); ++i) {
-      dfm::TriMesh k = dfm::read_surface(keyframes[i]);
-      if (k.num_faces() == 0) throw dfm::Error(keyframes[i] + ": mesh has no triangles");
-      keys.push_back({times[i], std::move(k.V), std::move(k.F), keyframes[i]});
-    }
-    if (!pairs_file.empty()) attach_pairs(pairs_file, keys);
-    // Neighbours sharing one triangle list: the exact prism build; others: a transition, whose keys
-    // build_manifold_sequence checks first (errors name the file).
-    // Neighbours of one connectivity: in-between layers as rigid as possible (or linear) when asked.
-    if (inbetween) keys = dfm::with_mesh_inbetweens(keys, std::vector<dfm::InbetweenMethod>(keys.size(), *inbetween), inbetweens);
-    dfm::SequenceStats seq;
-    M = dfm::build_manifold_sequence(keys, {}, &seq);
-    if (stats) print_sequence_stats(seq);
+// --times, or 0, 1, 2, ...
+std::vector<double> key_times(const Options& o) {
+  using dfm::cli::UsageError;
+  std::vector<double> times;
+  if (o.times_text.empty()) {
+    for (size_t i = 0; i < o.keyframes.size(); ++i) times.push_back(static_cast<double>(i));
+    return times;
   }
+  if (o.times_text.size() != o.keyframes.size())
+    throw UsageError("--times has " + std::to_string(o.times_text.size()) + " values for " +
+                     std::to_string(o.keyframes.size()) + " keyframes");
+  for (const auto& s : o.times_text) {
+    char* end = nullptr;
+    const double t = std::strtod(s.c_str(), &end);
+    if (end == s.c_str() || *end || !std::isfinite(t)) throw UsageError("--times: not a number '" + s + "'");
+    if (!times.empty() && !(t > times.back())) throw UsageError("--times must be strictly increasing");
+    times.push_back(t);
+  }
+  return times;
+}
 
-  if (!save_manifold.empty()) dfm::write_manifold(save_manifold, M);
-  if (at) {
+// Neighbours sharing one triangle list: the exact prism build (with in-between layers as rigid as
+// possible, or linear, when asked); others: a transition, whose keys build_manifold_sequence checks
+// first (errors name the file).
+dfm::AnimationManifold build_from_keyframes(const Options& o) {
+  const std::vector<double> times = key_times(o);
+  std::vector<dfm::KeySurface> keys;
+  for (size_t i = 0; i < o.keyframes.size(); ++i) {
+    dfm::TriMesh k = dfm::read_surface(o.keyframes[i]);
+    if (k.num_faces() == 0) throw dfm::Error(o.keyframes[i] + ": mesh has no triangles");
+    keys.push_back({times[i], std::move(k.V), std::move(k.F), o.keyframes[i]});
+  }
+  if (!o.pairs_file.empty()) attach_pairs(o.pairs_file, keys);
+  if (o.inbetween)
+    keys = dfm::with_mesh_inbetweens(keys, std::vector<dfm::InbetweenMethod>(keys.size(), *o.inbetween), o.inbetweens);
+  dfm::SequenceStats seq;
+  dfm::AnimationManifold M = dfm::build_manifold_sequence(keys, {}, &seq);
+  if (o.stats) print_sequence_stats(seq);
+  return M;
+}
+
+int run(const dfm::cli::Args& args) {
+  const Options o = parse_options(args);
+  check_options(o);
+  const dfm::AnimationManifold M = o.manifold_in.empty() ? build_from_keyframes(o) : dfm::read_manifold(o.manifold_in);
+  if (!o.save_manifold.empty()) dfm::write_manifold(o.save_manifold, M);
+  if (o.at) {
     // In time, the frame (a same-connectivity interval's own mesh); across it, the sweep's slice.
     const dfm::ManifoldSlice s =
-        axis == dfm::SliceAxis::T ? dfm::manifold_frame(M, *at) : dfm::slice_manifold(M, axis, *at);
-    if (!out.empty()) dfm::write_surface(out, s.mesh);
-    if (stats) print_stats(M, s, axis, *at);
+        o.axis == dfm::SliceAxis::T ? dfm::manifold_frame(M, *o.at) : dfm::slice_manifold(M, o.axis, *o.at);
+    if (!o.out.empty()) dfm::write_surface(o.out, s.mesh);
+    if (o.stats) print_stats(M, s, o.axis, *o.at);
   }
-  if (!sequence.empty()) {
-    const std::vector<std::string> paths = dfm::write_frame_sequence(M, sequence, frames);
-    std::printf("wrote %d frames: %s .. %s\n", frames, paths.front().c_str(), paths.back().c_str());
+  if (!o.sequence.empty()) {
+    const std::vector<std::string> paths = dfm::write_frame_sequence(M, o.sequence, o.frames);
+    std::printf("wrote %d frames: %s .. %s\n", o.frames, paths.front().c_str(), paths.back().c_str());
   }
-  if (!strip.empty()) render_strip(M, frames, strip);
+  if (!o.strip.empty()) render_strip(M, o.frames, o.strip);
   return 0;
 }
 

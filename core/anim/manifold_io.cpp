@@ -125,97 +125,74 @@ void read_prism_slabs(Lines& L, std::vector<std::string_view>& tok, AnimationMan
 
 }  // namespace
 
+namespace {
+
+// Text lines (a tag, then numbers) into a stream through a 1 MiB buffer.
+class LineWriter {
+ public:
+  explicit LineWriter(std::ostream& os) : os_(os) { buf_.reserve(1 << 20); }
+  template <class... Num>
+  void line(const char* tag, Num... xs) {
+    buf_ += tag;
+    ((buf_ += ' ', put(buf_, xs)), ...);
+    end_line();
+  }
+  // A tag and the first n entries of row r (r(d) for d < n).
+  template <class Row>
+  void row(const char* tag, const Row& r, int n) {
+    buf_ += tag;
+    for (int d = 0; d < n; ++d) buf_ += ' ', put(buf_, r(d));
+    end_line();
+  }
+  void flush() {
+    os_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+    buf_.clear();
+  }
+
+ private:
+  void end_line() {
+    buf_ += '\n';
+    if (buf_.size() > (1u << 20)) flush();
+  }
+  std::ostream& os_;
+  std::string buf_;
+};
+
+void write_geometry(LineWriter& w, const AnimationManifold& M) {
+  w.line("vertices", M.num_vertices());
+  w.line("tets", M.num_tets());
+  w.line("layers", M.num_layers());
+  for (int i = 0; i < M.num_layers(); ++i) w.line("layer", M.times[i], M.slab_offsets[i]);
+  for (int v = 0; v < M.num_vertices(); ++v) w.row("v", [&](int d) { return M.V(v, d); }, 4);
+  for (int k = 0; k < M.num_tets(); ++k) w.row("t", [&](int d) { return M.T(k, d); }, 4);
+}
+
+// Version 2's sections: the layers' triangle lists, each slab's prism record, the keys' layers.
+void write_layers(LineWriter& w, const AnimationManifold& M) {
+  w.line("surfaces", static_cast<int>(M.layer_faces.size()));
+  for (const Eigen::MatrixXi& F : M.layer_faces) {
+    w.line("surface", static_cast<int>(F.rows()));
+    for (Eigen::Index f = 0; f < F.rows(); ++f) w.row("f", [&](int d) { return F(f, d); }, 3);
+  }
+  w.line("prisms", static_cast<int>(M.prism_slabs.size()));
+  for (const PrismSlab& p : M.prism_slabs) w.line("prism", p.faces, p.lower, p.upper, p.count);
+  w.line("keys", static_cast<int>(M.key_layers.size()));
+  for (const ManifoldKey& k : M.key_layers) {
+    w.line("key", k.time, k.faces, static_cast<int>(k.vertices.size()));
+    for (int v : k.vertices) w.line("k", v);
+  }
+}
+
+}  // namespace
+
 void write_manifold(const std::string& path, const AnimationManifold& M) {
   validate_manifold(M, path);
   write_file_atomic(path, [&](std::ostream& os) {
-    std::string buf;
-    buf.reserve(1 << 20);
-    auto flush = [&](bool force) {
-      if (force || buf.size() > (1u << 20)) {
-        os.write(buf.data(), static_cast<std::streamsize>(buf.size()));
-        buf.clear();
-      }
-    };
-    buf += "tet4 2\n# animation manifold: 4D vertices (x y z t), oriented tetrahedra grouped in time slabs\n";
-    buf += "vertices ";
-    put(buf, M.num_vertices());
-    buf += "\ntets ";
-    put(buf, M.num_tets());
-    buf += "\nlayers ";
-    put(buf, M.num_layers());
-    buf += "\n";
-    for (int i = 0; i < M.num_layers(); ++i) {
-      buf += "layer ";
-      put(buf, M.times[i]);
-      buf += ' ';
-      put(buf, M.slab_offsets[i]);
-      buf += '\n';
-    }
-    for (int v = 0; v < M.num_vertices(); ++v) {
-      buf += 'v';
-      for (int d = 0; d < 4; ++d) {
-        buf += ' ';
-        put(buf, M.V(v, d));
-      }
-      buf += '\n';
-      flush(false);
-    }
-    for (int k = 0; k < M.num_tets(); ++k) {
-      buf += 't';
-      for (int d = 0; d < 4; ++d) {
-        buf += ' ';
-        put(buf, M.T(k, d));
-      }
-      buf += '\n';
-      flush(false);
-    }
-    buf += "surfaces ";
-    put(buf, static_cast<int>(M.layer_faces.size()));
-    buf += '\n';
-    for (const Eigen::MatrixXi& F : M.layer_faces) {
-      buf += "surface ";
-      put(buf, static_cast<int>(F.rows()));
-      buf += '\n';
-      for (Eigen::Index f = 0; f < F.rows(); ++f) {
-        buf += 'f';
-        for (int d = 0; d < 3; ++d) {
-          buf += ' ';
-          put(buf, F(f, d));
-        }
-        buf += '\n';
-        flush(false);
-      }
-    }
-    buf += "prisms ";
-    put(buf, static_cast<int>(M.prism_slabs.size()));
-    buf += '\n';
-    for (const PrismSlab& p : M.prism_slabs) {
-      buf += "prism";
-      for (int x : {p.faces, p.lower, p.upper, p.count}) {
-        buf += ' ';
-        put(buf, x);
-      }
-      buf += '\n';
-    }
-    buf += "keys ";
-    put(buf, static_cast<int>(M.key_layers.size()));
-    buf += '\n';
-    for (const ManifoldKey& k : M.key_layers) {
-      buf += "key ";
-      put(buf, k.time);
-      buf += ' ';
-      put(buf, k.faces);
-      buf += ' ';
-      put(buf, static_cast<int>(k.vertices.size()));
-      buf += '\n';
-      for (int v : k.vertices) {
-        buf += "k ";
-        put(buf, v);
-        buf += '\n';
-        flush(false);
-      }
-    }
-    flush(true);
+    LineWriter w(os);
+    os << "tet4 2\n# animation manifold: 4D vertices (x y z t), oriented tetrahedra grouped in time slabs\n";
+    write_geometry(w, M);
+    write_layers(w, M);
+    w.flush();
     if (!os) throw Error(path + ": write failed");
   });
 }
