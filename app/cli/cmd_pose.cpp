@@ -93,120 +93,146 @@ void solve_fast(const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig, 
   std::printf("fast: %d iterations, %.2f us per iteration\n", iterations, 1e6 * iterating / iterations);
 }
 
-int run(const dfm::cli::Args& args) {
-  std::string input, out, weights, skeleton, pose_file, points, points_pose, free_list, method_name = "lbs";
+// What the command line asks for.
+struct Options {
+  std::string input, out, weights, skeleton, pose_file, points, points_pose, free_list;
+  dfm::SkinMethod method = dfm::SkinMethod::LBS;
   int k = 0;  // 0: every weight
   int iterations = 20;
-  bool k_given = false, force_cpu = false, fast = false;
+  bool force_cpu = false, fast = false;
+};
+
+Options parse_options(const dfm::cli::Args& args) {
+  using dfm::cli::UsageError;
+  Options o;
+  std::string method_name = "lbs";
+  bool k_given = false;
   dfm::cli::ArgReader a(args);
   while (!a.done()) {
     const std::string f = a.next();
-    if (f == "-o" || f == "--output") out = a.value(f);
-    else if (f == "--weights") weights = a.value(f);
-    else if (f == "--skeleton") skeleton = a.value(f);
-    else if (f == "--pose") pose_file = a.value(f);
-    else if (f == "--points-pose") points_pose = a.value(f);
-    else if (f == "--points") points = a.value(f);
-    else if (f == "--fast") fast = true;
-    else if (f == "--free") free_list = a.value(f);
-    else if (f == "--iterations") iterations = a.integer(f);
+    if (f == "-o" || f == "--output") o.out = a.value(f);
+    else if (f == "--weights") o.weights = a.value(f);
+    else if (f == "--skeleton") o.skeleton = a.value(f);
+    else if (f == "--pose") o.pose_file = a.value(f);
+    else if (f == "--points-pose") o.points_pose = a.value(f);
+    else if (f == "--points") o.points = a.value(f);
+    else if (f == "--fast") o.fast = true;
+    else if (f == "--free") o.free_list = a.value(f);
+    else if (f == "--iterations") o.iterations = a.integer(f);
     else if (f == "--method") method_name = a.value(f);
-    else if (f == "-k") k = a.integer(f), k_given = true;
-    else if (f == "--cpu") force_cpu = true;
-    else if (!f.empty() && f[0] == '-') throw dfm::cli::UsageError("unknown option " + f);
-    else if (input.empty()) input = f;
-    else throw dfm::cli::UsageError("more than one INPUT: " + input + ", " + f);
+    else if (f == "-k") o.k = a.integer(f), k_given = true;
+    else if (f == "--cpu") o.force_cpu = true;
+    else if (!f.empty() && f[0] == '-') throw UsageError("unknown option " + f);
+    else if (o.input.empty()) o.input = f;
+    else throw UsageError("more than one INPUT: " + o.input + ", " + f);
   }
-  if (input.empty()) throw dfm::cli::UsageError("INPUT is required");
-  if (out.empty()) throw dfm::cli::UsageError("-o OUT is required");
-  if (weights.empty()) throw dfm::cli::UsageError("--weights W.dmat is required");
-  if (k_given && k != 4 && k != 8) throw dfm::cli::UsageError("-k must be 4 or 8");
-  if (!pose_file.empty() && skeleton.empty()) throw dfm::cli::UsageError("--pose needs --skeleton");
-  if (!fast && (!free_list.empty())) throw dfm::cli::UsageError("--free needs --fast");
-  if (iterations < 1) throw dfm::cli::UsageError("--iterations must be >= 1");
-  dfm::SkinMethod method;
+  if (o.input.empty()) throw UsageError("INPUT is required");
+  if (o.out.empty()) throw UsageError("-o OUT is required");
+  if (o.weights.empty()) throw UsageError("--weights W.dmat is required");
+  if (k_given && o.k != 4 && o.k != 8) throw UsageError("-k must be 4 or 8");
+  if (!o.pose_file.empty() && o.skeleton.empty()) throw UsageError("--pose needs --skeleton");
+  if (!o.fast && (!o.free_list.empty())) throw UsageError("--free needs --fast");
+  if (o.iterations < 1) throw UsageError("--iterations must be >= 1");
   try {
-    method = dfm::parse_skin_method(method_name);
+    o.method = dfm::parse_skin_method(method_name);
   } catch (const dfm::Error& e) {
-    throw dfm::cli::UsageError(e.what());
+    throw UsageError(e.what());
   }
-  const std::string ext = dfm::file_extension(out);
+  const std::string ext = dfm::file_extension(o.out);
   if (ext != "obj" && ext != "ply" && ext != "off" && ext != "stl")
-    throw dfm::cli::UsageError("OUT must end in .obj, .ply, .off or .stl, got '" + out + "'");
+    throw UsageError("OUT must end in .obj, .ply, .off or .stl, got '" + o.out + "'");
+  return o;
+}
 
-  const Input in = read_input(input);
+// The rig from --points and --skeleton, and the weights checked against it and the mesh.
+dfm::Rig read_rig(const Options& o, const Input& in, Eigen::MatrixXd& W) {
   dfm::Rig rig;
-  if (!points.empty()) dfm::add_points_file_to_rig(rig, points);
-  if (!skeleton.empty()) dfm::add_tgf_to_rig(rig, dfm::read_tgf(skeleton), skeleton);
+  if (!o.points.empty()) dfm::add_points_file_to_rig(rig, o.points);
+  if (!o.skeleton.empty()) dfm::add_tgf_to_rig(rig, dfm::read_tgf(o.skeleton), o.skeleton);
   const int nh = dfm::num_handles(rig);
   if (nh == 0) throw dfm::Error("pose: the rig has no handles (give --skeleton or --points)");
-  const Eigen::MatrixXd W = dfm::read_dmat(weights);
+  W = dfm::read_dmat(o.weights);
   if (W.rows() != in.V.rows() || W.cols() != nh)
-    throw dfm::file_error(weights, 0, "is " + std::to_string(W.rows()) + " x " + std::to_string(W.cols()) +
-                                          " but the mesh has " + std::to_string(in.V.rows()) + " vertices and the rig " +
-                                          std::to_string(nh) + " handles");
+    throw dfm::file_error(o.weights, 0, "is " + std::to_string(W.rows()) + " x " + std::to_string(W.cols()) +
+                                            " but the mesh has " + std::to_string(in.V.rows()) + " vertices and the rig " +
+                                            std::to_string(nh) + " handles");
+  return rig;
+}
 
-  dfm::PoseParams params = dfm::rest_pose_params(rig);
-  if (!pose_file.empty()) params.bone_rotation = dfm::read_bone_rotations(pose_file, rig.skeleton.num_bones());
-  if (!points_pose.empty())
-    params.point_translation = dfm::read_point_translations(points_pose, dfm::num_point_handles(rig));
+// The pose files' parameters, and with --fast the free handles solved.
+dfm::Pose posed_handles(const Options& o, const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig,
+                        dfm::PoseParams& params) {
+  params = dfm::rest_pose_params(rig);
+  if (!o.pose_file.empty()) params.bone_rotation = dfm::read_bone_rotations(o.pose_file, rig.skeleton.num_bones());
+  if (!o.points_pose.empty())
+    params.point_translation = dfm::read_point_translations(o.points_pose, dfm::num_point_handles(rig));
   dfm::Pose pose = dfm::evaluate_pose(rig, params);
-  if (fast) {
-    if (method != dfm::SkinMethod::LBS) throw dfm::cli::UsageError("--fast solves for linear blend skinning: use --method lbs");
-    const std::vector<int> free = dfm::parse_handle_list(rig, free_list);
-    solve_fast(in, W, rig, free, iterations, pose);
-    // The solved transforms through evaluate_pose: a pinned bone below a solved one follows it.
-    const std::vector<dfm::FastConstraint> states = dfm::default_fast_constraints(rig, free);
-    for (int h = 0; h < nh; ++h)
-      if (states[h].state != dfm::HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
-    pose = dfm::evaluate_pose(rig, params);
-  }
-  const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);
+  if (!o.fast) return pose;
+  if (o.method != dfm::SkinMethod::LBS) throw dfm::cli::UsageError("--fast solves for linear blend skinning: use --method lbs");
+  const std::vector<int> free = dfm::parse_handle_list(rig, o.free_list);
+  solve_fast(in, W, rig, free, o.iterations, pose);
+  // The solved transforms through evaluate_pose: a pinned bone below a solved one follows it.
+  const std::vector<dfm::FastConstraint> states = dfm::default_fast_constraints(rig, free);
+  for (int h = 0; h < dfm::num_handles(rig); ++h)
+    if (states[h].state != dfm::HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
+  return dfm::evaluate_pose(rig, params);
+}
 
-  const Eigen::MatrixXd N = dfm::vertex_normals(in.V, in.F);
-  const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, k);
-
-  dfm::SkinResult posed;
-  std::string where;
-  const auto t0 = std::chrono::steady_clock::now();
-  if (!force_cpu && dfm::gl::display_available()) {
+// Skins on the GPU when there is a display (and not --cpu), else on the CPU; `where` says which.
+dfm::SkinResult skin_anywhere(const Options& o, const dfm::SkinBinding& kept, const dfm::Pose& pose,
+                              const std::vector<dfm::StbsHandle>& stbs, std::string& where) {
+  if (!o.force_cpu && dfm::gl::display_available()) {
     try {
       dfm::gl::Context ctx;
       dfm::gl::SkinPass pass(kept);
       pass.set_pose(pose, stbs);
-      pass.run(method);
-      posed = pass.read_back_result();
+      pass.run(o.method);
       where = "GPU (" + ctx.renderer() + ")";
+      return pass.read_back_result();
     } catch (const dfm::Error& e) {
       std::cerr << "pose: GPU skinning unavailable (" << e.what() << "); using the CPU\n";
     }
   }
-  if (where.empty()) {
-    posed = dfm::skin(method, kept, pose, stbs);
-    where = force_cpu ? "CPU (--cpu)" : "CPU (no OpenGL context)";
-  }
+  where = o.force_cpu ? "CPU (--cpu)" : "CPU (no OpenGL context)";
+  return dfm::skin(o.method, kept, pose, stbs);
+}
+
+int run(const dfm::cli::Args& args) {
+  const Options o = parse_options(args);
+  const Input in = read_input(o.input);
+  Eigen::MatrixXd W;
+  const dfm::Rig rig = read_rig(o, in, W);
+  dfm::PoseParams params;
+  const dfm::Pose pose = posed_handles(o, in, W, rig, params);
+  const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);
+  const Eigen::MatrixXd N = dfm::vertex_normals(in.V, in.F);
+  const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, o.k);
+
+  std::string where;
+  const auto t0 = std::chrono::steady_clock::now();
+  const dfm::SkinResult posed = skin_anywhere(o, kept, pose, stbs, where);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double trunc =
-      k > 0 ? dfm::truncation_error(method, dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0), kept, pose, stbs)
-            : 0.0;
+      o.k > 0 ? dfm::truncation_error(o.method, dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0), kept, pose, stbs)
+              : 0.0;
   const double diag = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
 
   dfm::TriMesh result;
   result.V = posed.V;
   result.F = in.F;
   result.N = posed.N;
-  dfm::write_surface(out, result);
+  dfm::write_surface(o.out, result);
   const dfm::SparseInfluences rows = dfm::sparse_influences(kept.influences);
-  const std::string kept_text = k > 0 ? "k = " + std::to_string(k) : "all weights";
+  const std::string kept_text = o.k > 0 ? "k = " + std::to_string(o.k) : "all weights";
   std::printf("pose: %d vertices, %d triangles, %d handles, %s, %s (%.2f per vertex on average, %d at most), "
               "skinned on the %s in %.1f ms\n",
-              static_cast<int>(in.V.rows()), static_cast<int>(in.F.rows()), nh, dfm::skin_method_name(method),
-              kept_text.c_str(), in.V.rows() ? double(rows.num_entries()) / in.V.rows() : 0.0, rows.max_row,
-              where.c_str(), ms);
-  if (k > 0)
-    std::printf("pose: largest truncation error of %d influences on this pose: %.3g (%.3g of the bbox diagonal)\n", k,
+              static_cast<int>(in.V.rows()), static_cast<int>(in.F.rows()), dfm::num_handles(rig),
+              dfm::skin_method_name(o.method), kept_text.c_str(),
+              in.V.rows() ? double(rows.num_entries()) / in.V.rows() : 0.0, rows.max_row, where.c_str(), ms);
+  if (o.k > 0)
+    std::printf("pose: largest truncation error of %d influences on this pose: %.3g (%.3g of the bbox diagonal)\n", o.k,
                 trunc, diag > 0 ? trunc / diag : 0.0);
-  std::printf("pose: wrote %s\n", out.c_str());
+  std::printf("pose: wrote %s\n", o.out.c_str());
   return 0;
 }
 
