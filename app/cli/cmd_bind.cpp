@@ -30,64 +30,63 @@ const char* kUsage =
     "                     bones, cage vertices\n"
     "  --tets OUT.mesh    also save the tet mesh the weights were solved on";
 
-int run(const dfm::cli::Args& args) {
-  using dfm::cli::UsageError;
+// What the command line asks for.
+struct Options {
   std::string input, skeleton, points, tetgen, segmentation, out, tets_out;
   std::vector<std::string> cages;
   bool exact = false, monotone = false;
   int threads = 2;
+};
+
+Options parse_options(const dfm::cli::Args& args) {
+  using dfm::cli::UsageError;
+  Options o;
   dfm::cli::ArgReader r(args);
   while (!r.done()) {
     const std::string a = r.next();
-    if (a == "--skeleton") skeleton = r.value(a);
-    else if (a == "--points") points = r.value(a);
+    if (a == "--skeleton") o.skeleton = r.value(a);
+    else if (a == "--points") o.points = r.value(a);
     else if (a == "--cage") {
       // One or more paths, up to the next flag.
-      while (!r.done() && !r.peek().empty() && r.peek()[0] != '-') cages.push_back(r.next());
-      if (cages.empty()) throw UsageError("--cage needs a file");
-    } else if (a == "--tetgen") tetgen = r.value(a);
-    else if (a == "--segmentation") segmentation = r.value(a);
-    else if (a == "--exact-pou") exact = true;
-    else if (a == "--monotone") monotone = true;
-    else if (a == "--threads") threads = r.integer(a);
-    else if (a == "-o" || a == "--output") out = r.value(a);
-    else if (a == "--tets") tets_out = r.value(a);
+      while (!r.done() && !r.peek().empty() && r.peek()[0] != '-') o.cages.push_back(r.next());
+      if (o.cages.empty()) throw UsageError("--cage needs a file");
+    } else if (a == "--tetgen") o.tetgen = r.value(a);
+    else if (a == "--segmentation") o.segmentation = r.value(a);
+    else if (a == "--exact-pou") o.exact = true;
+    else if (a == "--monotone") o.monotone = true;
+    else if (a == "--threads") o.threads = r.integer(a);
+    else if (a == "-o" || a == "--output") o.out = r.value(a);
+    else if (a == "--tets") o.tets_out = r.value(a);
     else if (!a.empty() && a[0] == '-') throw UsageError("unknown option " + a);
-    else if (input.empty()) input = a;
-    else throw UsageError("more than one input: " + input + ", " + a);
+    else if (o.input.empty()) o.input = a;
+    else throw UsageError("more than one input: " + o.input + ", " + a);
   }
-  if (input.empty()) throw UsageError("no input mesh");
-  if (out.empty()) throw UsageError("no output: give -o W.dmat");
-  if (threads < 1) throw UsageError("--threads must be >= 1");
-  if (exact && monotone)
+  if (o.input.empty()) throw UsageError("no input mesh");
+  if (o.out.empty()) throw UsageError("no output: give -o W.dmat");
+  if (o.threads < 1) throw UsageError("--threads must be >= 1");
+  if (o.exact && o.monotone)
     throw UsageError("--monotone and --exact-pou do not combine (--monotone already sums to 1 exactly)");
-  if (!segmentation.empty() && segmentation != "cut" && segmentation != "threshold")
-    throw UsageError("--segmentation must be cut or threshold, not " + segmentation);
+  if (!o.segmentation.empty() && o.segmentation != "cut" && o.segmentation != "threshold")
+    throw UsageError("--segmentation must be cut or threshold, not " + o.segmentation);
+  return o;
+}
 
+dfm::Rig read_rig(const Options& o) {
   dfm::Rig rig;
-  if (!points.empty()) dfm::add_points_file_to_rig(rig, points);
-  if (!skeleton.empty()) dfm::add_tgf_to_rig(rig, dfm::read_tgf(skeleton), skeleton);
-  for (const std::string& c : cages) {
+  if (!o.points.empty()) dfm::add_points_file_to_rig(rig, o.points);
+  if (!o.skeleton.empty()) dfm::add_tgf_to_rig(rig, dfm::read_tgf(o.skeleton), o.skeleton);
+  for (const std::string& c : o.cages) {
     dfm::Cage cage;
     cage.mesh = dfm::read_surface(c);
     cage.name = c;
     rig.cages.push_back(std::move(cage));
   }
-  if (dfm::num_handles(rig) == 0) throw UsageError("no handles: give --skeleton, --points or --cage");
+  if (dfm::num_handles(rig) == 0) throw dfm::cli::UsageError("no handles: give --skeleton, --points or --cage");
+  return rig;
+}
 
-  dfm::BindOptions opts;
-  opts.bbw.exact_partition_of_unity = exact;
-  opts.bbw.monotone = monotone;
-  opts.bbw.threads = threads;
-  if (!tetgen.empty()) opts.volume.tetgen_switches = tetgen;
-  if (segmentation == "threshold") opts.volume.segmentation = dfm::VolumeOptions::Segmentation::Threshold;
-  const bool tet_input = dfm::is_tet_mesh_path(input);
-  dfm::TriMesh surface;
-  dfm::TetMesh tets;
-  if (tet_input) tets = dfm::read_tet_mesh(input);
-  else surface = dfm::read_surface(input);
-  const dfm::BindResult res = tet_input ? dfm::bind_tet_mesh(tets, rig, opts) : dfm::bind_surface(surface, rig, opts);
-
+// The report's figures: sizes, stage times, the solver's and (when on) the monotone solve's.
+void print_report(const dfm::BindResult& res, bool exact) {
   const dfm::BindReport& rep = res.report;
   for (const std::string& n : rep.notes) std::cout << "note: " << n << "\n";
   std::printf("tets: %d (%d vertices), handles: %d, input vertices: %d\n", rep.tets, rep.tet_vertices, rep.handles,
@@ -112,17 +111,35 @@ int run(const dfm::cli::Args& args) {
     std::printf("monotone row sums: %s (%.3f s, %d joint solves, max |row sum - 1| %.3g)\n",
                 rep.bbw.monotone_joint ? "solved jointly, exact" : "joint solve infeasible, rows divided",
                 rep.bbw.monotone_joint_seconds, rep.bbw.monotone_joint_iterations, rep.bbw.monotone_sum_residual);
+}
+
+int run(const dfm::cli::Args& args) {
+  const Options o = parse_options(args);
+  const dfm::Rig rig = read_rig(o);
+  dfm::BindOptions opts;
+  opts.bbw.exact_partition_of_unity = o.exact;
+  opts.bbw.monotone = o.monotone;
+  opts.bbw.threads = o.threads;
+  if (!o.tetgen.empty()) opts.volume.tetgen_switches = o.tetgen;
+  if (o.segmentation == "threshold") opts.volume.segmentation = dfm::VolumeOptions::Segmentation::Threshold;
+  const bool tet_input = dfm::is_tet_mesh_path(o.input);
+  dfm::TriMesh surface;
+  dfm::TetMesh tets;
+  if (tet_input) tets = dfm::read_tet_mesh(o.input);
+  else surface = dfm::read_surface(o.input);
+  const dfm::BindResult res = tet_input ? dfm::bind_tet_mesh(tets, rig, opts) : dfm::bind_surface(surface, rig, opts);
+  print_report(res, o.exact);
   const dfm::BindExtrema ext =
       dfm::bind_local_extrema(res, tet_input ? dfm::tet_boundary_faces(tets.T) : surface.F);
   std::printf("local extrema away from the handles: tet graph %d maxima, %d minima; surface %d maxima, %d minima\n",
               ext.tet.maxima, ext.tet.minima, ext.surface.maxima, ext.surface.minima);
-  std::printf("weights: min %.6g, max %.6g, max |row sum - 1| %.3g, exact zeros %.1f%%\n", rep.min_weight,
-              rep.max_weight, rep.max_row_sum_error, 100.0 * rep.zero_fraction);
-  dfm::write_dmat(out, res.weights);
-  std::cout << "wrote " << out << " (" << res.weights.rows() << " x " << res.weights.cols() << ")\n";
-  if (!tets_out.empty()) {
-    dfm::write_tet_mesh(tets_out, res.volume.tets);
-    std::cout << "wrote " << tets_out << "\n";
+  std::printf("weights: min %.6g, max %.6g, max |row sum - 1| %.3g, exact zeros %.1f%%\n", res.report.min_weight,
+              res.report.max_weight, res.report.max_row_sum_error, 100.0 * res.report.zero_fraction);
+  dfm::write_dmat(o.out, res.weights);
+  std::cout << "wrote " << o.out << " (" << res.weights.rows() << " x " << res.weights.cols() << ")\n";
+  if (!o.tets_out.empty()) {
+    dfm::write_tet_mesh(o.tets_out, res.volume.tets);
+    std::cout << "wrote " << o.tets_out << "\n";
   }
   return 0;
 }
