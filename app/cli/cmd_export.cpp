@@ -91,13 +91,19 @@ void load_mesh_input(const std::string& path, const std::string& weights, const 
   in.current = in.keys.back().pose;
 }
 
-int run(const dfm::cli::Args& args) {
-  dfm::cli::ArgReader a(args);
+// What the command line asks for.
+struct Options {
   std::string input, out, weights, skeleton, points;
   std::vector<std::string> poses;
   int k = 4, morph_frames = 0;
   double key_seconds = 1.0, residual_tolerance = 0.0;
   bool verify = false;
+};
+
+Options parse_options(const dfm::cli::Args& args) {
+  dfm::cli::ArgReader a(args);
+  Options o;
+  auto& [input, out, weights, skeleton, points, poses, k, morph_frames, key_seconds, residual_tolerance, verify] = o;
   while (!a.done()) {
     const std::string f = a.next();
     if (f == "-o" || f == "--output") out = a.value(f);
@@ -125,7 +131,12 @@ int run(const dfm::cli::Args& args) {
   if (!(key_seconds > 0)) throw dfm::cli::UsageError("--key-seconds must be positive");
   const std::string oext = dfm::file_extension(out);
   if (oext != "glb" && oext != "gltf") throw dfm::cli::UsageError("-o must name a .glb or .gltf file");
+  return o;
+}
 
+// The input: a scene file, or a mesh with its weights, rig and poses.
+dfm::GltfExportInput read_export_input(const Options& o) {
+  const auto& [input, out, weights, skeleton, points, poses, k, morph_frames, key_seconds, residual_tolerance, verify] = o;
   dfm::GltfExportInput in;
   const bool scene = dfm::file_extension(input) == "json";
   if (scene) {
@@ -139,7 +150,13 @@ int run(const dfm::cli::Args& args) {
     if (in.name.empty()) in.name = "mesh";
   }
 
-  if (morph_frames > 0) {
+  return in;
+}
+
+// Morph frames baked evenly between the first and the last key (--morph-frames).
+void bake_morph_frames(int morph_frames, dfm::GltfExportInput& in) {
+  if (morph_frames <= 0) return;
+  {
     if (in.keys.size() < 2) throw dfm::Error("export: --morph-frames needs at least two keys to bake between");
     dfm::KeyTrack track;
     for (const auto& key : in.keys) track.set({key.time, key.pose});
@@ -150,6 +167,27 @@ int run(const dfm::cli::Args& args) {
     }
   }
 
+}
+
+// Re-imports the file and compares its skinning with LBS on all weights (--verify).
+void print_verification(const std::string& out, const dfm::GltfExportInput& in, double diag) {
+  {
+    std::vector<double> times;
+    std::vector<dfm::Pose> key_poses;
+    for (const auto& key : in.keys) times.push_back(key.time), key_poses.push_back(key.pose);
+    const dfm::GltfVerifyResult v = dfm::verify_gltf_export(out, in.surface.V, in.weights, in.current, times, key_poses);
+    std::cout << "  verify (re-imported, glTF skinning vs LBS with all weights): max " << v.max_error / diag
+              << " of the bbox diagonal; current pose " << v.current_error / diag;
+    for (size_t i = 0; i < v.key_errors.size(); ++i) std::cout << "; key " << i << " " << v.key_errors[i] / diag;
+    std::cout << "\n";
+  }
+}
+
+int run(const dfm::cli::Args& args) {
+  const Options o = parse_options(args);
+  const auto& [input, out, weights, skeleton, points, poses, k, morph_frames, key_seconds, residual_tolerance, verify] = o;
+  dfm::GltfExportInput in = read_export_input(o);
+  bake_morph_frames(morph_frames, in);
   dfm::GltfExportOptions options;
   options.influences = k;
   options.residual_morph_tolerance = residual_tolerance;
@@ -165,16 +203,7 @@ int run(const dfm::cli::Args& args) {
             << ")\n";
   std::cout << "  TRS residual (shear): max " << r.max_shear << ", " << r.sheared_transforms << " transform(s) above 1e-6\n";
   for (const auto& n : r.notes) std::cout << "  note: " << n << "\n";
-  if (verify) {
-    std::vector<double> times;
-    std::vector<dfm::Pose> key_poses;
-    for (const auto& key : in.keys) times.push_back(key.time), key_poses.push_back(key.pose);
-    const dfm::GltfVerifyResult v = dfm::verify_gltf_export(out, in.surface.V, in.weights, in.current, times, key_poses);
-    std::cout << "  verify (re-imported, glTF skinning vs LBS with all weights): max " << v.max_error / diag
-              << " of the bbox diagonal; current pose " << v.current_error / diag;
-    for (size_t i = 0; i < v.key_errors.size(); ++i) std::cout << "; key " << i << " " << v.key_errors[i] / diag;
-    std::cout << "\n";
-  }
+  if (verify) print_verification(out, in, diag);
   return 0;
 }
 
