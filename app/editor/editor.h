@@ -77,8 +77,9 @@ class Editor {
   // worker, and show_opened after open and replace-surface.
   ScriptHost command_host();
   // A menu item, button, shortcut or the file panel: runs the line as a script would, remembers a
-  // file it opened or saved, shows the line as the status; an error goes to the popup (false).
-  bool run_ui_command(const CommandWords& words);
+  // file it opened or saved, shows what the command printed (else the line) as the status and in
+  // *printed; an error goes to the popup (false).
+  bool run_ui_command(const CommandWords& words, std::string* printed = nullptr);
   void load_initial();  // the command line's file (or the default scene), by `open`
   void run_script_file();  // --script: every line checked, then run with the batch bind (batch_runner.h)
   void draw_open_prompt();  // "Discard unsaved changes?" before a new document replaces a dirty one

@@ -81,13 +81,20 @@ ScriptHost Editor::command_host() {
   return host;
 }
 
-bool Editor::run_ui_command(const CommandWords& words) {
+bool Editor::run_ui_command(const CommandWords& words, std::string* printed) {
   try {
     sync_camera_to_doc();  // a saved scene keeps the view as it is now
-    run_command(doc_, words, command_host());
+    ScriptHost host = command_host();
+    std::string out;
+    host.print = [&](const std::string& line) {
+      std::printf("%s\n", line.c_str());
+      out += (out.empty() ? "" : "\n") + line;
+    };
+    run_command(doc_, words, host);
     const Command* c = find_command(words[0]);
     if (c && c->remember_file && words.size() > 1) files_.add_recent(words[1]);
-    status(joined(words));  // what a script would say to do the same
+    if (printed) *printed = out;
+    status(out.empty() ? joined(words) : out);  // what the command said, else what a script would say
     return true;
   } catch (const std::exception& e) {
     error_popup_ = e.what();

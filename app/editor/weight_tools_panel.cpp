@@ -1,7 +1,6 @@
 // The Weights panel's "Weight tools" (weight_tools_panel.h): limit total influences, normalize with
-// locked handles, smooth, mirror, and the report of handles with no weight. Each button is one
-// document command (core/bind/weight_tools.h through Document::weights_*), so one undo step; the
-// script's weights-* commands run the same ones.
+// locked handles, smooth, mirror, and the report of handles with no weight. Each button runs the
+// script's weights-* command with the panel's settings as its words, so one undo step.
 #include <algorithm>
 #include <cstdio>
 #include <functional>
@@ -23,8 +22,14 @@ std::vector<int> valid_locks(std::vector<int> locked, int num_handles) {
   return locked;
 }
 
-// Runs one tool: its summary on success (shown and returned), the error popup's text on failure.
-using RunTool = std::function<void(const char* what, const std::function<std::string()>& tool)>;
+// Runs one command line; what it printed becomes the panel's last line.
+using RunTool = std::function<void(const CommandWords& words)>;
+
+// The words after a command's own: the locked handles' numbers.
+CommandWords with_locks(CommandWords w, const std::vector<int>& locked) {
+  for (int h : locked) w.push_back(CommandArg(h).word);
+  return w;
+}
 
 constexpr float kButtonW = 96;
 // A row of settings then its button fits one line on a wide panel; on a narrow one (under 266 px) the
@@ -43,9 +48,8 @@ void small_combo(const char* id, int& value, const char* const* items, int count
   ImGui::EndCombo();
 }
 
-void limit_smooth_normalize(Document& doc, WeightToolsUi& ui, const RunTool& run) {
+void limit_smooth_normalize(const Document& doc, WeightToolsUi& ui, const RunTool& run) {
   const bool wide = roomy();
-  char buf[160];
   ImGui::SetNextItemWidth(70);
   ImGui::SliderInt("##k", &ui.limit_k, 1, std::max(1, std::min(doc.num_handles(), 8)), "k %d");
   ImGui::SameLine();
@@ -53,11 +57,7 @@ void limit_smooth_normalize(Document& doc, WeightToolsUi& ui, const RunTool& run
   ImGui::SliderFloat("##radius", &ui.limit_radius, 0.0f, 5.0f, "radius %.1f");
   if (wide) ImGui::SameLine();
   if (ImGui::Button("Limit total", ImVec2(-1, 0)))
-    run("Limit total", [&] {
-      const LimitReport r = doc.weights_limit({ui.limit_k, ui.limit_radius});
-      std::snprintf(buf, sizeof buf, "limit: %d vertices kept to %d influences", r.rows_limited, ui.limit_k);
-      return std::string(buf);
-    });
+    run(command_words("weights-limit", {ui.limit_k, static_cast<double>(ui.limit_radius)}));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Keeps each vertex's k largest weights; near each cut the kept weights are re-solved over\n"
                       "about `radius` edges so they fade out instead of jumping (0: plain cut and rescale).");
@@ -68,29 +68,22 @@ void limit_smooth_normalize(Document& doc, WeightToolsUi& ui, const RunTool& run
   ImGui::SliderFloat("##factor", &ui.smooth_factor, 0.05f, 1.0f, "factor %.2f");
   if (wide) ImGui::SameLine();
   if (ImGui::Button("Smooth", ImVec2(-1, 0)))
-    run("Smooth", [&] {
-      doc.weights_smooth({ui.smooth_iterations, ui.smooth_factor, ui.smooth_cotangent}, ui.locked);
-      std::snprintf(buf, sizeof buf, "smooth: %d x %.2f%s", ui.smooth_iterations, ui.smooth_factor,
-                    ui.smooth_cotangent ? " (cotangent)" : "");
-      return std::string(buf);
-    });
+    run(with_locks(command_words("weights-smooth", {ui.smooth_iterations, static_cast<double>(ui.smooth_factor),
+                                                    ui.smooth_cotangent ? "cotan" : "uniform"}),
+                   ui.locked));
   ImGui::Checkbox("cotangent", &ui.smooth_cotangent);
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Smooth with cotangent weights instead of the plain neighbour mean.");
   ImGui::SameLine(ImGui::GetWindowContentRegionMax().x - kButtonW);
   if (ImGui::Button("Normalize", ImVec2(-1, 0)))
-    run("Normalize", [&] {
-      const NormalizeReport r = doc.weights_normalize(ui.locked);
-      std::snprintf(buf, sizeof buf, "normalize: %d vertices rescaled, %d with locked weights over 1", r.rows_scaled,
-                    r.rows_locked_over_one);
-      return std::string(buf);
-    });
+    run(with_locks(command_words("weights-normalize"), ui.locked));
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("Rows back to a sum of 1, scaling only the unlocked handles.");
 }
 
-void mirror(Document& doc, WeightToolsUi& ui, const RunTool& run) {
+void mirror(WeightToolsUi& ui, const RunTool& run) {
   const bool wide = roomy();
   static const char* const axes[] = {"x", "y", "z"};
   static const char* const modes[] = {"+ to -", "- to +", "flip"};
+  static const char* const mode_words[] = {"+", "-", "flip"};  // weights-mirror's, in MirrorMode order
   ImGui::SetNextItemWidth(28);
   small_combo("##axis", ui.mirror_axis, axes, 3);
   ImGui::SameLine();
@@ -104,17 +97,7 @@ void mirror(Document& doc, WeightToolsUi& ui, const RunTool& run) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("+ to -: the positive side copied onto the other; flip: both sides swap.");
   if (wide) ImGui::SameLine();
   if (ImGui::Button("Mirror", ImVec2(-1, 0)))
-    run("Mirror", [&] {
-      MirrorOptions o;
-      o.normal = Eigen::Vector3d::Unit(ui.mirror_axis);
-      o.offset = ui.mirror_offset;
-      o.mode = static_cast<MirrorMode>(ui.mirror_mode);
-      const MirrorReport r = doc.weights_mirror(o);
-      std::string msg = "mirror: " + std::to_string(r.vertices_changed) + " vertices changed";
-      if (r.vertices_unmatched) msg += ", " + std::to_string(r.vertices_unmatched) + " without a mirror";
-      for (int h : r.unmatched_handles) msg += "; no mirror for " + handle_name(doc.rig(), h);
-      return msg;
-    });
+    run(command_words("weights-mirror", {axes[ui.mirror_axis], static_cast<double>(ui.mirror_offset), mode_words[ui.mirror_mode]}));
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Across the plane axis = offset. Handles pair by left/right names (l_arm / r_arm, arm.L / arm.R)\n"
                       "or else by mirrored position; a vertex reads the weights at its reflection on the surface.");
@@ -151,31 +134,24 @@ void locks_and_report(const Document& doc, WeightToolsUi& ui) {
 
 }  // namespace
 
-void WeightToolsUi::draw(Document& doc, const Report& report) {
+void WeightToolsUi::draw(const Document& doc, const Run& run_command) {
   if (!doc.has_weights()) {
     text_disabled_wrapped("bind first: the tools edit the bind's weights");
     return;
   }
   locked = valid_locks(locked, doc.num_handles());
-  const RunTool run = [&](const char* what, const std::function<std::string()>& tool) {
-    try {
-      last = tool();
-      report(last, false);
-    } catch (const std::exception& e) {
-      report(std::string(what) + ": " + e.what(), true);
-    }
+  const RunTool run = [&](const CommandWords& words) {
+    std::string printed;
+    if (run_command(words, printed)) last = printed;
   };
   limit_smooth_normalize(doc, *this, run);
-  mirror(doc, *this, run);
+  mirror(*this, run);
   locks_and_report(doc, *this);
   if (!last.empty()) ImGui::TextWrapped("%s", last.c_str());  // what the last tool did
 }
 
 void Editor::draw_weight_tools_section() {
-  weight_tools_.draw(doc_, [&](const std::string& message, bool error) {
-    if (error) error_popup_ = message;
-    else status(message);
-  });
+  weight_tools_.draw(doc_, [&](const CommandWords& words, std::string& printed) { return run_ui_command(words, &printed); });
 }
 
 }  // namespace dfm::editor

@@ -1,11 +1,13 @@
 #pragma once
 // The Weights panel's "Weight tools" (Blender's weight paint menu) as one unit: their settings, the
 // handles locked for normalize and smooth, what the last tool did, and the panel that shows and runs
-// them. UI state only: each button is one document command (Document::weights_*), one undo step.
+// them. UI state only: each button runs one weights-* command of the table (SCRIPT.md), one undo step,
+// exactly the line a script would give.
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "core/scene/command.h"
 #include "core/scene/document.h"
 
 namespace dfm::editor {
@@ -23,10 +25,11 @@ struct WeightToolsUi {
   float report_threshold = 1e-3f;
   std::string last;  // what the last tool did
 
-  // What a tool reports: its summary (error false) or why it failed (error true).
-  using Report = std::function<void(const std::string& message, bool error)>;
+  // Runs a command line for the panel: true and what the command printed, or false (the caller has
+  // shown why).
+  using Run = std::function<bool(const CommandWords& words, std::string& printed)>;
   // Draws the tools into the current ImGui window and runs the one clicked.
-  void draw(Document& doc, const Report& report);
+  void draw(const Document& doc, const Run& run);
 };
 
 }  // namespace dfm::editor
