@@ -109,6 +109,10 @@ int main(int argc, char** argv) {
   if (which == "all" || which == "torus")
     run("icosphere 2562 to torus", dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.45, 4),
         dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.12, 100, 50));
+  if (which == "all" || which == "spheres")
+    run("torus to two spheres", dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.12, 100, 50),
+        dfm::test::concat(dfm::test::icosphere(Eigen::Vector3d(-0.22, 0, 0), 0.2, 4),
+                          dfm::test::icosphere(Eigen::Vector3d(0.22, 0, 0.01), 0.2, 4)));
   if (which == "all" || which == "teddy")
     run("teddy to key-torus", read_surface(std::string(DFM_SOURCE_DIR) + "/assets/default.obj"),
         read_surface(std::string(DFM_SOURCE_DIR) + "/assets/key-torus.obj"));
