@@ -465,3 +465,17 @@ TEST_CASE("delete-handles: by number or name, one undo step, as the Delete key o
   run_command(d, command_words("delete-handles", std::vector<int>{1}));
   CHECK(d.num_handles() == 2);
 }
+
+TEST_CASE("add-bone-from: a chain hanging from an existing joint, as the Bones tool started on a joint makes") {
+  Document d;
+  d.set_surface(tetra(), "tetra");
+  run_script(d, parse_script("add-bone 0.1 0.1 0.1 0.1 0.2 0.1\nadd-bone-from 1 0.2 0.25 0.1 0.3 0.3 0.1\n", "s.txt"), "s.txt");
+  const Skeleton& sk = d.rig().skeleton;
+  REQUIRE(sk.num_bones() == 3);
+  CHECK(sk.bones[1].a == 1);  // from the existing joint, no zero-length bone to a copy of it
+  CHECK(sk.num_joints() == 4);
+  for (const Bone& b : sk.bones) CHECK((sk.joints.row(b.b) - sk.joints.row(b.a)).norm() > 0.05);
+  CHECK_THROWS_WITH(run_script(d, parse_script("add-bone-from 9 0 0 0\n", "s.txt"), "s.txt"), Catch::Contains("s.txt:1"));
+  CHECK_THROWS_WITH(run_script(d, parse_script("add-bone-from 1 0 0 0 1\n", "s.txt"), "s.txt"), Catch::Contains("threes"));
+  CHECK(sk.num_bones() == 3);
+}

@@ -126,8 +126,8 @@ void Editor::show_opened(ScriptHost::Opened what) {
     slice_axis_ = SliceAxis::T;
     picked_vertex_ = -1;
     weight_rows_.clear();
-    bone_chain_.clear();
-    bone_chain_parent_ = -1;
+    bone_tool_.cancel();
+    pair_tool_.cancel();
     paint_tool_.new_document();
     weight_tools_ = WeightToolsUi{};
   }

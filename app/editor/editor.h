@@ -14,6 +14,7 @@
 #include "app/editor/bind_worker.h"
 #include "app/editor/file_panel.h"
 #include "app/editor/frame_pacing.h"
+#include "app/editor/bone_tool.h"
 #include "app/editor/pair_tool.h"
 #include "app/editor/paint_tool.h"
 #include "app/editor/pose_panels.h"
@@ -124,6 +125,7 @@ class Editor {
   void tool_draw_bone(bool clicked);
   void tool_paint(bool down, bool clicked, bool released);
   void tool_pair(bool clicked);
+  void finish_bone_chain();
   void tool_pose(bool clicked, bool released);
   Eigen::Vector2d mouse_in_viewport() const;
   // editor_panels.cpp
@@ -194,8 +196,7 @@ class Editor {
   SliceAxis slice_axis_ = SliceAxis::T;  // T: time slices; X, Y, Z: the sweep view along that axis
   double sweep_value_ = 0.5;  // fraction of the extent along the sweep axis
   int picked_vertex_ = -1;    // vertex whose weights are listed
-  std::vector<Eigen::Vector3d> bone_chain_;  // joints clicked so far (DrawBone)
-  int bone_chain_parent_ = -1;
+  BoneTool bone_tool_;    // a bone chain in the making (bone_tool.h)
   Rect viewport_;
   bool viewport_hovered_ = false;
   double timeline_h_ = 118;  // the timeline's height (its toolbar wraps to more rows on narrow windows)

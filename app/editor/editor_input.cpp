@@ -94,12 +94,8 @@ void Editor::handle_shortcuts() {
     if (pressed(GLFW_KEY_R)) tool_ = Tool::Pose, gizmo_rotate_ = true;
     if (pressed(GLFW_KEY_K)) run_ui_command({"set-key"});
     if (pressed(GLFW_KEY_SPACE)) playing_ = !playing_;
-    if (pressed(GLFW_KEY_ESCAPE)) bone_chain_.clear(), pair_tool_.cancel();
-    if ((pressed(GLFW_KEY_ENTER) || pressed(GLFW_KEY_KP_ENTER)) && tool_ == Tool::DrawBone && bone_chain_.size() >= 2) {
-      const int first = doc_.add_bone_chain(bone_chain_, bone_chain_parent_);
-      select_handle(num_point_handles(doc_.rig()) + first, false);
-      bone_chain_.clear();
-    }
+    if (pressed(GLFW_KEY_ESCAPE)) bone_tool_.cancel(), pair_tool_.cancel();
+    if ((pressed(GLFW_KEY_ENTER) || pressed(GLFW_KEY_KP_ENTER)) && tool_ == Tool::DrawBone) finish_bone_chain();
     if ((pressed(GLFW_KEY_DELETE) || pressed(GLFW_KEY_X)) && !doc_.selection().handles.empty())
       run_ui_command(command_words("delete-handles", doc_.selection().handles));
     sync_camera_to_doc();
@@ -119,7 +115,7 @@ void Editor::handle_camera_input() {
   if (drag_ == Drag::None && !pose_tool_.dragging() && !paint_tool_.painting() && over) {
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Middle) || (io.KeyAlt && ImGui::IsMouseClicked(ImGuiMouseButton_Left)))
       drag_ = (io.KeyShift ? Drag::Pan : Drag::Orbit), drag_last_ = m;
-    else if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) && !(tool_ == Tool::DrawBone && !bone_chain_.empty()))
+    else if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) && !(tool_ == Tool::DrawBone && bone_tool_.active()))
       drag_ = Drag::Pan, drag_last_ = m;
   }
   if (drag_ == Drag::Orbit) {
@@ -260,54 +256,20 @@ void Editor::tool_place_point(bool clicked) {
 
 void Editor::tool_draw_bone(bool clicked) {
   const Eigen::Vector2d m = mouse_in_viewport();
-  // Preview of the chain so far and a rubber band to the cursor.
-  if (!bone_chain_.empty()) {
-    std::vector<gl::OverlayVertex> l;
-    for (size_t i = 1; i < bone_chain_.size(); ++i) {
-      l.push_back(gl::overlay_vertex(bone_chain_[i - 1], rgba(1, 0.75f, 0.3f)));
-      l.push_back(gl::overlay_vertex(bone_chain_[i], rgba(1, 0.75f, 0.3f)));
-    }
-    if (viewport_hovered_) {
-      view::Camera c = cam_;
-      c.target = bone_chain_.back();
-      l.push_back(gl::overlay_vertex(bone_chain_.back(), rgba(1, 1, 1, 0.6f)));
-      l.push_back(gl::overlay_vertex(view::pixel_on_target_plane(c, m.x(), m.y()), rgba(1, 1, 1, 0.6f)));
-    }
-    view_->add_overlay_lines(l, 3.0f);
-    std::vector<gl::OverlayVertex> pts;
-    for (const auto& j : bone_chain_) pts.push_back(gl::overlay_vertex(j, rgba(1, 0.75f, 0.3f)));
-    view_->add_overlay_points(pts, 10.0f);
-  }
-  const bool finish = viewport_hovered_ && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && !bone_chain_.empty();
-  if (finish) {
-    if (bone_chain_.size() >= 2) {
-      const int first = doc_.add_bone_chain(bone_chain_, bone_chain_parent_);
-      select_handle(num_point_handles(doc_.rig()) + first, false);
-      status("added " + std::to_string(bone_chain_.size() - 1) + " bone(s)");
-    }
-    bone_chain_.clear();
-    bone_chain_parent_ = -1;
-    return;
-  }
+  bone_tool_.draw_preview(*view_, cam_, {m, viewport_hovered_, clicked});
+  if (viewport_hovered_ && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && bone_tool_.active()) return finish_bone_chain();
   if (!clicked) return;
-  if (bone_chain_.empty()) {
-    const int j = view::pick_projected_point(cam_, view_->joint_positions(), m, 8);
-    if (j >= 0) {
-      bone_chain_parent_ = j;
-      bone_chain_.push_back(view_->joint_positions().row(j));
-      return;
-    }
-    bone_chain_parent_ = -1;
-  }
-  const view::Ray ray = view::pixel_ray(cam_, m.x(), m.y());
-  Eigen::Vector3d p;
-  if (!view::pick_inside_point(ray, view_->display_vertices(), view_->display_faces(), p)) {
-    if (bone_chain_.empty()) return status("click inside the surface to start a bone chain");
-    view::Camera c = cam_;  // off the surface: continue at the last joint's depth
-    c.target = bone_chain_.back();
-    p = view::pixel_on_target_plane(c, m.x(), m.y());
-  }
-  bone_chain_.push_back(p);
+  const std::string why = bone_tool_.click(*view_, cam_, m);
+  if (!why.empty()) status(why);
+}
+
+// The chain so far through add-bone (or add-bone-from its joint); a chain of one joint is dropped.
+void Editor::finish_bone_chain() {
+  const int before = doc_.rig().skeleton.num_bones();
+  const CommandWords words = bone_tool_.finish();
+  if (words.empty() || !run_ui_command(words)) return;
+  select_handle(num_point_handles(doc_.rig()) + before, false);
+  status("added " + std::to_string(doc_.rig().skeleton.num_bones() - before) + " bone(s)");
 }
 
 void Editor::tool_paint(bool down, bool clicked, bool released) {

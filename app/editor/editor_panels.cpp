@@ -233,7 +233,7 @@ void Editor::draw_tools_panel() {
       help_marker("On: halfway between where the cursor ray enters and leaves the surface. Off: on the surface.");
       break;
     case Tool::DrawBone:
-      ImGui::TextWrapped("%d joint(s) in the chain. Right-click / Enter: finish, Esc: cancel.", int(bone_chain_.size()));
+      ImGui::TextWrapped("%d joint(s) in the chain. Right-click / Enter: finish, Esc: cancel.", bone_tool_.joints());
       break;
     case Tool::Paint: {
       paint_tool_.draw_options(doc_);  // paint_tool.h

@@ -1,4 +1,5 @@
 // The table's surface, rig, bind and mask commands (SCRIPT.md).
+#include <cmath>
 #include "core/scene/bind_document.h"
 #include "core/scene/brush.h"
 #include "core/scene/command_parts.h"
@@ -76,6 +77,20 @@ void add_rig_commands(std::vector<Command>& t) {
   c->check = [](const CommandWords& w, const std::string&) {
     if ((w.size() - 1) % 3 != 0)
       throw Error("add-bone needs joint positions in threes (x y z), got " + std::to_string(w.size() - 1) + " numbers");
+  };
+  // A chain hanging from joint J: J's bone to the first new joint, and on through the rest.
+  c = &add(t, "add-bone-from", "add-bone-from JOINT X1 Y1 Z1 [X2 Y2 Z2 ...]", 4, 3001, {number_arg()},
+           [](CommandContext& x, const CommandWords& w) {
+             std::vector<Eigen::Vector3d> joints;
+             for (size_t i = 2; i + 2 < w.size(); i += 3) joints.push_back({num(w, i), num(w, i + 1), num(w, i + 2)});
+             const double j = num(w, 1);
+             if (j < 0 || j != std::floor(j)) throw Error("JOINT must be a joint number, got " + w[1]);
+             x.doc.add_bone_chain(joints, static_cast<int>(j));
+           });
+  c->check = [](const CommandWords& w, const std::string&) {
+    if ((w.size() - 2) % 3 != 0)
+      throw Error("add-bone-from needs joint positions in threes (x y z) after the joint, got " +
+                  std::to_string(w.size() - 2) + " numbers");
   };
   c = &add(t, "load-skeleton", "load-skeleton FILE.tgf", 1, 1, {file_arg()},
            [](CommandContext& x, const CommandWords& w) { x.doc.load_skeleton(w[1]); });
