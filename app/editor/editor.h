@@ -1,6 +1,8 @@
 #pragma once
 // The editor window: one Document (the single source of truth), the GPU state mirroring it, the
-// viewport tools and the ImGui panels. Every edit calls a Document member; panels only read it.
+// camera, the loop, and the tools and panels (each its own unit: pose_tool.h, paint_tool.h,
+// bone_tool.h, pair_tool.h, pose_panels.h, weight_tools_panel.h). Edits run the command table's lines
+// (run_ui_command), as a script does; panels read the document.
 #include <chrono>
 #include <cstdint>
 #include <memory>
