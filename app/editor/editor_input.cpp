@@ -249,7 +249,8 @@ void Editor::tool_place_point(bool clicked) {
     p = h.point;
   }
   if (!ok) return status("click on the surface to place a point handle");
-  const int i = doc_.add_point(p);
+  const int i = num_point_handles(doc_.rig());
+  if (!run_ui_command(command_words("add-point", {p.x(), p.y(), p.z()}))) return;
   select_handle(i, false);
   status("placed point handle " + handle_name(doc_.rig(), i));
 }

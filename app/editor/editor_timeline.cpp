@@ -9,6 +9,7 @@
 
 #include "app/editor/editor.h"
 #include "app/editor/theme.h"
+#include "core/anim/inbetween_method.h"
 
 namespace dfm::editor {
 
@@ -22,7 +23,7 @@ void Editor::draw_timeline_toolbar() {
   flow.next(ItemFlow::check_width("Loop"));
   ImGui::Checkbox("Loop", &loop_);
   flow.next(ItemFlow::button_width("Key (K)"));
-  if (ImGui::Button("Key (K)")) doc_.set_key(doc_.time());
+  if (ImGui::Button("Key (K)")) run_ui_command({"set-key"});
   flow.next(ItemFlow::button_width("Key mesh..."));
   if (ImGui::Button("Key mesh...")) {
     // The same file dialog as File > Open; the pick runs `key-mesh FILE T` at the time pressed.
@@ -35,7 +36,7 @@ void Editor::draw_timeline_toolbar() {
   flow.next(ItemFlow::button_width("Delete key"));
   const int at = doc_.key_at(doc_.time());
   if (at < 0) ImGui::BeginDisabled();
-  if (ImGui::Button("Delete key")) doc_.delete_key(at);
+  if (ImGui::Button("Delete key")) run_ui_command(command_words("delete-key", {doc_.keys()[at].time}));
   if (at < 0) ImGui::EndDisabled();
   draw_inbetween_choice(flow);
   // Time as animation tools show it: a frame at the frame rate, and seconds.
@@ -110,7 +111,8 @@ void Editor::draw_inbetween_choice(ItemFlow& flow) {
   flow.next(86);
   if (k < 0) ImGui::BeginDisabled();
   ImGui::SetNextItemWidth(86);
-  if (ImGui::Combo("##inbetween", &m, names, 3)) doc_.set_key_inbetween(k, static_cast<InbetweenMethod>(m));
+  if (ImGui::Combo("##inbetween", &m, names, 3))
+    run_ui_command(command_words("set-inbetween", {doc_.keys()[k].time, inbetween_method_name(static_cast<InbetweenMethod>(m))}));
   if (k < 0) ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("In-between of the key interval at the current time:\n"
