@@ -47,10 +47,10 @@ void run(const char* name, const TriMesh& a, const TriMesh& b, bool align) {
   std::printf("%-28s %5d -> %5d vertices: total %.2f s (conform and fill %.2f, field %.2f, delaunay %.2f, extract %.2f); "
               "%d + %d + %d points, %d 4-simplices, %d Steiner points, %d flips, %d triangles not conforming, %d chords, %d key-plane fixes, %d tets\n",
               name, static_cast<int>(a.V.rows()), static_cast<int>(b.V.rows()), st.total_seconds, st.conform_seconds,
-              st.field_seconds, st.delaunay_seconds, st.extract_seconds, st.source_points, st.middle_points,
-              st.target_points, st.simplices, st.source_steiner + st.target_steiner, st.source_flipped + st.target_flipped,
-              st.source_missing + st.target_missing, st.source_chords + st.target_chords,
-              st.source_plane_fixes + st.target_plane_fixes, st.tets);
+              st.field_seconds, st.delaunay_seconds, st.extract_seconds, st.source.points, st.middle_points,
+              st.target.points, st.simplices, st.source.steiner + st.target.steiner, st.source.flipped + st.target.flipped,
+              st.source.missing + st.target.missing, st.source.chords + st.target.chords,
+              st.source.plane_fixes + st.target.plane_fixes, st.tets);
   // Baseline in the same process: a prism manifold of the first key over enough layers to hold about
   // as many tetrahedra, sliced by the same slicer.
   const int layers = std::max(2, static_cast<int>(std::lround(st.tets / (3.0 * a.F.rows()))) + 1);

@@ -94,8 +94,8 @@ void check_transition(const TriMesh& S, const TriMesh& T, const std::string& nam
   const AnimationManifold M = build_transition(S, 0.0, T, 1.0, {}, &st);
   validate_manifold(M, name);
   const double diag = diagonal(S, T);
-  INFO(name << ": " << st.simplices << " 4-simplices, " << st.tets << " tets, Steiner " << st.source_steiner << " + "
-            << st.target_steiner << ", " << st.total_seconds << " s");
+  INFO(name << ": " << st.simplices << " 4-simplices, " << st.tets << " tets, Steiner " << st.source.steiner << " + "
+            << st.target.steiner << ", " << st.total_seconds << " s");
   // At the keys: the slice's vertices lie on the key surface, every key vertex is a slice vertex.
   for (int k = 0; k < 2; ++k) {
     const TriMesh& key = k == 0 ? S : T;
@@ -540,7 +540,7 @@ TEST_CASE("transition: bunny to 3holes", "[transition][heavy]") {
   TransitionStats st;
   const AnimationManifold M = build_transition(a, 0, b, 1, {}, &st);
   validate_manifold(M, "bunny to 3holes");
-  INFO(st.source_missing << " + " << st.target_missing << " surface triangles not conforming, " << st.total_seconds << " s");
+  INFO(st.source.missing << " + " << st.target.missing << " surface triangles not conforming, " << st.total_seconds << " s");
   const double diag = diagonal(a, b);
   std::vector<int> chis;
   for (int i = 1; i <= 20; ++i) {

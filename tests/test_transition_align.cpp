@@ -457,8 +457,8 @@ TEST_CASE("transition pairs: bumps that move along the top and bottom follow the
   with.pairs = pairs;
   TransitionStats st, sp;
   const AnimationManifold M = build_transition(S, 0, T, 1, with, &st), plain = build_transition(S, 0, T, 1, without, &sp);
-  INFO(st.total_seconds << " s; triangles not conforming: with pairs " << st.source_missing << " + " << st.target_missing
-       << ", without " << sp.source_missing << " + " << sp.target_missing);
+  INFO(st.total_seconds << " s; triangles not conforming: with pairs " << st.source.missing << " + " << st.target.missing
+       << ", without " << sp.source.missing << " + " << sp.target.missing);
   validate_manifold(M, "pairs");
   CHECK(st.turn_degrees == Approx(std::abs(P.degrees)).margin(1e-6));
   // The bumps' flanks cost the conforming step triangles (4 of the target's stay missing, 17 of the warped

@@ -70,7 +70,7 @@ void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, d
 void print_sequence_stats(const dfm::SequenceStats& s) {
   const dfm::TransitionStats& t = s.transitions;
   std::cout << "prism slabs: " << s.prism_slabs << "\ntransition slabs: " << s.transition_slabs
-            << "\nsteiner points: " << t.source_steiner + t.target_steiner << "\nturn degrees: " << t.turn_degrees
+            << "\nsteiner points: " << t.source.steiner + t.target.steiner << "\nturn degrees: " << t.turn_degrees
             << "\nscale: " << t.scale << "\nalign seconds: " << t.align_seconds << "\nconform seconds: " << t.conform_seconds
             << "\nfield seconds: " << t.field_seconds << "\ndelaunay seconds: " << t.delaunay_seconds
             << "\nextract seconds: " << t.extract_seconds << "\ntransition seconds: " << t.total_seconds

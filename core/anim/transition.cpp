@@ -111,21 +111,21 @@ AnimationManifold into_slabs(const IsoManifold& iso, const std::vector<double>& 
 
 }  // namespace
 
+KeyBuildStats& KeyBuildStats::operator+=(const KeyBuildStats& o) {
+  points += o.points;
+  steiner += o.steiner;
+  missing += o.missing;
+  flipped += o.flipped;
+  chords += o.chords;
+  plane_fixes += o.plane_fixes;
+  return *this;
+}
+
 TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
-  source_points += o.source_points;
-  target_points += o.target_points;
+  source += o.source;
+  target += o.target;
   middle_points += o.middle_points;
-  source_steiner += o.source_steiner;
-  target_steiner += o.target_steiner;
-  source_missing += o.source_missing;
-  source_flipped += o.source_flipped;
-  target_flipped += o.target_flipped;
-  target_missing += o.target_missing;
-  source_chords += o.source_chords;
-  source_plane_fixes += o.source_plane_fixes;
-  target_plane_fixes += o.target_plane_fixes;
   sealed += o.sealed;
-  target_chords += o.target_chords;
   simplices += o.simplices;
   tets += o.tets;
   conform_seconds += o.conform_seconds;
@@ -302,15 +302,13 @@ IsoField iso_field(const FieldPoints& p, double t0, double t1) {
   return field;
 }
 
-void record_keys(const KeyLayer& S, const KeyLayer& T, TransitionStats& st) {
-  st.source_steiner = S.surface.steiner;
-  st.target_steiner = T.surface.steiner;
-  st.source_flipped = static_cast<int>(S.surface.flipped.size());
-  st.target_flipped = static_cast<int>(T.surface.flipped.size());
-  st.source_missing = S.surface.missing;
-  st.target_missing = T.surface.missing;
-  st.source_chords = S.chords;
-  st.target_chords = T.chords;
+KeyBuildStats key_build_stats(const KeyLayer& k) {
+  KeyBuildStats st;
+  st.steiner = k.surface.steiner;
+  st.missing = k.surface.missing;
+  st.flipped = static_cast<int>(k.surface.flipped.size());
+  st.chords = k.chords;
+  return st;
 }
 
 // The field's morph between keys already in one frame (transition.h, "The field"), with o.layers
@@ -354,12 +352,13 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   AnimationManifold M = into_slabs(iso, layer_times);
   st.extract_seconds = seconds_since(t);
 
-  record_keys(S, T, st);
-  st.source_points = p.source_end;
+  st.source = key_build_stats(S);
+  st.target = key_build_stats(T);
+  st.source.points = p.source_end;
   st.middle_points = p.lattice_size;
-  st.target_points = static_cast<int>(p.points.size()) - p.target_begin;
-  st.source_plane_fixes = plane_s.bridges + plane_s.carved;
-  st.target_plane_fixes = plane_t.bridges + plane_t.carved;
+  st.target.points = static_cast<int>(p.points.size()) - p.target_begin;
+  st.source.plane_fixes = plane_s.bridges + plane_s.carved;
+  st.target.plane_fixes = plane_t.bridges + plane_t.carved;
   st.simplices = static_cast<int>(D.simplices.rows());
   st.tets = M.num_tets();
   return M;

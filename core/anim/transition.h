@@ -82,14 +82,20 @@ struct TransitionOptions {
   }
 };
 
+// One key's side of a transition build.
+struct KeyBuildStats {
+  int points = 0;       // at the key's time, fill points included
+  int steiner = 0;      // surface Steiner points added
+  int missing = 0;      // surface triangles the conforming step left missing
+  int flipped = 0;      // nearly flat quads that took their other diagonal
+  int chords = 0;       // outside tetrahedra still bridging a concavity
+  int plane_fixes = 0;  // tets the key's plane read wrongly, corrected (key_plane.h)
+  KeyBuildStats& operator+=(const KeyBuildStats& o);
+};
+
 struct TransitionStats {
-  int source_points = 0, target_points = 0;      // at the keys' times, fill points included
+  KeyBuildStats source, target;
   int middle_points = 0;                         // in the layers between
-  int source_steiner = 0, target_steiner = 0;    // surface Steiner points added
-  int source_missing = 0, target_missing = 0;    // surface triangles the conforming step left missing
-  int source_flipped = 0, target_flipped = 0;    // nearly flat quads that took their other diagonal
-  int source_chords = 0, target_chords = 0;      // outside tetrahedra still bridging a concavity
-  int source_plane_fixes = 0, target_plane_fixes = 0;  // tets the keys' planes read wrongly, corrected (key_plane.h)
   int sealed = 0;                                // folds at the keys' times replaced (key_time_seal.h)
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
   int tets = 0;                                  // of the resulting manifold
