@@ -275,11 +275,8 @@ Delaunay4 transition_triangulation(const FieldPoints& p, double time_scale) {
                                static_cast<int>(p.points.size()), time_scale);
   const Delaunay4 D0 = end_triangulation(p, 0, p.source_end, first, first + n, time_scale);
   const Delaunay4 D1 = target_end.get();
-  Delaunay4 local0 = D0, local1 = D1;  // in lattice numbers, to read K from each end
-  local0.simplices.array() -= first;
-  local1.simplices.array() -= last;
-  const MatrixX4iRow K = hull_facets_in(local0, 0, n);
-  if (!(hull_facets_in(local1, 0, n) == K))
+  const MatrixX4iRow K = hull_facets_in(D0, first, first + n);  // in lattice numbers
+  if (!(hull_facets_in(D1, last, last + n) == K))
     throw Error("transition: the middle points' tetrahedralization differs between the two ends");
   const MatrixX5iRow middle = extrude_tets(K, p.layer_begin, [&](Eigen::Index tet, int k) {
     int neg = 0;
