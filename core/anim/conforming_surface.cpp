@@ -29,14 +29,27 @@ std::uint64_t edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
+// What one round may do to the triangles missing from the tetrahedralization.
+enum class RoundAction {
+  count,           // nothing: only count them (missing_rows: every missing row)
+  flip,            // take the other diagonal where that mends one (missing_rows: rows no flip mends)
+  flip_and_split,  // flip, else split an edge
+};
+
+struct RoundOptions {
+  RoundAction action = RoundAction::flip_and_split;
+  double flip_gap = 0;  // > 0: also flip nearly flat quads whose diagonals pass within this distance
+};
+
 // One round: the triangles of s missing from the Delaunay tetrahedralization of s.V. Where a
 // missing triangle and its neighbour are coplanar (co-circular points: the Delaunay tetrahedralization
 // chose the other diagonal) the surface takes the other diagonal, which changes no geometry;
 // elsewhere the triangle's longest edge missing from the tetrahedralization is split (else its
-// longest edge). Returns the number of triangles that were missing; with fix false it only counts,
-// with allow_split false it only flips (and missing_rows lists the rows the flips do not mend).
-int conform_round(ConformingSurface& s, bool fix, std::vector<int>* missing_rows = nullptr, bool allow_split = true,
-                  double flip_gap = 0) {
+// longest edge). Returns the number of triangles that were missing.
+int conform_round(ConformingSurface& s, RoundOptions o, std::vector<int>* missing_rows = nullptr) {
+  const bool fix = o.action != RoundAction::count;
+  const bool allow_split = o.action == RoundAction::flip_and_split;
+  const double flip_gap = o.flip_gap;
   const SurfaceDelaunay sd = surface_delaunay(s);
   const Delaunay3& dt = sd.dt;
   const auto& vh = sd.vertex;
@@ -156,7 +169,7 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
   int lost_before = s.missing;
   for (int round = 0; round < 4 && !added.empty(); ++round) {
     std::vector<int> lost;
-    conform_round(s, true, &lost, false);
+    conform_round(s, {RoundAction::flip}, &lost);
     if (static_cast<int>(lost.size()) <= lost_before) {  // no worse than without the points
       s.missing = static_cast<int>(lost.size());
       return static_cast<int>(added.size());
@@ -177,7 +190,7 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
     store();
   }
   ConformingSurface probe = s;
-  s.missing = conform_round(probe, false);  // what the points cost in the end
+  s.missing = conform_round(probe, {RoundAction::count});  // what the points cost in the end
   return static_cast<int>(added.size());
 }
 
@@ -342,9 +355,9 @@ int split_edges(ConformingSurface& s, const std::vector<std::pair<int, int>>& tr
 
 int flip_nearly_flat(ConformingSurface& s, double max_gap) {
   const size_t before = s.flipped.size();
-  conform_round(s, true, nullptr, false, max_gap);
+  conform_round(s, {RoundAction::flip, max_gap});
   ConformingSurface probe = s;
-  s.missing = conform_round(probe, false);
+  s.missing = conform_round(probe, {RoundAction::count});
   return static_cast<int>(s.flipped.size() - before);
 }
 
@@ -354,7 +367,9 @@ void make_conforming(ConformingSurface& s, int max_rounds) {
   best.missing = -1;
   for (int round = 0;; ++round) {
     ConformingSurface next = s;
-    const int missing = conform_round(next, round < max_rounds);  // counts s's missing triangles
+    // Counts s's missing triangles; the last round only counts.
+    const RoundAction act = round < max_rounds ? RoundAction::flip_and_split : RoundAction::count;
+    const int missing = conform_round(next, {act});
     if (best.missing < 0 || missing < best.missing) {
       best = s;
       best.missing = missing;
