@@ -115,6 +115,24 @@ TEST_CASE("zoom to cursor keeps the point under the cursor fixed", "[camera]") {
   }
 }
 
+TEST_CASE("pixel_on_plane_through: the point under the cursor at p's depth, off the view axis too", "[camera]") {
+  for (bool ortho : {false, true}) {
+    const Camera c = sample_camera(ortho);
+    const Vector3d p = c.target + 0.7 * camera_right(c) - 0.4 * camera_up(c) + 0.5 * camera_forward(c);
+    const Vector3d at = project_to_pixel(c, p);
+    CHECK((pixel_on_plane_through(c, p, at.x(), at.y()) - p).norm() < 1e-9);  // under its own pixel: p
+    const Vector2d cursor(at.x() + 75, at.y() - 40);
+    const Vector3d q = pixel_on_plane_through(c, p, cursor.x(), cursor.y());
+    const Vector3d s = project_to_pixel(c, q);
+    CHECK(s.x() == Approx(cursor.x()).margin(1e-6));
+    CHECK(s.y() == Approx(cursor.y()).margin(1e-6));
+    CHECK(std::abs((q - p).dot(camera_forward(c))) < 1e-9);
+  }
+  const Camera c = sample_camera(false);  // behind the eye: p stays
+  const Vector3d behind = camera_eye(c) - camera_forward(c);
+  CHECK(pixel_on_plane_through(c, behind, 10, 10) == behind);
+}
+
 TEST_CASE("frame fits every corner of the box inside the viewport, perspective and ortho", "[camera]") {
   for (bool ortho : {false, true}) {
     Camera c = sample_camera(ortho);

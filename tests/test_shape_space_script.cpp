@@ -3,6 +3,7 @@
 // affine combination of the key meshes written here (Alexa 2002, Eq. 5.36) and, at e_i, the key itself.
 #include <catch2/catch.hpp>
 
+#include "core/scene/command.h"
 #include "core/scene/script.h"
 #include "core/scene/shape_space_keys.h"
 #include "core/util/error.h"
@@ -69,4 +70,35 @@ TEST_CASE("shape-space-key errors: parse problems and bad keys name the line and
   // A mesh key of another connectivity is named.
   doc.key_mesh(test::icosphere(Eigen::Vector3d::Zero(), 1.0, 2), "fine.obj", 6);
   CHECK_THROWS_WITH(run(doc, "shape-space-key linear 0 6 0.5 0.5\n"), Catch::Contains("fine.obj"));
+}
+
+TEST_CASE("shape-space-key keys the host's ready shape (the editor's cursor) as is, else synthesizes", "[script][shape_space]") {
+  Document doc;
+  std::vector<TriMesh> k;
+  three_mesh_keys(doc, k);
+  std::vector<double> seen_times;
+  Eigen::VectorXd seen_x;
+  Eigen::MatrixXd ready = k[0].V.array() + 7.0;  // no blend of the keys: only the host's shape
+  ScriptHost host;
+  host.synthesized_shape = [&](const std::vector<double>& times, ShapeMorph morph, const Eigen::VectorXd& x) {
+    seen_times = times;
+    seen_x = x;
+    return morph == ShapeMorph::Arap ? ready : Eigen::MatrixXd();
+  };
+  // The UI passes the coordinates to the last bit (CommandArg): the host sees them exactly.
+  const double w1 = 1.0 / 3.0;
+  run_command(doc, command_words("shape-space-key", {"arap", 0.0, 1.0, 2.0, 0.25, w1, 1.0 - 0.25 - w1, 3.0}), host);
+  REQUIRE(doc.key_at(3) >= 0);
+  CHECK(doc.keys()[doc.key_at(3)].mesh.V == ready);
+  CHECK(seen_times == std::vector<double>{0, 1, 2});
+  REQUIRE(seen_x.size() == 3);
+  CHECK(seen_x(1) == w1);
+
+  // No ready shape (linear here; or one of the wrong size): the command synthesizes it.
+  run_script(doc, parse_script("shape-space-key linear 0 1 2 0.2 0.5 0.3 4\n", "s.txt"), "s.txt", host);
+  const Eigen::MatrixXd& V = doc.keys()[doc.key_at(4)].mesh.V;
+  CHECK((V - (0.2 * k[0].V + 0.5 * k[1].V + 0.3 * k[2].V)).cwiseAbs().maxCoeff() < 1e-12);
+  ready.resize(5, 3);
+  run_command(doc, command_words("shape-space-key", {"arap", 0.0, 1.0, 2.0, 0.0, 1.0, 0.0, 5.0}), host);
+  CHECK(doc.keys()[doc.key_at(5)].mesh.V == k[1].V);
 }

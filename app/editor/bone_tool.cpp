@@ -22,9 +22,7 @@ std::string BoneTool::click(SceneView& view, const view::Camera& cam, const Eige
   Eigen::Vector3d p;
   if (!view::pick_inside_point(view::pixel_ray(cam, m.x(), m.y()), view.display_vertices(), view.display_faces(), p)) {
     if (joints_.empty()) return "click inside the surface to start a bone chain";
-    view::Camera c = cam;  // off the surface: continue at the last joint's depth
-    c.target = joints_.back();
-    p = view::pixel_on_target_plane(c, m.x(), m.y());
+    p = view::pixel_on_plane_through(cam, joints_.back(), m.x(), m.y());  // off the surface: the last joint's depth
   }
   joints_.push_back(p);
   return "";
@@ -38,10 +36,9 @@ void BoneTool::draw_preview(SceneView& view, const view::Camera& cam, const Inpu
     l.push_back(gl::overlay_vertex(joints_[i], kChain));
   }
   if (in.hovered) {
-    view::Camera c = cam;
-    c.target = joints_.back();
     l.push_back(gl::overlay_vertex(joints_.back(), kRubberBand));
-    l.push_back(gl::overlay_vertex(view::pixel_on_target_plane(c, in.mouse.x(), in.mouse.y()), kRubberBand));
+    const Eigen::Vector3d end = view::pixel_on_plane_through(cam, joints_.back(), in.mouse.x(), in.mouse.y());
+    l.push_back(gl::overlay_vertex(end, kRubberBand));
   }
   view.add_overlay_lines(l, 3.0f);
   for (const auto& j : joints_) pts.push_back(gl::overlay_vertex(j, kChain));

@@ -21,6 +21,7 @@
 #include "app/editor/paint_tool.h"
 #include "app/editor/pose_panels.h"
 #include "app/editor/pose_tool.h"
+#include "app/editor/rig_drag.h"
 #include "app/editor/scene_view.h"
 #include "app/editor/timeline_ruler.h"
 #include "app/editor/view_model.h"
@@ -153,6 +154,9 @@ class Editor {
   // "synthesizing (ARAP) 1.2 s" while the panel waits for its worker's shape, else "" (a job's
   // progress: the loop draws when it changes).
   std::string shape_space_progress() const;
+  // The cursor's shape when it is the space's own synthesis for these bases, morph and coordinates
+  // (the ARAP one the worker made), for shape-space-key; else empty.
+  Eigen::MatrixXd shape_space_ready(const std::vector<double>& times, ShapeMorph morph, const Eigen::VectorXd& x) const;
   // Draws frames until the panel's ARAP shape for the cursor has arrived (scripts, --screenshot), and
   // prints the frames' times; editor_batch.cpp.
   void wait_for_shape_space();
@@ -209,16 +213,14 @@ class Editor {
   PanelLayout panel_layout() const;
 
   // gestures
-  enum class Drag { None, Orbit, Pan, Handle } drag_ = Drag::None;
+  enum class Drag { None, Orbit, Pan } drag_ = Drag::None;  // the camera's drags
   Eigen::Vector2d drag_last_ = Eigen::Vector2d::Zero();
+  RigDrag rig_drag_;    // the Select tool's drag of a rest-pose handle or joint (rig_drag.h)
   PoseTool pose_tool_;  // the gizmo and its drag (pose_tool.h)
   PaintTool paint_tool_;  // the brush, its settings and its stroke (paint_tool.h)
   PairTool pair_tool_;    // a picked pair in the making (pair_tool.h)
   TimelineRuler timeline_ruler_;  // the timeline's ruler and its drags (timeline_ruler.h)
   PosePanels pose_panels_;  // the Transform and Posing sections (pose_panels.h)
-  Eigen::Vector3d drag_point_ = Eigen::Vector3d::Zero();  // handle being dragged (world)
-  int drag_handle_ = -1;
-  int drag_joint_ = -1;
 
   // timing and messages
   FrameTally bind_tally_;  // UI frames drawn while the last bind ran (each should stay < 100 ms)

@@ -78,6 +78,9 @@ ScriptHost Editor::command_host() {
   };
   host.opened = [this](ScriptHost::Opened what) { show_opened(what); };
   host.bind = [this](Document&) { start_bind(); };  // the UI's bind: the worker, collected by tick()
+  host.synthesized_shape = [this](const std::vector<double>& times, ShapeMorph morph, const Eigen::VectorXd& x) {
+    return shape_space_ready(times, morph, x);
+  };
   return host;
 }
 

@@ -38,18 +38,6 @@ Grab pick_rig(const view::Camera& cam, const SceneView& view, const Rig& rig, co
   return b >= 0 ? Grab{Grab::Handle, np + b} : Grab{};
 }
 
-// Where the cursor meets the plane through p that faces the camera (p itself when that plane is
-// behind the eye): a dragged handle's new position.
-Eigen::Vector3d on_view_plane(const view::Camera& cam, const Eigen::Vector3d& p, const Eigen::Vector2d& m) {
-  view::Camera c = cam;
-  c.target = p;
-  c.distance = cam.orthographic ? cam.distance : (p - view::camera_eye(cam)).dot(view::camera_forward(cam));
-  if (!cam.orthographic && c.distance <= 1e-9) return p;
-  const Eigen::Vector3d q = view::pixel_on_target_plane(cam.orthographic ? cam : c, m.x(), m.y());
-  if (!cam.orthographic) return q;
-  return q + (p - q).dot(view::camera_forward(cam)) * view::camera_forward(cam);
-}
-
 }  // namespace
 
 Eigen::Vector2d Editor::mouse_in_viewport() const {
@@ -112,7 +100,7 @@ void Editor::handle_camera_input() {
     view::zoom_to_cursor(cam_, std::pow(0.85, io.MouseWheel), m);
     sync_camera_to_doc();
   }
-  if (drag_ == Drag::None && !pose_tool_.dragging() && !paint_tool_.painting() && over) {
+  if (drag_ == Drag::None && !rig_drag_.dragging() && !pose_tool_.dragging() && !paint_tool_.painting() && over) {
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Middle) || (io.KeyAlt && ImGui::IsMouseClicked(ImGuiMouseButton_Left)))
       drag_ = (io.KeyShift ? Drag::Pan : Drag::Orbit), drag_last_ = m;
     else if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) && !(tool_ == Tool::DrawBone && bone_tool_.active()))
@@ -150,8 +138,8 @@ void Editor::handle_viewport_input() {
       case Tool::Pair: tool_pair(clicked); break;
     }
   } catch (const std::exception& e) {
-    if (drag_ != Drag::None) doc_.end_gesture();
     drag_ = Drag::None;
+    rig_drag_.cancel(doc_);
     pose_tool_.cancel(doc_);
     paint_tool_.cancel(doc_);
     error_popup_ = e.what();
@@ -169,26 +157,14 @@ void Editor::tool_select(bool clicked, bool released) {
     const bool additive = ImGui::GetIO().KeyShift || ImGui::GetIO().KeyCtrl;
     if (g.kind == Grab::Handle) {
       select_handle(g.index, additive);
-      const HandleRef r = handle_ref(rig, g.index);
       // Handles move only in the rest pose (editing the rig); posing is the Pose tool's job.
-      if (view_->display_is_rest() && (r.kind == HandleKind::Point || r.kind == HandleKind::CageVertex)) {
-        drag_ = Drag::Handle;
-        drag_handle_ = g.index;
-        drag_point_ = P.row(g.index);
-        doc_.begin_gesture();
-      }
+      if (view_->display_is_rest()) rig_drag_.start_handle(doc_, g.index, P.row(g.index));
       weight_rows_.clear();
     } else if (g.kind == Grab::Joint) {
       Selection s = doc_.selection();
       s.joint = g.index;
       doc_.set_selection(s);
-      if (view_->display_is_rest()) {
-        drag_ = Drag::Handle;
-        drag_handle_ = -1;
-        drag_joint_ = g.index;
-        drag_point_ = view_->joint_positions().row(g.index);
-        doc_.begin_gesture();
-      }
+      if (view_->display_is_rest()) rig_drag_.start_joint(doc_, g.index, view_->joint_positions().row(g.index));
     } else {
       // Nothing grabbed: a click on the surface lists that vertex's weights; empty space orbits.
       const view::Ray ray = view::pixel_ray(cam_, m.x(), m.y());
@@ -204,24 +180,7 @@ void Editor::tool_select(bool clicked, bool released) {
     }
     return;
   }
-  if (drag_ == Drag::Handle) {
-    const Eigen::Vector3d q = on_view_plane(cam_, drag_point_, m);
-    if ((q - drag_point_).norm() > 0) {
-      if (drag_joint_ >= 0) {
-        doc_.move_joint(drag_joint_, q);
-      } else {
-        const HandleRef r = handle_ref(rig, drag_handle_);
-        if (r.kind == HandleKind::Point) doc_.move_point(r.index, q);
-        else if (r.kind == HandleKind::CageVertex) doc_.move_cage_vertex(r.cage, r.index, q);
-      }
-      drag_point_ = q;
-    }
-    if (released) {
-      doc_.end_gesture();
-      drag_ = Drag::None;
-      drag_joint_ = drag_handle_ = -1;
-    }
-  }
+  rig_drag_.update(doc_, cam_, m, released);
 }
 
 void Editor::tool_pair(bool clicked) {
@@ -291,10 +250,7 @@ void Editor::tool_pose(bool clicked, bool released) {
   in.rig_shown = show_handles_ && view_->overlay_opacity() >= kMinOverlayOpacity;
   if (pose_tool_.update(doc_, *view_, cam_, in)) return;
   if (clicked) tool_select(true, false);  // a click off the gizmo selects a handle to pose
-  if (drag_ == Drag::Handle) {            // but posing never drags rest positions
-    doc_.end_gesture();
-    drag_ = Drag::None;
-  }
+  rig_drag_.cancel(doc_);                 // but posing never drags rest positions
 }
 
 }  // namespace dfm::editor

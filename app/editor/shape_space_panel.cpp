@@ -120,6 +120,15 @@ void draw_bases(ShapeSpacePanel& p, const Document& doc) {
 }
 
 // The barycentric weights at the cursor, the ARAP synthesis status, and what failed.
+// "Key this shape" as a script line: the bases' times, the cursor's coordinates, the key's time.
+CommandWords shape_space_key_words(const ShapeSpacePanel& p) {
+  CommandWords w = command_words("shape-space-key", {shape_morph_name(p.morph)});
+  for (double t : p.times) w.push_back(CommandArg(t).word);
+  for (Eigen::Index i = 0; i < p.weights.size(); ++i) w.push_back(CommandArg(p.weights(i)).word);
+  w.push_back(CommandArg(p.key_time).word);
+  return w;
+}
+
 void draw_weights_and_errors(ShapeSpacePanel& p, bool have_shape) {
   CursorShape& c = p.shape;
   if (p.weights.size() == static_cast<Eigen::Index>(p.times.size()) && p.times.size() >= 2) {
@@ -292,17 +301,18 @@ void Editor::draw_shape_space_section() {
   const bool can_key = have_shape && c.final_at(p.weights);
   if (!can_key) ImGui::BeginDisabled();
   if (ImGui::Button("Key this shape", ImVec2(-1, 0)) && can_key) {
-    try {
-      doc_.key_mesh(TriMesh{c.vertices(), p.space->faces(), {}}, shape_space_key_name(*p.space, p.weights), p.key_time);
-      status("keyed the shape-space shape at t = " + std::to_string(p.key_time));
-      p.key_time_set = false;
-    } catch (const std::exception& e) {
-      error_popup_ = e.what();
-    }
+    if (run_ui_command(shape_space_key_words(p))) p.key_time_set = false;
   }
   if (!can_key) ImGui::EndDisabled();
   if (!can_key && c.waiting() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
     ImGui::SetTooltip("waits for the ARAP shape at the cursor");
+}
+
+Eigen::MatrixXd Editor::shape_space_ready(const std::vector<double>& times, ShapeMorph morph,
+                                          const Eigen::VectorXd& x) const {
+  const ShapeSpacePanel& p = *shape_space_;
+  if (!p.space || p.times != times || p.space->morph() != morph || !p.shape.final_at(x)) return {};
+  return p.shape.vertices();
 }
 
 std::string Editor::shape_space_progress() const {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/anim/shape_space.h"
 #include "core/scene/document.h"
 
 namespace dfm {
@@ -38,6 +39,11 @@ struct ScriptHost {
   // to it and frames it (one place for "open, then show it", whoever opened).
   enum class Opened { Scene, NewMesh, Surface };
   std::function<void(Opened what)> opened;
+  // shape-space-key: the shape already synthesized for these bases, morph and coordinates (the
+  // editor's Shape space cursor, an ARAP shape its worker made), keyed as is; empty: none, the
+  // command synthesizes it.
+  std::function<Eigen::MatrixXd(const std::vector<double>& times, ShapeMorph morph, const Eigen::VectorXd& x)>
+      synthesized_shape;
   // Called after each script line (the editor redraws; tests may record).
   std::function<void(const ScriptLine&)> after_command;
 };

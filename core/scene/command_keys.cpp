@@ -16,8 +16,10 @@ void shape_space_key(CommandContext& x, const CommandWords& w) {
   std::vector<double> times;
   Eigen::VectorXd weights(n);
   for (int i = 0; i < n; ++i) times.push_back(num(w, 2 + i)), weights(i) = num(w, 2 + n + i);
-  ShapeSpace space = key_shape_space(x.doc, times, parse_shape_morph(w[1]));
-  key_synthesized_shape(x.doc, space, weights, m % 2 ? num(w, static_cast<int>(w.size()) - 1) : x.doc.time());
+  const ShapeMorph morph = parse_shape_morph(w[1]);
+  ShapeSpace space = key_shape_space(x.doc, times, morph);
+  const Eigen::MatrixXd ready = x.host.synthesized_shape ? x.host.synthesized_shape(times, morph, weights) : Eigen::MatrixXd();
+  key_synthesized_shape(x.doc, space, weights, m % 2 ? num(w, static_cast<int>(w.size()) - 1) : x.doc.time(), ready);
 }
 
 void delete_key(CommandContext& x, const CommandWords& w) {

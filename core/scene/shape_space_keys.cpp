@@ -46,8 +46,10 @@ std::string shape_space_key_name(const ShapeSpace& space, const Eigen::VectorXd&
   return name;
 }
 
-TriMesh key_synthesized_shape(Document& doc, ShapeSpace& space, const Eigen::VectorXd& x, double t) {
-  TriMesh mesh{space.synthesize(x), space.faces(), {}};
+TriMesh key_synthesized_shape(Document& doc, ShapeSpace& space, const Eigen::VectorXd& x, double t,
+                              const Eigen::MatrixXd& ready) {
+  const bool have = ready.rows() == space.bases()[0].rows() && ready.cols() == 3;
+  TriMesh mesh{have ? ready : space.synthesize(x), space.faces(), {}};
   doc.key_mesh(mesh, shape_space_key_name(space, x), t);
   return mesh;
 }

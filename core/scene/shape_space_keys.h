@@ -22,7 +22,9 @@ ShapeSpace key_shape_space(const Document& doc, const std::vector<double>& times
 std::string shape_space_key_name(const ShapeSpace& space, const Eigen::VectorXd& x);
 
 // Synthesizes `space` at coordinates x and keys the shape at time t (Document::key_mesh: one undo step;
-// the surface's triangles join their neighbours by the prism build). Returns the keyed mesh.
-TriMesh key_synthesized_shape(Document& doc, ShapeSpace& space, const Eigen::VectorXd& x, double t);
+// the surface's triangles join their neighbours by the prism build). `ready`, when it has the bases'
+// rows: that synthesis, already made (the editor's cursor), keyed as is. Returns the keyed mesh.
+TriMesh key_synthesized_shape(Document& doc, ShapeSpace& space, const Eigen::VectorXd& x, double t,
+                              const Eigen::MatrixXd& ready = {});
 
 }  // namespace dfm

@@ -91,10 +91,14 @@ Ray pixel_ray(const Camera& c, double px, double py) {
 }
 
 Eigen::Vector3d pixel_on_target_plane(const Camera& c, double px, double py) {
-  const Ray r = pixel_ray(c, px, py);
+  return pixel_on_plane_through(c, c.target, px, py);
+}
+
+Eigen::Vector3d pixel_on_plane_through(const Camera& c, const Eigen::Vector3d& p, double px, double py) {
   const Eigen::Vector3d f = camera_forward(c);
-  const double t = (c.target - r.origin).dot(f) / r.direction.dot(f);
-  return r.origin + t * r.direction;
+  if (!c.orthographic && (p - camera_eye(c)).dot(f) <= 1e-9) return p;
+  const Ray r = pixel_ray(c, px, py);
+  return r.origin + (p - r.origin).dot(f) / r.direction.dot(f) * r.direction;
 }
 
 void arcball_orbit(Camera& c, const Eigen::Vector2d& from_px, const Eigen::Vector2d& to_px) {

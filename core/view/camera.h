@@ -44,6 +44,9 @@ Eigen::Vector3d project_to_pixel(const Camera& c, const Eigen::Vector3d& p);
 Ray pixel_ray(const Camera& c, double px, double py);
 // Where the pixel's ray meets the plane through `target` facing the camera.
 Eigen::Vector3d pixel_on_target_plane(const Camera& c, double px, double py);
+// Where the pixel's ray meets the plane through p facing the camera (a dragged point's new place: p
+// stays under the cursor at its depth); p itself when p is not in front of a perspective eye.
+Eigen::Vector3d pixel_on_plane_through(const Camera& c, const Eigen::Vector3d& p, double px, double py);
 
 // Trackball orbit about the target (Shoemake arcball): dragging from one pixel to another turns the
 // scene as if the cursor had dragged a sphere's surface. Distance to the target is preserved.

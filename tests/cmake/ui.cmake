@@ -28,3 +28,5 @@ dfm_test(test_editor_bind SOURCES test_editor_bind.cpp ${PROJECT_SOURCE_DIR}/app
 dfm_test(test_editor_pacing SOURCES test_editor_pacing.cpp ${PROJECT_SOURCE_DIR}/app/editor/frame_pacing.cpp)
 # Picked pairs (issue 30): the key-pair command, the scene file, the editor's Pair tool (app/editor/pair_tool).
 dfm_test(test_key_pairs SOURCES test_key_pairs.cpp ${PROJECT_SOURCE_DIR}/app/editor/pair_tool.cpp LIBS dfm_core)
+# The Select tool's rest-pose drag of handles and joints (app/editor/rig_drag), without a window.
+dfm_test(test_rig_drag SOURCES test_rig_drag.cpp ${PROJECT_SOURCE_DIR}/app/editor/rig_drag.cpp LIBS dfm_core)
