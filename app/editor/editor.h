@@ -1,6 +1,6 @@
 #pragma once
 // The editor window: one Document (the single source of truth), the GPU state mirroring it, the
-// camera, the loop, and the tools and panels (each its own unit: pose_tool.h, paint_tool.h,
+// camera, the loop, and the tools and panels (each its own unit: pose_tool.h, rig_drag.h, paint_tool.h,
 // bone_tool.h, pair_tool.h, pose_panels.h, weight_tools_panel.h). Edits run the command table's lines
 // (run_ui_command), as a script does; panels read the document.
 #include <chrono>
