@@ -17,24 +17,32 @@
 using namespace dfm;
 namespace fs = std::filesystem;
 
-static int run_deform(const std::string& args) {
+namespace {
+
+int run_deform(const std::string& args) {
   const std::string cmd = std::string(DFM_DEFORM_EXE) + " " + args + " > /dev/null 2>&1";
   const int rc = std::system(cmd.c_str());
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
-TEST_CASE("deform pose: a bent two-bone tube saved by extension equals the CPU reference", "[pose][cli]") {
-  const fs::path dir = fs::temp_directory_path() / ("dfm_test_pose_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  // A tube along x from 0 to 2 (rings of 8 vertices), closed by no caps (an open surface is fine).
+// A tube along x from 0 to 2 (rings of 8 vertices, open ends) with two bones 0 -> 1 -> 2 and weights
+// blending across the middle joint, written to dir as tube.obj, s.tgf and w.dmat.
+struct Tube {
+  TriMesh mesh;
+  Rig rig;
+  Eigen::MatrixXd W;
+};
+
+Tube write_tube(const fs::path& dir) {
+  Tube t;
   const int rings = 21, around = 8;
-  TriMesh tube;
+  TriMesh& tube = t.mesh;
   tube.V.resize(rings * around, 3);
   tube.F.resize((rings - 1) * around * 2, 3);
   for (int r = 0; r < rings; ++r)
     for (int a = 0; a < around; ++a) {
-      const double t = 2.0 * 3.14159265358979 * a / around;
-      tube.V.row(r * around + a) << 2.0 * r / (rings - 1), 0.2 * std::cos(t), 0.2 * std::sin(t);
+      const double th = 2.0 * 3.14159265358979 * a / around;
+      tube.V.row(r * around + a) << 2.0 * r / (rings - 1), 0.2 * std::cos(th), 0.2 * std::sin(th);
     }
   int f = 0;
   for (int r = 0; r + 1 < rings; ++r)
@@ -52,15 +60,26 @@ TEST_CASE("deform pose: a bent two-bone tube saved by extension equals the CPU r
   tgf.flags.resize(2, 3);
   tgf.flags << 1, 0, 0, 1, 0, 0;
   write_tgf((dir / "s.tgf").string(), tgf);
-  Rig rig;
-  add_tgf_to_rig(rig, read_tgf((dir / "s.tgf").string()), "s.tgf");
-  REQUIRE(rig.skeleton.num_bones() == 2);
-  Eigen::MatrixXd W(tube.V.rows(), 2);
-  for (int i = 0; i < W.rows(); ++i) {
+  add_tgf_to_rig(t.rig, read_tgf((dir / "s.tgf").string()), "s.tgf");
+  REQUIRE(t.rig.skeleton.num_bones() == 2);
+  t.W.resize(tube.V.rows(), 2);
+  for (int i = 0; i < t.W.rows(); ++i) {
     const double s = std::clamp((tube.V(i, 0) - 0.6) / 0.8, 0.0, 1.0);  // blend across the middle joint
-    W.row(i) << 1 - s, s;
+    t.W.row(i) << 1 - s, s;
   }
-  write_dmat((dir / "w.dmat").string(), W);
+  write_dmat((dir / "w.dmat").string(), t.W);
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("deform pose: a bent two-bone tube saved by extension equals the CPU reference", "[pose][cli]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_test_pose_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Tube t = write_tube(dir);
+  const TriMesh& tube = t.mesh;
+  const Rig& rig = t.rig;
+  const Eigen::MatrixXd& W = t.W;
   const std::vector<Eigen::Quaterniond> q = {Eigen::Quaterniond::Identity(),
                                              Eigen::Quaterniond(Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitZ()))};
   write_bone_rotations((dir / "q.dmat").string(), q);
@@ -94,5 +113,43 @@ TEST_CASE("deform pose: a bent two-bone tube saved by extension equals the CPU r
   REQUIRE(run_deform("pose " + (dir / "tube.obj").string() + " --weights " + (dir / "bad.dmat").string() +
                      " --skeleton " + (dir / "s.tgf").string() + " --cpu -o " + (dir / "out.obj").string()) == 1);
   REQUIRE(read_surface((dir / "out.obj").string()).num_vertices() == tube.num_vertices());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deform pose --twist-stretch: a stretch moves what hangs below by the closed form; STBS turns the tip by the twist",
+          "[pose][cli]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_test_pose_ts_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Tube t = write_tube(dir);
+  const std::string common = (dir / "tube.obj").string() + " --weights " + (dir / "w.dmat").string() + " --skeleton " +
+                             (dir / "s.tgf").string() + " --cpu";
+  Eigen::MatrixXd ts(2, 2);
+  ts << 0, 1.5,  // the first bone 1.5 times as long: the second follows by 0.5 along x
+      180, 1;    // the second twisted half a turn at its end
+  write_dmat((dir / "ts.dmat").string(), ts);
+  for (const char* method : {"lbs", "stbs"}) {
+    INFO(method);
+    const std::string out = (dir / "out.obj").string();
+    REQUIRE(run_deform("pose " + common + " --twist-stretch " + (dir / "ts.dmat").string() + " --method " + method +
+                       " -o " + out) == 0);
+    const TriMesh got = read_surface(out);
+    REQUIRE(got.V.rows() == t.mesh.V.rows());
+    for (int i = 0; i < got.V.rows(); ++i) {
+      const Eigen::RowVector3d p = t.mesh.V.row(i);
+      if (p.x() < 1.4) continue;  // the second bone's alone
+      // LBS moves it rigidly with the bone (the whole twist); STBS by its endpoint weight, 1 at the tip.
+      const bool turned = std::string(method) == "lbs" || p.x() > 2 - 1e-12;
+      const Eigen::RowVector3d want(p.x() + 0.5, turned ? -p.y() : p.y(), turned ? -p.z() : p.z());
+      if (turned || p.x() > 2 - 1e-12) CHECK((got.V.row(i) - want).norm() < 1e-6);
+    }
+  }
+  // A file of the wrong shape, a stretch that is not positive: exit 1 naming the file.
+  write_dmat((dir / "short.dmat").string(), Eigen::MatrixXd::Ones(1, 2));
+  CHECK(run_deform("pose " + common + " --twist-stretch " + (dir / "short.dmat").string() + " -o " + (dir / "x.obj").string()) == 1);
+  ts(1, 1) = 0;
+  write_dmat((dir / "zero.dmat").string(), ts);
+  CHECK(run_deform("pose " + common + " --twist-stretch " + (dir / "zero.dmat").string() + " -o " + (dir / "x.obj").string()) == 1);
+  CHECK(run_deform("pose " + (dir / "tube.obj").string() + " --weights " + (dir / "w.dmat").string() + " --points " +
+                   (dir / "p.txt").string() + " --twist-stretch " + (dir / "ts.dmat").string() + " -o " + (dir / "x.obj").string()) == 2);
   fs::remove_all(dir);
 }

@@ -22,8 +22,8 @@
 namespace {
 
 const char* kUsage =
-    "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat] [--points P.txt]\n"
-    "                   [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
+    "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]]\n"
+    "                   [--points P.txt] [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
     "                   [--method lbs|dqs|stbs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
     "  INPUT              surface (.obj .off .ply .stl) or tet mesh (.mesh .node/.ele: all its vertices\n"
     "                     are posed, its surface triangles saved)\n"
@@ -31,6 +31,8 @@ const char* kUsage =
     "  --points P.txt     point handles, one 'x y z' a line (before the TGF's, as `deform bind` orders them)\n"
     "  --skeleton S.tgf   bones and point handles (joints on no bone)\n"
     "  --pose Q.dmat      one rotation per bone relative to its parent, quaternions (x y z w)\n"
+    "  --twist-stretch TS.dmat  one row per bone: twist in degrees at its second joint, stretch factor\n"
+    "                     (Jacobson 2013 ch. 6; --method stbs spreads them along each bone)\n"
     "  --points-pose P.txt  one translation per point handle ('x y z' per line)\n"
     "  --fast             solve the transforms nobody set (FAST, Jacobson 2013 ch. 7): handles in --free\n"
     "                     entirely, other point handles keep their --points-pose position (rotation solved),\n"
@@ -95,7 +97,7 @@ void solve_fast(const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig, 
 
 // What the command line asks for.
 struct Options {
-  std::string input, out, weights, skeleton, pose_file, points, points_pose, free_list;
+  std::string input, out, weights, skeleton, pose_file, twist_stretch, points, points_pose, free_list;
   dfm::SkinMethod method = dfm::SkinMethod::LBS;
   int k = 0;  // 0: every weight
   int iterations = 20;
@@ -114,6 +116,7 @@ Options parse_options(const dfm::cli::Args& args) {
     else if (f == "--weights") o.weights = a.value(f);
     else if (f == "--skeleton") o.skeleton = a.value(f);
     else if (f == "--pose") o.pose_file = a.value(f);
+    else if (f == "--twist-stretch") o.twist_stretch = a.value(f);
     else if (f == "--points-pose") o.points_pose = a.value(f);
     else if (f == "--points") o.points = a.value(f);
     else if (f == "--fast") o.fast = true;
@@ -131,6 +134,7 @@ Options parse_options(const dfm::cli::Args& args) {
   if (o.weights.empty()) throw UsageError("--weights W.dmat is required");
   if (k_given && o.k != 4 && o.k != 8) throw UsageError("-k must be 4 or 8");
   if (!o.pose_file.empty() && o.skeleton.empty()) throw UsageError("--pose needs --skeleton");
+  if (!o.twist_stretch.empty() && o.skeleton.empty()) throw UsageError("--twist-stretch needs --skeleton");
   if (!o.fast && (!o.free_list.empty())) throw UsageError("--free needs --fast");
   if (o.iterations < 1) throw UsageError("--iterations must be >= 1");
   try {
@@ -164,6 +168,8 @@ dfm::Pose posed_handles(const Options& o, const Input& in, const Eigen::MatrixXd
                         dfm::PoseParams& params) {
   params = dfm::rest_pose_params(rig);
   if (!o.pose_file.empty()) params.bone_rotation = dfm::read_bone_rotations(o.pose_file, rig.skeleton.num_bones());
+  if (!o.twist_stretch.empty())
+    params.bone_twist_stretch = dfm::read_bone_twist_stretch(o.twist_stretch, rig.skeleton.num_bones());
   if (!o.points_pose.empty())
     params.point_translation = dfm::read_point_translations(o.points_pose, dfm::num_point_handles(rig));
   dfm::Pose pose = dfm::evaluate_pose(rig, params);

@@ -34,7 +34,30 @@ void PosePanels::draw_transform(Document& doc, const Pose& pose, const std::stri
   ImGui::TextWrapped("%d  %s  (%s)", h, handle_name(rig, h).c_str(), handle_kind_name(handle_ref(rig, h).kind));
   if (!animated_at.empty()) text_disabled_wrapped("the animation at %s", animated_at.c_str());
   if (h < pose.size()) draw_typed_values(doc, h, pose.transforms[h], drag_step);
+  const HandleRef r = handle_ref(rig, h);
+  if (r.kind == HandleKind::Bone) draw_twist_stretch(doc, r.index);
   if (ImGui::Button("Reset pose", ImVec2(-1, 0))) doc.reset_pose();
+}
+
+// The bone's twist (degrees, at its second joint) and stretch (length factor), dragged: one undo step a
+// drag (Jacobson 2013 ch. 6: STBS spreads them along the bone; every method moves the bones below).
+void PosePanels::draw_twist_stretch(Document& doc, int bone) {
+  const std::vector<BoneTwistStretch>& all = doc.pose_params().bone_twist_stretch;
+  const BoneTwistStretch ts = bone < static_cast<int>(all.size()) ? all[bone] : BoneTwistStretch{};
+  float v[2] = {float(ts.twist * 180 / M_PI), float(ts.stretch)};
+  ImGui::SetNextItemWidth(-1);
+  const bool twisted = ImGui::DragFloat("##twist", &v[0], 0.5f, -720.0f, 720.0f, "twist %.1f deg");
+  const bool twist_started = ImGui::IsItemActivated(), twist_done = ImGui::IsItemDeactivated();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Twist about the bone's axis at its second joint (script: twist)");
+  ImGui::SetNextItemWidth(-1);
+  const bool stretched = ImGui::DragFloat("##stretch", &v[1], 0.005f, 0.05f, 10.0f, "stretch %.3f");
+  const bool stretch_started = ImGui::IsItemActivated(), stretch_done = ImGui::IsItemDeactivated();
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Length factor of the bone (script: stretch)");
+  if (twist_started || stretch_started) doc.begin_gesture();
+  if (twisted || stretched) doc.set_bone_twist_stretch(bone, {v[0] * M_PI / 180, std::max(0.05f, v[1])});
+  if (twist_done || stretch_done) doc.end_gesture();
+  if (doc.method() != SkinMethod::STBS && (ts.twist != 0 || ts.stretch != 1))
+    text_disabled_wrapped("the method STBS spreads them along the bone");
 }
 
 // Typed values: world offset of the pivot and rotation (axis-angle) of this handle's transform, shown

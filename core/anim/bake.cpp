@@ -28,12 +28,17 @@ BakedLayers bake_layers(const KeyTrack& track, int inbetweens, const SkinFunctio
 
 BakedLayers bake_layers(const std::vector<double>& times, const std::function<Pose(double)>& pose_at,
                         const SkinFunction& skin, const BakeProgress& progress) {
+  return bake_layers(times, [&](double t) { return skin(pose_at(t)); }, progress);
+}
+
+BakedLayers bake_layers(const std::vector<double>& times, const std::function<Eigen::MatrixXd(double)>& positions_at,
+                        const BakeProgress& progress) {
   BakedLayers out;
   out.times = times;
   const int total = static_cast<int>(out.times.size());
   out.positions.reserve(total);
   for (int i = 0; i < total; ++i) {
-    Eigen::MatrixXd P = skin(pose_at(out.times[i]));
+    Eigen::MatrixXd P = positions_at(out.times[i]);
     if (P.cols() != 3 || (i > 0 && P.rows() != out.positions[0].rows()))
       throw Error("bake: skinning at time " + std::to_string(out.times[i]) + " gave " +
                   std::to_string(P.rows()) + " x " + std::to_string(P.cols()) + " positions, expected " +

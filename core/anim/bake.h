@@ -24,8 +24,11 @@ struct BakedLayers {
 // The layer times: every key, plus `inbetweens` evenly spaced times strictly inside each interval.
 std::vector<double> bake_times(const KeyTrack& track, int inbetweens);
 
-// Skins pose_at(t) at each of `times` (strictly increasing). Throws dfm::Error on a skin result whose
-// size changes between layers, or cancellation.
+// positions_at(t) at each of `times` (strictly increasing). Throws dfm::Error on a result whose size
+// changes between layers, or cancellation.
+BakedLayers bake_layers(const std::vector<double>& times, const std::function<Eigen::MatrixXd(double)>& positions_at,
+                        const BakeProgress& progress = {});
+// Skins pose_at(t) at each of `times`, as above.
 BakedLayers bake_layers(const std::vector<double>& times, const std::function<Pose(double)>& pose_at,
                         const SkinFunction& skin, const BakeProgress& progress = {});
 

@@ -37,6 +37,32 @@ void rotate(CommandContext& x, const CommandWords& w) {
   for (int h : selected_or_fail(x.doc)) x.doc.rotate_handle(h, q);
 }
 
+// The bone a BONE_HANDLE word names (a handle number or name that is a bone).
+int bone_at(const Document& doc, const CommandWords& w, int i) {
+  const HandleRef r = handle_ref(doc.rig(), handle_at(doc, w, i));
+  if (r.kind != HandleKind::Bone) throw Error("handle '" + w[i] + "' is a " + handle_kind_name(r.kind) + ", not a bone");
+  return r.index;
+}
+
+BoneTwistStretch twist_stretch_of(const Document& doc, int bone) {
+  const std::vector<BoneTwistStretch>& v = doc.pose_params().bone_twist_stretch;
+  return bone < static_cast<int>(v.size()) ? v[bone] : BoneTwistStretch{};
+}
+
+void twist(CommandContext& x, const CommandWords& w) {
+  const int b = bone_at(x.doc, w, 1);
+  BoneTwistStretch ts = twist_stretch_of(x.doc, b);
+  ts.twist = num(w, 2) * M_PI / 180.0;
+  x.doc.set_bone_twist_stretch(b, ts);
+}
+
+void stretch(CommandContext& x, const CommandWords& w) {
+  const int b = bone_at(x.doc, w, 1);
+  BoneTwistStretch ts = twist_stretch_of(x.doc, b);
+  ts.stretch = num(w, 2);
+  x.doc.set_bone_twist_stretch(b, ts);
+}
+
 void ik_chain(CommandContext& x, const CommandWords& w) {
   PosingSettings p = x.doc.posing();
   p.fast = true;
@@ -70,6 +96,8 @@ void add_pose_commands(std::vector<Command>& t) {
       [](CommandContext& x, const CommandWords& w) {
         x.doc.set_handle_state(handle_at(x.doc, w, 1), parse_constraint_state(w[2]));
       });
+  add(t, "twist", "twist BONE_HANDLE DEGREES", 2, 2, {handle_arg(), number_arg()}, twist);
+  add(t, "stretch", "stretch BONE_HANDLE FACTOR", 2, 2, {handle_arg(), number_arg()}, stretch);
   add(t, "fast", "fast on|off [ITERATIONS]", 1, 2, {word_arg()}, fast);
   add(t, "ik-chain", "ik-chain BONE_HANDLE", 1, 1, {handle_arg()}, ik_chain);
   add(t, "set-method", "set-method lbs|dqs|stbs", 1, 1, {word_arg()},

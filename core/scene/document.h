@@ -269,6 +269,10 @@ class Document {
   void set_pose_params(const PoseParams& p);
   DragReport translate_handle(int handle, const Eigen::Vector3d& delta);
   void rotate_handle(int handle, const Eigen::Quaterniond& q);
+  // A bone's twist (radians, about its axis, at its second joint) and stretch (length factor > 0)
+  // (Jacobson 2013 ch. 6; STBS spreads them along the bone, every method moves its children by them).
+  // Merges within a gesture. Throws dfm::Error: no such bone, not finite, stretch not positive.
+  void set_bone_twist_stretch(int bone, const BoneTwistStretch& ts);
   void reset_pose();
   // FAST settings and handle states (one undo step; re-solves the pose when FAST is on and bound).
   void set_posing(const PosingSettings& p);

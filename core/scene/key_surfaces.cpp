@@ -42,16 +42,22 @@ KeyTrack pose_key_track(const Document& doc) {
   return track;
 }
 
-Pose animation_pose(const Document& doc, double t) {
+PoseParams animation_params(const Document& doc, double t) {
   std::vector<const SceneKey*> keys;
   for (const SceneKey& k : doc.keys())
     if (!k.is_mesh()) keys.push_back(&k);
   if (keys.empty()) throw Error("the animation has no pose key");
   size_t i = 0;  // the last key at or before t (the first when t is before it)
   while (i + 1 < keys.size() && keys[i + 1]->time <= t) ++i;
-  if (t <= keys[i]->time || i + 1 == keys.size()) return evaluate_pose(doc.rig(), keys[i]->params);
+  if (t <= keys[i]->time || i + 1 == keys.size()) return keys[i]->params;
   const double u = (t - keys[i]->time) / (keys[i + 1]->time - keys[i]->time);
-  return evaluate_pose(doc.rig(), interpolate_pose_params(doc.rig(), keys[i]->params, keys[i + 1]->params, u));
+  return interpolate_pose_params(doc.rig(), keys[i]->params, keys[i + 1]->params, u);
+}
+
+Pose animation_pose(const Document& doc, double t) { return evaluate_pose(doc.rig(), animation_params(doc, t)); }
+
+Eigen::MatrixXd skin_params(const Document& doc, const SkinBinding& binding, const PoseParams& params) {
+  return skin(doc.method(), binding, evaluate_pose(doc.rig(), params), stbs_handles(doc.rig(), params.bone_twist_stretch)).V;
 }
 
 namespace {
@@ -82,10 +88,8 @@ std::vector<KeySurface> baked_key_surfaces(const Document& doc, std::vector<int>
     }
     KeyTrack track;
     for (int k = i; k < j; ++k) track.set({keys[k].time, poses[k]});
-    // Twist/stretch is per key and not part of a Pose, so the animation skins without it.
-    const BakedLayers layers =
-        bake_layers(bake_times(track, doc.inbetweens()), [&](double t) { return animation_pose(doc, t); },
-                    [&](const Pose& p) { return skin(doc.method(), binding, p, {}).V; });
+    const BakedLayers layers = bake_layers(bake_times(track, doc.inbetweens()),
+                                           [&](double t) { return skin_params(doc, binding, animation_params(doc, t)); });
     int k = i;
     for (size_t l = 0; l < layers.times.size(); ++l) {
       const bool at_key = k < j && layers.times[l] == keys[k].time;
@@ -142,10 +146,9 @@ BakedLayers baked_pose_frames(const Document& doc, int count) {
       throw Error("key " + std::to_string(i) + "'s interval uses " + inbetween_method_name(doc.keys()[i].inbetween) +
                   " in-betweens: bake the keys and their in-betweens (a frame count of 0) instead of evenly spaced frames");
   const SkinBinding binding = pose_binding(doc);
-  const auto skin_pose = [&](const Pose& p) { return skin(doc.method(), binding, p, {}).V; };
   for (int i = 0; i < count; ++i) {
     out.times.push_back(i + 1 == count ? track.end() : track.start() + (track.end() - track.start()) * i / (count - 1));
-    out.positions.push_back(skin_pose(animation_pose(doc, out.times.back())));
+    out.positions.push_back(skin_params(doc, binding, animation_params(doc, out.times.back())));
   }
   return out;
 }

@@ -14,6 +14,7 @@
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold_sequence.h"
 #include "core/scene/document.h"
+#include "core/skin/skin.h"
 
 namespace dfm {
 
@@ -29,6 +30,11 @@ KeyTrack pose_key_track(const Document& doc);
 // kinematics, so every bone stays on its parent's end between keys; a key's own pose at its time;
 // the first or last key's before or after them. Throws dfm::Error without pose keys.
 Pose animation_pose(const Document& doc, double t);
+// The parameters behind it (twist and stretch included: the animation's layers skin with them).
+PoseParams animation_params(const Document& doc, double t);
+// The surface posed by `params` with the document's method, twist and stretch (STBS reads them;
+// every method moves a stretched bone's children): what the animation's layers and frames hold.
+Eigen::MatrixXd skin_params(const Document& doc, const SkinBinding& binding, const PoseParams& params);
 
 // The pose keys as frames of the surface's one connectivity (for `deform compress`), skinned with the
 // document's method and weights. count = 0: the keys plus doc.inbetweens() in-betweens inside each

@@ -15,10 +15,9 @@ namespace dfm {
 
 namespace {
 
-TriMesh skinned(const Document& doc, const SkinBinding& binding, const Pose& pose,
-                const std::vector<StbsHandle>& stbs) {
+TriMesh skinned(const Document& doc, const SkinBinding& binding, const PoseParams& params) {
   TriMesh out;
-  SkinResult r = skin(doc.method(), binding, pose, stbs);
+  SkinResult r = skin(doc.method(), binding, evaluate_pose(doc.rig(), params), stbs_handles(doc.rig(), params.bone_twist_stretch));
   out.V = std::move(r.V);
   out.F = doc.surface().F;
   out.N = std::move(r.N);
@@ -36,8 +35,7 @@ SkinBinding binding_of(const Document& doc) {
 TriMesh still_frame(const Document& doc) {
   if (doc.keys().size() == 1 && doc.keys()[0].is_mesh()) return doc.keys()[0].mesh;
   const SkinBinding binding = binding_of(doc);
-  if (doc.keys().size() == 1) return skinned(doc, binding, doc.key_poses()[0], {});
-  return skinned(doc, binding, doc.pose(), stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
+  return skinned(doc, binding, doc.keys().size() == 1 ? doc.keys()[0].params : doc.pose_params());
 }
 
 }  // namespace

@@ -20,3 +20,5 @@ target_compile_definitions(test_posing PRIVATE DFM_ASSETS_DIR="${PROJECT_SOURCE_
 # The command table: a script line and a UI call give the same document; SCRIPT.md lists the table.
 dfm_test(test_commands SOURCES test_commands.cpp LIBS dfm_scene)
 target_compile_definitions(test_commands PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+# Twist and stretch an artist can reach (issue 33): the commands, the stretch's closed form, keys that carry them.
+dfm_test(test_twist_stretch_script SOURCES test_twist_stretch_script.cpp LIBS dfm_scene)

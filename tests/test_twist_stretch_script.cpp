@@ -1,0 +1,106 @@
+// Twist and stretch an artist can reach (issue 33, Jacobson 2013 ch. 6): the script's twist and stretch
+// commands (one undo step each, bones only), the closed form of a stretch (Fig. 6.15: what hangs below a
+// bone stretched by s moves (s - 1) bone lengths along it), and keys that carry them: the animation's
+// frames at a key and between keys equal the still pose with the same (interpolated) values.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/scene/script.h"
+#include "core/util/error.h"
+#include "tests/volume_test_meshes.h"
+
+using namespace dfm;
+
+namespace {
+
+void run(Document& d, const std::string& text) { run_script(d, parse_script(text, "ts.txt"), "ts.txt"); }
+
+// An ellipsoid along x (-2..2) with a chain of two bones (-2 -> 0 -> 2) and a point handle; weights by
+// hand: x < -0.3 the first bone only, x > 0.3 the second only, a linear blend between.
+void make_arm(Document& d) {
+  TriMesh m = test::icosphere(Eigen::Vector3d::Zero(), 1.0, 2);
+  m.V.col(0) *= 2.0;
+  m.V.col(1) *= 0.5;
+  m.V.col(2) *= 0.5;
+  d.set_surface(m, "arm");
+  d.add_point(Eigen::Vector3d(0, 0.3, 0));
+  d.add_bone_chain({Eigen::Vector3d(-2, 0, 0), Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 0, 0)});
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(m.V.rows(), 3);  // point, bone 0, bone 1
+  for (int i = 0; i < m.V.rows(); ++i) {
+    const double s = std::clamp((m.V(i, 0) + 0.3) / 0.6, 0.0, 1.0);
+    W(i, 1) = 1 - s;
+    W(i, 2) = s;
+  }
+  d.set_weights(W, {});
+}
+
+double largest_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  REQUIRE(a.rows() == b.rows());
+  return (a - b).cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+TEST_CASE("twist and stretch: bones by number or name, one undo step each; the wrong handle or value names the line") {
+  Document d;
+  make_arm(d);
+  const int steps = d.undo_depth();
+  run(d, "twist 2 90\nstretch 1 1.5\n");
+  const std::vector<BoneTwistStretch>& ts = d.pose_params().bone_twist_stretch;
+  REQUIRE(ts.size() == 2);
+  CHECK(ts[1].twist == Approx(M_PI / 2).epsilon(1e-15));
+  CHECK(ts[1].stretch == 1.0);
+  CHECK(ts[0].stretch == 1.5);
+  CHECK(ts[0].twist == 0.0);
+  CHECK(d.undo_depth() == steps + 2);
+  d.undo();
+  CHECK(d.pose_params().bone_twist_stretch[0].stretch == 1.0);
+  CHECK(d.pose_params().bone_twist_stretch[1].twist == Approx(M_PI / 2));
+
+  CHECK_THROWS_WITH(run(d, "twist 0 10\n"), Catch::Contains("ts.txt:1") && Catch::Contains("not a bone"));
+  CHECK_THROWS_WITH(run(d, "stretch 1 0\n"), Catch::Contains("ts.txt:1") && Catch::Contains("positive"));
+  CHECK_THROWS_WITH(run(d, "stretch 1 -2\n"), Catch::Contains("positive"));
+  CHECK_THROWS_WITH(run(d, "twist 7 10\n"), Catch::Contains("ts.txt:1"));
+  CHECK_THROWS_WITH(run(d, "twist 1 nan\n"), Catch::Contains("ts.txt:1"));
+  CHECK(d.undo_depth() == steps + 1);  // no failed line left a step
+}
+
+TEST_CASE("stretch (Fig. 6.15): what hangs below the bone moves (s - 1) bone lengths along it, nothing farther") {
+  for (const char* method : {"lbs", "dqs", "stbs"}) {
+    INFO(method);
+    Document d;
+    make_arm(d);
+    run(d, std::string("set-method ") + method + "\nstretch 1 1.5\n");
+    const TriMesh rest = d.surface();
+    const Eigen::MatrixXd moved = posed_surface(d).V - rest.V;
+    const Eigen::RowVector3d along(1.0, 0, 0);  // (1.5 - 1) x the first bone's length 2
+    double farthest = 0;
+    for (int i = 0; i < rest.V.rows(); ++i) {
+      farthest = std::max(farthest, moved.row(i).norm());
+      if (rest.V(i, 0) > 0.3) CHECK((moved.row(i) - along).norm() < 1e-12);  // the second bone's only
+    }
+    CHECK(farthest <= 1.0 + 1e-12);
+  }
+}
+
+TEST_CASE("keys carry twist and stretch: the animation's frame at a key and between keys is the still pose's") {
+  const double twist = 120, stretch = 1.3;
+  Document d;
+  make_arm(d);
+  run(d, "set-method stbs\nset-key 0\ntwist 2 120\nstretch 2 1.3\nset-key 1\n");
+  const int n = d.inbetweens();
+  REQUIRE(n >= 1);
+  const double u = 1.0 / (n + 1);  // the first in-between layer
+  for (double t : {1.0, u}) {
+    INFO("t = " << t);
+    d.set_time(t);
+    const TriMesh frame = posed_surface(d);
+    Document still;  // no keys: the pose itself, skinned
+    make_arm(still);
+    run(still, "set-method stbs\ntwist 2 " + std::to_string(twist * t) + "\nstretch 2 " + std::to_string(1 + (stretch - 1) * t) + "\n");
+    const TriMesh want = posed_surface(still);
+    CHECK(largest_difference(frame.V, want.V) < 1e-9);
+    CHECK(largest_difference(frame.V, still.surface().V) > 0.1);  // it did twist
+  }
+}
