@@ -7,3 +7,5 @@ dfm_test(test_gpu_skin SOURCES test_gpu_skin.cpp LIBS dfm_render dfm_skin dfm_me
 dfm_test(test_pose_cli SOURCES test_pose_cli.cpp LIBS dfm_skin dfm_mesh)
 target_compile_definitions(test_pose_cli PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
 add_dependencies(test_pose_cli deform)
+# The candy wrapper (Jacobson 2013, Fig. 6.1) on arm.obj: LBS collapses a turned wrist, STBS keeps it.
+dfm_test(test_candy_wrapper SOURCES test_candy_wrapper.cpp LIBS dfm_scene)
