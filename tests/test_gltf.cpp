@@ -15,6 +15,7 @@
 #include "core/export/trs.h"
 #include "core/rig/pose_params.h"
 #include "core/scene/document.h"
+#include "core/scene/script.h"
 #include "core/skin/lbs.h"
 #include "core/util/error.h"
 #include "tests/test_gltf_fixtures.h"
@@ -371,5 +372,44 @@ TEST_CASE("export_document_gltf: File > Export of a bound, posed, keyed document
   bool noted = false;
   for (const auto& n : dq.notes) noted = noted || n.find("LBS") != std::string::npos;
   CHECK(noted);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("export_document_gltf: a twisted, stretched STBS document plays its keys as the document shows them",
+          "[gltf][document][stbs]") {
+  Document doc;
+  doc.set_surface(test::tube(21, 12, 3.0, 0.3), "tube.obj");
+  doc.add_bone_chain({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1.5, 0, 0), Eigen::Vector3d(3, 0, 0)});
+  doc.set_weights(test::inverse_distance_weights(doc.surface(), doc.rig()), BindStats{});
+  doc.set_method(SkinMethod::STBS);
+  doc.set_key(0);
+  doc.set_bone_twist_stretch(0, {M_PI / 2, 1.2});  // spread along the first bone: no LBS skin shows it
+  doc.set_key(1);
+  doc.set_bone_twist_stretch(1, {-M_PI / 3, 0.8});
+  doc.set_key(2);
+  const fs::path dir = temp_dir("stbs");
+  const std::string path = (dir / "stbs.glb").string();
+  GltfExportOptions o;
+  o.residual_morph_tolerance = 1e-6;
+  const GltfExportReport rep = export_document_gltf(doc, path, o);
+  CHECK(rep.residual_targets == 3);  // the current pose is the last key's
+  bool noted = false;
+  for (const auto& n : rep.notes) noted = noted || n.find("residual morph targets make its keys") != std::string::npos;
+  CHECK(noted);
+  const GltfDocument g = read_gltf(path);
+  const double diag = rep.bbox_diagonal;
+  for (double t : {0.0, 1.0, 2.0}) {
+    INFO("t = " << t);
+    doc.set_time(t);
+    const Eigen::MatrixXd want = posed_surface(doc).V;  // the animation's frame: STBS with the key's twist
+    const Eigen::MatrixXd got = gltf_skinned_positions(g, t);
+    CHECK(max_row_distance(got, want) < 1e-5 * diag);
+    if (t > 0)  // the twisted keys: no LBS skin of their poses shows them
+      CHECK(max_row_distance(lbs(doc.surface().V, doc.weights(), doc.key_poses()[static_cast<int>(t)]), want) > 0.05 * diag);
+  }
+  // Without residual targets the pruning error reads against the document's surface.
+  const GltfExportReport plain = export_document_gltf(doc, path, GltfExportOptions{});
+  CHECK(plain.residual_targets == 0);
+  CHECK(plain.max_prune_error > 0.05 * diag);
   fs::remove_all(dir);
 }

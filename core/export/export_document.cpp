@@ -2,9 +2,29 @@
 
 #include <filesystem>
 
+#include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
 
 namespace dfm {
+
+namespace {
+
+bool twisted_or_stretched(const PoseParams& p) {
+  for (const BoneTwistStretch& ts : p.bone_twist_stretch)
+    if (ts.twist != 0 || ts.stretch != 1) return true;
+  return false;
+}
+
+// Whether what the document shows differs from LBS of its poses: another method, or a twisted or
+// stretched bone in the current pose or a pose key.
+bool shows_more_than_lbs(const Document& doc) {
+  if (doc.method() != SkinMethod::LBS || twisted_or_stretched(doc.pose_params())) return true;
+  for (const SceneKey& k : doc.keys())
+    if (!k.is_mesh() && twisted_or_stretched(k.params)) return true;
+  return false;
+}
+
+}  // namespace
 
 GltfExportInput gltf_input_from_document(const Document& doc) {
   if (doc.surface().num_vertices() == 0) throw Error("glTF export: the document has no surface");
@@ -24,6 +44,12 @@ GltfExportInput gltf_input_from_document(const Document& doc) {
   const std::vector<Pose> poses = doc.key_poses();
   for (size_t k = 0; k < times.size(); ++k)
     if (!doc.keys()[k].is_mesh()) in.keys.push_back({times[k], poses[k]});  // glTF skins one mesh
+  if (shows_more_than_lbs(doc)) {  // the residual targets then carry the method, twist and stretch
+    const SkinBinding binding = pose_binding(doc);
+    for (const SceneKey& k : doc.keys())
+      if (!k.is_mesh()) in.exact.push_back(skin_params(doc, binding, k.params));
+    in.exact.push_back(skin_params(doc, binding, doc.pose_params()));
+  }
   return in;
 }
 
@@ -34,9 +60,14 @@ GltfExportReport export_document_gltf(const Document& doc, const std::string& pa
   if (mesh_keys > 0)
     r.notes.push_back(std::to_string(mesh_keys) + " mesh key(s) left out: a glTF skin animates one mesh, so only the "
                       "pose keys are exported");
-  if (doc.method() != SkinMethod::LBS)
+  if (shows_more_than_lbs(doc))
     r.notes.push_back(std::string("the document skins with ") + skin_method_name(doc.method()) +
-                      "; glTF skinning is linear (LBS), so the file plays LBS with these weights");
+                      (doc.method() == SkinMethod::STBS ? " (twist and stretch)" : "") +
+                      "; glTF skinning is linear (LBS): " +
+                      (r.residual_targets > 0 ? "the residual morph targets make its keys and current pose the document's "
+                                                "surface; between keys the correction blends linearly"
+                                              : "the file plays LBS with these weights (residual morph targets would "
+                                                "carry the difference)"));
   return r;
 }
 

@@ -153,6 +153,10 @@ void check_input(const std::string& path, const GltfExportInput& in, const GltfE
     if (!std::isfinite(in.keys[k].time) || in.keys[k].time < 0 || (k > 0 && in.keys[k].time <= in.keys[k - 1].time))
       throw Error("glTF export: key times must be finite, >= 0 and strictly increasing (key " + std::to_string(k) + ")");
   }
+  if (!in.exact.empty() && in.exact.size() != in.keys.size() + 1)
+    throw Error("glTF export: exact surfaces must be one per key plus the current pose");
+  for (const Eigen::MatrixXd& X : in.exact)
+    if (X.rows() != nv || X.cols() != 3 || !X.allFinite()) throw Error("glTF export: an exact surface is not #V x 3 finite");
   if (in.morph_frames.size() != in.morph_times.size())
     throw Error("glTF export: morph frames and morph times differ in count");
   for (size_t i = 0; i < in.morph_frames.size(); ++i) {
@@ -161,6 +165,12 @@ void check_input(const std::string& path, const GltfExportInput& in, const GltfE
     if (!std::isfinite(in.morph_times[i]) || in.morph_times[i] < 0 || (i > 0 && in.morph_times[i] <= in.morph_times[i - 1]))
       throw Error("glTF export: morph times must be finite, >= 0 and strictly increasing");
   }
+}
+
+// What the file should show at key k (-1: the current pose), posed by `pose`.
+Eigen::MatrixXd shown_surface(const GltfExportInput& in, const Pose& pose, int key) {
+  if (!in.exact.empty()) return in.exact[key < 0 ? in.keys.size() : static_cast<size_t>(key)];
+  return lbs(in.surface.V, in.weights, pose);
 }
 
 // The kept influences (refit if asked) and what pruning costs over every pose that will be shown.
@@ -174,12 +184,12 @@ Influences pruned_influences(const GltfExportInput& in, const GltfExportOptions&
     report.refit_vertices = refit_influences(inf, S.V, in.weights, shown);
   }
   const Eigen::MatrixXd Wp = influences_to_dense(inf, num_handles(in.rig));
-  auto prune_error = [&](const Pose& pose) {
-    return (lbs(S.V, in.weights, pose) - lbs(S.V, Wp, pose)).rowwise().norm().maxCoeff();
+  auto prune_error = [&](const Pose& pose, int key) {
+    return (shown_surface(in, pose, key) - lbs(S.V, Wp, pose)).rowwise().norm().maxCoeff();
   };
-  report.max_prune_error = prune_error(current);
+  report.max_prune_error = prune_error(current, -1);
   for (size_t k = 0; k < in.keys.size(); ++k) {
-    const double e = prune_error(in.keys[k].pose);
+    const double e = prune_error(in.keys[k].pose, static_cast<int>(k));
     if (e > report.max_prune_error) report.max_prune_error = e, report.max_prune_error_key = static_cast<int>(k);
   }
   return inf;
@@ -274,14 +284,15 @@ ResidualTargets add_residual_targets(GltfBufferBuilder& bb, tinygltf::Primitive&
   const Eigen::MatrixXd Vf = S.V.cast<float>().cast<double>();
   for (int key : r.key) {
     const Pose& pose = key < 0 ? current : in.keys[key].pose;
-    const Eigen::MatrixXd D = residual_offsets(Vf, inf, stored_w, pose, lbs(S.V, in.weights, pose));
+    const Eigen::MatrixXd D = residual_offsets(Vf, inf, stored_w, pose, shown_surface(in, pose, key));
     std::map<std::string, int> target;
     target["POSITION"] = bb.add_floats(rows_to_floats(D), 3, TINYGLTF_TYPE_VEC3, TINYGLTF_TARGET_ARRAY_BUFFER, true);
     prim.targets.push_back(target);
   }
   report.residual_targets = static_cast<int>(r.key.size());
   std::ostringstream note;
-  note << options.influences << " influences miss LBS with all weights by up to " << report.max_prune_error << " ("
+  note << options.influences << " influences miss " << (in.exact.empty() ? "LBS with all weights" : "the document's surface")
+       << " by up to " << report.max_prune_error << " ("
        << report.max_prune_error / report.bbox_diagonal << " of the bbox diagonal): the misses at the "
        << (in.keys.empty() ? "current pose" : "keys") << " are stored as " << r.key.size()
        << " residual morph target(s) of the skinned mesh";

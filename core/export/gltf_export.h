@@ -12,7 +12,8 @@
 //   residual morph targets (optional, GltfExportOptions::residual_morph_tolerance): when pruning to k
 //            influences cannot reproduce LBS with all weights, mesh 0 gets one POSITION morph target
 //            per key (plus one for the current pose unless it equals a key): the rest-space offset that
-//            makes the pruned skin hit the full-weight LBS result at that pose exactly. glTF applies
+//            makes the pruned skin hit the full-weight LBS result (or GltfExportInput::exact, the
+//            surface the document shows with its own method, twist and stretch) at that pose. glTF applies
 //            targets before skinning; a "weights" channel on node 0 shows target i at key i (LINEAR in
 //            between) and mesh.weights shows the current pose's target when no animation plays.
 //   scene 1 (only with morph frames): node "<name>-baked", an unskinned mesh whose morph targets are
@@ -45,6 +46,10 @@ struct GltfExportInput {
   std::vector<GltfKey> keys;     // empty = no skeletal animation
   std::vector<Eigen::MatrixXd> morph_frames;  // optional baked positions, each #V x 3
   std::vector<double> morph_times;            // one per frame (strictly increasing)
+  // Optional: what the file should show at each key and then at the current pose (keys.size() + 1
+  // matrices, #V x 3) when that is not LBS with all weights (a DQS or STBS document, twisted or
+  // stretched bones); the pruning error and the residual morph targets are measured against it.
+  std::vector<Eigen::MatrixXd> exact;
 };
 
 struct GltfExportOptions {
@@ -64,8 +69,9 @@ struct GltfExportReport {
   int refit_vertices = 0;  // vertices whose kept weights were refit
   int residual_targets = 0;  // residual morph targets written (0: the skin alone was within tolerance)
   double bbox_diagonal = 0.0;
-  // Largest vertex distance between LBS with all weights and with the pruned weights, over the
-  // current pose and every key; max_prune_error_key is the key (-1: the current pose).
+  // Largest vertex distance between the pruned LBS skin and what the file should show (LBS with all
+  // weights, or `exact`), over the current pose and every key; max_prune_error_key is the key (-1: the
+  // current pose).
   double max_prune_error = 0.0;
   // This is the skin's own error: residual morph targets (if written) correct it at these poses.
   int max_prune_error_key = -1;

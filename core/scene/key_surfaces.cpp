@@ -13,16 +13,6 @@ namespace dfm {
 
 namespace {
 
-// The skin binding of the document's weights (positions only: the manifold needs no normals).
-SkinBinding pose_binding(const Document& doc) {
-  if (doc.surface().num_vertices() == 0) throw Error("pose keys need a surface: open a mesh first");
-  if (!doc.has_weights())
-    throw Error("pose keys need weights: " + (doc.weights_note().empty() ? std::string("not bound") : doc.weights_note()) +
-                "; bind first");
-  return make_skin_binding(doc.surface().V, Eigen::MatrixXd(), doc.weights(), doc.rig(),
-                           doc.bind_settings().max_influences);
-}
-
 std::string key_name(const Document& doc, int i) {
   const SceneKey& k = doc.keys()[i];
   if (k.is_mesh()) {
@@ -33,6 +23,15 @@ std::string key_name(const Document& doc, int i) {
 }
 
 }  // namespace
+
+SkinBinding pose_binding(const Document& doc) {
+  if (doc.surface().num_vertices() == 0) throw Error("pose keys need a surface: open a mesh first");
+  if (!doc.has_weights())
+    throw Error("pose keys need weights: " + (doc.weights_note().empty() ? std::string("not bound") : doc.weights_note()) +
+                "; bind first");
+  return make_skin_binding(doc.surface().V, Eigen::MatrixXd(), doc.weights(), doc.rig(),
+                           doc.bind_settings().max_influences);
+}
 
 KeyTrack pose_key_track(const Document& doc) {
   KeyTrack track;

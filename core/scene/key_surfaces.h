@@ -30,6 +30,9 @@ KeyTrack pose_key_track(const Document& doc);
 // kinematics, so every bone stays on its parent's end between keys; a key's own pose at its time;
 // the first or last key's before or after them. Throws dfm::Error without pose keys.
 Pose animation_pose(const Document& doc, double t);
+// The skin binding of the document's weights, positions only (its bind settings' influences). Throws
+// dfm::Error without a surface or weights ("pose keys need weights: ...; bind first").
+SkinBinding pose_binding(const Document& doc);
 // The parameters behind it (twist and stretch included: the animation's layers skin with them).
 PoseParams animation_params(const Document& doc, double t);
 // The surface posed by `params` with the document's method, twist and stretch (STBS reads them;
