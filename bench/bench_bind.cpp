@@ -52,10 +52,10 @@ dfm::BindOptions with_progress(dfm::BindOptions o = {}) {
 void print(const char* name, const dfm::BindResult& r, double cpu) {
   const dfm::BindReport& p = r.report;
   std::printf("%s: %d tets, %d tet vertices, %d handles\n", name, p.tets, p.tet_vertices, p.handles);
-  std::printf("  wall [s]: meshing %.3f  assembly %.3f  %s %.3f  bounded solve %.3f  total %.3f\n",
+  std::printf("  wall [s]: meshing %.3f  assembly %.3f  %s %.3f  bounded solve %.3f  endpoint weights %.3f  total %.3f\n",
               p.meshing_seconds, p.assembly_seconds,
               p.bbw.multilevel ? "ordering" : "factorization+bound-free solve",
-              p.factorization_seconds, p.solve_seconds, p.total_seconds);
+              p.factorization_seconds, p.solve_seconds, p.endpoint_seconds, p.total_seconds);
   std::printf("  whole solve (assembly + factorization + bounded solve): %.3f s wall; process CPU %.3f s\n",
               p.assembly_seconds + p.factorization_seconds + p.solve_seconds, cpu);
   std::printf("  solver: %d free-set solves (worst handle %d, fallback %d), KKT residual %.2e, factor nnz %ld\n",

@@ -13,6 +13,7 @@
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
 #include "core/skin/skin.h"
+#include "tests/volume_test_meshes.h"
 
 using namespace dfm;
 namespace fs = std::filesystem;
@@ -151,5 +152,51 @@ TEST_CASE("deform pose --twist-stretch: a stretch moves what hangs below by the 
   CHECK(run_deform("pose " + common + " --twist-stretch " + (dir / "zero.dmat").string() + " -o " + (dir / "x.obj").string()) == 1);
   CHECK(run_deform("pose " + (dir / "tube.obj").string() + " --weights " + (dir / "w.dmat").string() + " --points " +
                    (dir / "p.txt").string() + " --twist-stretch " + (dir / "ts.dmat").string() + " -o " + (dir / "x.obj").string()) == 2);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deform bind --endpoints, deform pose --endpoints: the bind's endpoint weights carry to STBS", "[pose][cli][stbs]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_test_pose_ep_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  // A closed capsule-like ellipsoid along x around the tube's two bones (0 -> 1 -> 2).
+  TriMesh body = test::icosphere(Eigen::Vector3d(1, 0, 0), 1.0, 3);
+  body.V.col(0) = (body.V.col(0).array() - 1) * 1.2 + 1;
+  body.V.col(1) *= 0.3;
+  body.V.col(2) *= 0.3;
+  write_surface((dir / "body.obj").string(), body);
+  write_tube(dir);  // s.tgf
+  const std::string s = (dir / "s.tgf").string();
+  REQUIRE(run_deform("bind " + (dir / "body.obj").string() + " --skeleton " + s + " -o " + (dir / "w.dmat").string() +
+                     " --endpoints " + (dir / "e.dmat").string()) == 0);
+  const Eigen::MatrixXd W = read_dmat((dir / "w.dmat").string()), E = read_dmat((dir / "e.dmat").string());
+  REQUIRE(E.rows() == body.V.rows());
+  REQUIRE(E.cols() == 2);
+  CHECK(E.minCoeff() >= 0);
+  CHECK(E.maxCoeff() <= 1);
+  Eigen::MatrixXd ts(2, 2);
+  ts << 0, 1, 90, 1;
+  write_dmat((dir / "ts.dmat").string(), ts);
+  const std::string out = (dir / "out.obj").string();
+  REQUIRE(run_deform("pose " + (dir / "body.obj").string() + " --weights " + (dir / "w.dmat").string() + " --skeleton " + s +
+                     " --twist-stretch " + (dir / "ts.dmat").string() + " --endpoints " + (dir / "e.dmat").string() +
+                     " --method stbs --cpu -o " + out) == 0);
+  Rig rig;
+  add_tgf_to_rig(rig, read_tgf(s), "s.tgf");
+  PoseParams p = rest_pose_params(rig);
+  p.bone_twist_stretch = read_bone_twist_stretch((dir / "ts.dmat").string(), 2);
+  const SkinBinding with = make_skin_binding(body.V, Eigen::MatrixXd(), W, rig, 0, E);
+  const SkinBinding without = make_skin_binding(body.V, Eigen::MatrixXd(), W, rig, 0);
+  const Pose pose = evaluate_pose(rig, p);
+  const auto st = stbs_handles(rig, p.bone_twist_stretch);
+  const Eigen::MatrixXd got = read_surface(out).V;
+  CHECK((got - skin(SkinMethod::STBS, with, pose, st).V).cwiseAbs().maxCoeff() < 1e-6);
+  CHECK((got - skin(SkinMethod::STBS, without, pose, st).V).cwiseAbs().maxCoeff() > 1e-3);  // they differ
+  // Hostile: the wrong shape, values out of [0, 1].
+  write_dmat((dir / "bad.dmat").string(), Eigen::MatrixXd::Constant(body.V.rows(), 2, 1.5));
+  CHECK(run_deform("pose " + (dir / "body.obj").string() + " --weights " + (dir / "w.dmat").string() + " --skeleton " + s +
+                   " --endpoints " + (dir / "bad.dmat").string() + " --method stbs --cpu -o " + out) == 1);
+  write_dmat((dir / "bad.dmat").string(), Eigen::MatrixXd::Zero(3, 2));
+  CHECK(run_deform("pose " + (dir / "body.obj").string() + " --weights " + (dir / "w.dmat").string() + " --skeleton " + s +
+                   " --endpoints " + (dir / "bad.dmat").string() + " --method stbs --cpu -o " + out) == 1);
   fs::remove_all(dir);
 }

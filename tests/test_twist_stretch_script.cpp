@@ -5,6 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+
+#include <unistd.h>
 
 #include "core/scene/script.h"
 #include "core/util/error.h"
@@ -103,4 +106,41 @@ TEST_CASE("keys carry twist and stretch: the animation's frame at a key and betw
     CHECK(largest_difference(frame.V, want.V) < 1e-9);
     CHECK(largest_difference(frame.V, still.surface().V) > 0.1);  // it did twist
   }
+}
+
+TEST_CASE("bind stores the STBS endpoint weights: saved and loaded with the scene, undone with the bind, cleared by a rig edit") {
+  Document d;
+  make_arm(d);
+  run(d, "bind\n");
+  const Eigen::MatrixXd E = d.endpoint_weights();
+  REQUIRE(E.rows() == d.surface().num_vertices());
+  REQUIRE(E.cols() == 2);
+  CHECK(E.minCoeff() >= 0);
+  CHECK(E.maxCoeff() <= 1);
+  // Along the first bone (x from -2 to 0) the surface's endpoint weight grows from its start to its end.
+  auto mean_at = [&](double x0, double x1) {
+    double s = 0;
+    int n = 0;
+    for (int i = 0; i < E.rows(); ++i)
+      if (d.surface().V(i, 0) >= x0 && d.surface().V(i, 0) < x1) s += E(i, 0), ++n;
+    REQUIRE(n > 0);
+    return s / n;
+  };
+  CHECK(mean_at(-1.6, -1.2) < mean_at(-1.0, -0.6));
+  CHECK(mean_at(-1.0, -0.6) < mean_at(-0.4, 0.0));
+
+  const std::string path = (std::filesystem::temp_directory_path() / ("dfm_ts_" + std::to_string(::getpid()) + ".scene.json")).string();
+  d.save_scene(path);
+  Document loaded;
+  loaded.load_scene(path);
+  CHECK(loaded.endpoint_weights() == E);
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.substr(0, path.size() - 5) + ".bin");
+
+  d.undo();  // the bind
+  CHECK(d.endpoint_weights().size() == 0);
+  d.redo();
+  CHECK(d.endpoint_weights() == E);
+  run(d, "add-point 0 0.2 0\n");  // the rig changed: weights and endpoint weights go
+  CHECK(d.endpoint_weights().size() == 0);
 }

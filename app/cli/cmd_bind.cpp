@@ -16,6 +16,7 @@ namespace {
 const char* kUsage =
     "usage: deform bind INPUT [--skeleton S.tgf] [--points P.txt] [--cage C.obj ...] [--tetgen SWITCHES]\n"
     "                   [--segmentation cut|threshold] [--exact-pou | --monotone] [--threads N] -o W.dmat [--tets OUT.mesh]\n"
+    "                   [--endpoints E.dmat]\n"
     "  INPUT              surface (.obj .off .ply .stl: tetrahedralized with TetGen) or tet mesh\n"
     "                     (.mesh .node/.ele: used as it is; it must contain every handle's geometry)\n"
     "  --skeleton S.tgf   bones (TGF edge order) and point handles (joints on no bone)\n"
@@ -28,11 +29,13 @@ const char* kUsage =
     "  --monotone         no local maxima or minima away from the handles (Jacobson 2013, ch. 5)\n"
     "  -o W.dmat          #input vertices x #handles; columns: points (P.txt, then TGF joints on no bone),\n"
     "                     bones, cage vertices\n"
-    "  --tets OUT.mesh    also save the tet mesh the weights were solved on";
+    "  --tets OUT.mesh    also save the tet mesh the weights were solved on\n"
+    "  --endpoints E.dmat also save the bones' STBS endpoint weights (#input vertices x #bones; Jacobson 2013,\n"
+    "                     6.2.3: from joint weights solved on the same volume), for deform pose --endpoints";
 
 // What the command line asks for.
 struct Options {
-  std::string input, skeleton, points, tetgen, segmentation, out, tets_out;
+  std::string input, skeleton, points, tetgen, segmentation, out, tets_out, endpoints_out;
   std::vector<std::string> cages;
   bool exact = false, monotone = false;
   int threads = 2;
@@ -57,6 +60,7 @@ Options parse_options(const dfm::cli::Args& args) {
     else if (a == "--threads") o.threads = r.integer(a);
     else if (a == "-o" || a == "--output") o.out = r.value(a);
     else if (a == "--tets") o.tets_out = r.value(a);
+    else if (a == "--endpoints") o.endpoints_out = r.value(a);
     else if (!a.empty() && a[0] == '-') throw UsageError("unknown option " + a);
     else if (o.input.empty()) o.input = a;
     else throw UsageError("more than one input: " + o.input + ", " + a);
@@ -140,6 +144,12 @@ int run(const dfm::cli::Args& args) {
   if (!o.tets_out.empty()) {
     dfm::write_tet_mesh(o.tets_out, res.volume.tets);
     std::cout << "wrote " << o.tets_out << "\n";
+  }
+  if (!o.endpoints_out.empty()) {
+    if (res.endpoint_weights.cols() == 0) throw dfm::Error("--endpoints: the rig has no bones");
+    dfm::write_dmat(o.endpoints_out, res.endpoint_weights);
+    std::cout << "wrote " << o.endpoints_out << " (endpoint weights, " << res.endpoint_weights.rows() << " x "
+              << res.endpoint_weights.cols() << ", " << res.report.endpoint_seconds << " s)\n";
   }
   return 0;
 }

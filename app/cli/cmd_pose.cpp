@@ -22,8 +22,8 @@
 namespace {
 
 const char* kUsage =
-    "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]]\n"
-    "                   [--points P.txt] [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
+    "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]\n"
+    "                   [--endpoints E.dmat]] [--points P.txt] [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
     "                   [--method lbs|dqs|stbs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
     "  INPUT              surface (.obj .off .ply .stl) or tet mesh (.mesh .node/.ele: all its vertices\n"
     "                     are posed, its surface triangles saved)\n"
@@ -33,6 +33,8 @@ const char* kUsage =
     "  --pose Q.dmat      one rotation per bone relative to its parent, quaternions (x y z w)\n"
     "  --twist-stretch TS.dmat  one row per bone: twist in degrees at its second joint, stretch factor\n"
     "                     (Jacobson 2013 ch. 6; --method stbs spreads them along each bone)\n"
+    "  --endpoints E.dmat #V x #bones STBS endpoint weights (deform bind --endpoints); without, STBS projects\n"
+    "                     each vertex onto the bone and says so\n"
     "  --points-pose P.txt  one translation per point handle ('x y z' per line)\n"
     "  --fast             solve the transforms nobody set (FAST, Jacobson 2013 ch. 7): handles in --free\n"
     "                     entirely, other point handles keep their --points-pose position (rotation solved),\n"
@@ -97,7 +99,7 @@ void solve_fast(const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig, 
 
 // What the command line asks for.
 struct Options {
-  std::string input, out, weights, skeleton, pose_file, twist_stretch, points, points_pose, free_list;
+  std::string input, out, weights, skeleton, pose_file, twist_stretch, endpoints, points, points_pose, free_list;
   dfm::SkinMethod method = dfm::SkinMethod::LBS;
   int k = 0;  // 0: every weight
   int iterations = 20;
@@ -117,6 +119,7 @@ Options parse_options(const dfm::cli::Args& args) {
     else if (f == "--skeleton") o.skeleton = a.value(f);
     else if (f == "--pose") o.pose_file = a.value(f);
     else if (f == "--twist-stretch") o.twist_stretch = a.value(f);
+    else if (f == "--endpoints") o.endpoints = a.value(f);
     else if (f == "--points-pose") o.points_pose = a.value(f);
     else if (f == "--points") o.points = a.value(f);
     else if (f == "--fast") o.fast = true;
@@ -212,14 +215,24 @@ int run(const dfm::cli::Args& args) {
   const dfm::Pose pose = posed_handles(o, in, W, rig, params);
   const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);
   const Eigen::MatrixXd N = dfm::vertex_normals(in.V, in.F);
-  const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, o.k);
+  Eigen::MatrixXd E;
+  if (!o.endpoints.empty()) {
+    E = dfm::read_dmat(o.endpoints);
+    if (E.rows() != in.V.rows() || E.cols() != rig.skeleton.num_bones() || !E.allFinite() || E.minCoeff() < 0 ||
+        E.maxCoeff() > 1)
+      throw dfm::file_error(o.endpoints, 0, "expected #V x #bones = " + std::to_string(in.V.rows()) + " x " +
+                                              std::to_string(rig.skeleton.num_bones()) + " values in [0, 1]");
+  } else if (o.method == dfm::SkinMethod::STBS && rig.skeleton.num_bones() > 0) {
+    std::printf("pose: STBS endpoint weights by projection onto each bone (no --endpoints from the bind)\n");
+  }
+  const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, o.k, E);
 
   std::string where;
   const auto t0 = std::chrono::steady_clock::now();
   const dfm::SkinResult posed = skin_anywhere(o, kept, pose, stbs, where);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double trunc =
-      o.k > 0 ? dfm::truncation_error(o.method, dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0), kept, pose, stbs)
+      o.k > 0 ? dfm::truncation_error(o.method, dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0, E), kept, pose, stbs)
               : 0.0;
   const double diag = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
 

@@ -15,6 +15,7 @@ std::string stage_label(const std::string& stage, bool tet_input) {
   if (stage == "factorization") return "factorizing";
   if (stage == "solve") return "solving weights";
   if (stage == "mapping") return "mapping to the surface";
+  if (stage == "endpoints") return "endpoint weights (joints)";
   return stage;
 }
 }  // namespace

@@ -58,6 +58,9 @@ void PosePanels::draw_twist_stretch(Document& doc, int bone) {
   if (twist_done || stretch_done) doc.end_gesture();
   if (doc.method() != SkinMethod::STBS && (ts.twist != 0 || ts.stretch != 1))
     text_disabled_wrapped("the method STBS spreads them along the bone");
+  if (doc.method() == SkinMethod::STBS && doc.has_weights())
+    text_disabled_wrapped(doc.endpoint_weights().size() ? "endpoint weights: the bind's (shape-aware)"
+                                                        : "endpoint weights: projection onto the bone (weights not from a bind)");
 }
 
 // Typed values: world offset of the pivot and rotation (axis-angle) of this handle's transform, shown

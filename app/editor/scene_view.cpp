@@ -41,7 +41,7 @@ const Eigen::AlignedBox3d kEmptyBox(Eigen::Vector3d(-1, 0, -1), Eigen::Vector3d(
 struct SceneView::Deformer {
   // What the skin was bound from, compared by value when the revision changes: a re-bind writes
   // weights of the same size into the same storage, so their address says nothing.
-  Eigen::MatrixXd skin_W, skin_V;
+  Eigen::MatrixXd skin_W, skin_E, skin_V;
   Eigen::MatrixXi skin_F;
   int k = 0;
   std::uint64_t skin_revision = ~0ull;
@@ -308,10 +308,13 @@ void SceneView::update_skin(const Document& doc) {
   // Every weight the bind computed (sparse rows on the GPU), unless the scene prunes to k.
   const int k = doc.bind_settings().max_influences;
   auto same = [](const auto& a, const auto& b) { return a.rows() == b.rows() && a.cols() == b.cols() && a == b; };
-  if (!d.skin || k != d.k || !same(W, d.skin_W) || !same(rest.V, d.skin_V) || !same(rest.F, d.skin_F)) {
+  const Eigen::MatrixXd& E = doc.endpoint_weights();
+  const bool same_binding = d.skin && k == d.k && same(W, d.skin_W) && same(E, d.skin_E);
+  if (!same_binding || !same(rest.V, d.skin_V) || !same(rest.F, d.skin_F)) {
     d.skin.reset();  // if the binding below throws, none: the rest shows with the error, and it is retried
-    d.skin = gpu_.make_skin(make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k), rest.F);
+    d.skin = gpu_.make_skin(make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k, E), rest.F);
     d.skin_W = W;
+    d.skin_E = E;
     d.skin_V = rest.V;
     d.skin_F = rest.F;
     d.k = k;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/bind/endpoint_weights.h"
 #include "core/bind/rigid_pieces.h"
 #include "core/util/error.h"
 
@@ -21,7 +22,29 @@ void check_cancel(const BindOptions& opts) {
 // Meshing takes the first 30% of the progress bar when it runs, the weights the rest.
 constexpr double kMeshingShare = 0.3;
 
-BindResult solve_weights(BindVolume volume, const BindOptions& opts, double progress_start, Clock::time_point t_all) {
+// With bones, the weights' solve reports up to here and the joints' solve from here to 0.97 (they take
+// about as long).
+constexpr double kEndpointsStart = 0.6;
+
+// The endpoint weights on the user's vertices (bind_endpoint_weights mapped by to_user), timed.
+Eigen::MatrixXd user_endpoint_weights(const BindVolume& volume, const Rig& rig, const BindOptions& opts,
+                                      const Eigen::VectorXd& shape_mask, BindReport& r) {
+  const auto t0 = Clock::now();
+  if (opts.progress) opts.progress("endpoints", kEndpointsStart);
+  BbwOptions bo;
+  bo.qp.cancel = opts.cancel;
+  if (opts.progress)
+    bo.progress = [&](const std::string&, double f) {
+      opts.progress("endpoints", kEndpointsStart + (0.97 - kEndpointsStart) * f);
+    };
+  bo.shape_mask = shape_mask;
+  const Eigen::MatrixXd E = (volume.to_user * bind_endpoint_weights(volume, rig, bo)).cwiseMax(0.0).cwiseMin(1.0);
+  r.endpoint_seconds = since(t0);
+  return E;
+}
+
+BindResult solve_weights(BindVolume volume, const BindOptions& opts, double progress_start, Clock::time_point t_all,
+                         const Rig* rig = nullptr) {
   check_cancel(opts);
   BindResult res;
   BbwOptions bo = opts.bbw;
@@ -29,16 +52,18 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
     bo.shape_mask = tet_mask_from_user_vertices(volume, opts.vertex_mask);
   bo.qp.cancel = opts.cancel;
   bo.progress = nullptr;
+  const bool endpoints = rig && opts.endpoint_weights && rig->skeleton.num_bones() > 0;
+  const double solved_at = endpoints ? kEndpointsStart : 0.97;
   if (opts.progress)
     bo.progress = [&](const std::string& stage, double f) {
-      opts.progress(stage, progress_start + (0.97 - progress_start) * f);
+      opts.progress(stage, progress_start + (solved_at - progress_start) * f);
     };
   if (opts.bbw.shape_mask.size() && opts.bbw.shape_mask.size() != volume.tets.num_tets())
     throw Error("shape mask has " + std::to_string(opts.bbw.shape_mask.size()) + " values for " +
                 std::to_string(volume.tets.num_tets()) + " tets of the bind volume");
   res.tet_weights = bbw_weights(volume.tets.V, volume.tets.T, volume.b, volume.bc, bo, &res.report.bbw);
   apply_rigid_pieces(volume, res.tet_weights);
-  if (opts.progress) opts.progress("mapping", 0.97);
+  if (opts.progress) opts.progress("mapping", solved_at);
   if (volume.to_user.cols() != res.tet_weights.rows())
     throw Error("bind volume: the map to the user's vertices has " + std::to_string(volume.to_user.cols()) +
                 " columns for " + std::to_string(res.tet_weights.rows()) + " tet vertices");
@@ -61,6 +86,8 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
     r.notes.push_back(std::to_string(r.bbw.rows_renormalized_from_zero) +
                       " tet vertices had every weight at 0; they took the bound-free solution");
   weight_statistics(res.weights, r);
+  if (endpoints)
+    res.endpoint_weights = user_endpoint_weights(volume, *rig, opts, bo.shape_mask, r);
   res.volume = std::move(volume);
   r.total_seconds = since(t_all);
   if (opts.progress) opts.progress("done", 1.0);
@@ -102,7 +129,7 @@ BindResult bind_surface(const TriMesh& surface, const Rig& rig, const BindOption
   check_cancel(opts);
   BindVolume vol = build_bind_volume(surface, rig, opts.volume);
   if (vol.meshing_seconds == 0) vol.meshing_seconds = since(t0);
-  return solve_weights(std::move(vol), opts, kMeshingShare, t0);
+  return solve_weights(std::move(vol), opts, kMeshingShare, t0, &rig);
 }
 
 BindResult bind_tet_mesh(const TetMesh& tets, const Rig& rig, const BindOptions& opts) {
@@ -111,7 +138,7 @@ BindResult bind_tet_mesh(const TetMesh& tets, const Rig& rig, const BindOptions&
   check_cancel(opts);
   BindVolume vol = bind_volume_from_tets(tets, rig);
   if (vol.meshing_seconds == 0) vol.meshing_seconds = since(t0);
-  return solve_weights(std::move(vol), opts, 0.05, t0);
+  return solve_weights(std::move(vol), opts, 0.05, t0, &rig);
 }
 
 BindResult bind_on_volume(BindVolume volume, const BindOptions& opts) {

@@ -27,10 +27,13 @@ struct BindOptions {
   // "solve", "monotone" (BbwOptions::monotone), "mapping", "done". May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
   const std::atomic<bool>* cancel = nullptr;  // throws dfm::Cancelled soon after it is set
+  // With bones: also the STBS endpoint weights (endpoint_weights.h), a second solve over the joints.
+  bool endpoint_weights = true;
 };
 
 struct BindReport {
   double meshing_seconds = 0, assembly_seconds = 0, factorization_seconds = 0, solve_seconds = 0, total_seconds = 0;
+  double endpoint_seconds = 0;  // the joint weights' solve (in total_seconds)
   int tet_vertices = 0, tets = 0, handles = 0;
   BbwStats bbw;  // iterations, KKT residual, factor size
   // On the user's vertices:
@@ -42,6 +45,9 @@ struct BindResult {
   Eigen::MatrixXd weights;  // #user vertices x #handles (rig.h order), rows sum to 1
   BindVolume volume;        // the tets the weights were solved on, with the constraints
   Eigen::MatrixXd tet_weights;  // #tet vertices x #handles
+  // STBS endpoint weights on the user's vertices (#user vertices x #bones); empty without bones or
+  // with BindOptions::endpoint_weights off (bind_on_volume: no rig, none).
+  Eigen::MatrixXd endpoint_weights;
   BindReport report;
 };
 

@@ -23,7 +23,7 @@ BindOptions bind_options(const Document& doc) {
 }
 
 void apply_bind_result(Document& doc, const BindResult& r) {
-  Eigen::MatrixXd W;
+  Eigen::MatrixXd W, E;
   if (doc.has_tets()) {
     const Eigen::VectorXi& map = doc.data().surface_to_tet;
     if (r.weights.rows() != doc.tets().num_vertices())
@@ -31,15 +31,20 @@ void apply_bind_result(Document& doc, const BindResult& r) {
                   std::to_string(doc.tets().num_vertices()) + " vertices (the scene changed during the bind)");
     W.resize(map.size(), r.weights.cols());
     for (int i = 0; i < map.size(); ++i) W.row(i) = r.weights.row(map[i]);
+    if (r.endpoint_weights.rows() == r.weights.rows()) {
+      E.resize(map.size(), r.endpoint_weights.cols());
+      for (int i = 0; i < map.size(); ++i) E.row(i) = r.endpoint_weights.row(map[i]);
+    }
   } else {
     W = r.weights;
+    E = r.endpoint_weights;
   }
   BindStats st;
   st.seconds = r.report.total_seconds;
   st.tet_vertices = r.report.tet_vertices;
   st.tets = r.report.tets;
   st.notes = r.report.notes;
-  doc.set_weights(W, st);  // checks #V x #handles against the current document
+  doc.set_weights(W, st, E);  // checks #V x #handles against the current document
 }
 
 void run_bind_blocking(Document& doc, const BindOptions& extra) {

@@ -59,6 +59,7 @@ void swap_parts(SceneData& a, SceneData& b, unsigned parts) {
   if (parts & 8u) swap(a.keys, b.keys);
   if (parts & 16u) {
     swap(a.weights, b.weights);
+    swap(a.endpoint_weights, b.endpoint_weights);
     swap(a.bind_stats, b.bind_stats);
   }
   if (parts & 32u) swap(a.mask, b.mask);
@@ -81,6 +82,7 @@ void copy_parts(const SceneData& from, SceneData& to, unsigned parts) {
   if (parts & 8u) to.keys = from.keys;
   if (parts & 16u) {
     to.weights = from.weights;
+    to.endpoint_weights = from.endpoint_weights;
     to.bind_stats = from.bind_stats;
   }
   if (parts & 32u) to.mask = from.mask;
@@ -141,6 +143,7 @@ void Document::rig_edit(const std::string& name, const std::string& merge_target
     for (SceneKey& k : s.keys) k.params = fit_pose_params(s.rig, std::move(k.params));
     if (s.weights.size() > 0) {
       s.weights.resize(0, 0);
+      s.endpoint_weights.resize(0, 0);
       s.bind_stats = {};
       weights_note_ = "rig changed after bind (" + name + "): weights cleared, bind again";
     }
@@ -285,14 +288,21 @@ void Document::clear() {
 
 // ---- bind results and settings ---------------------------------------------------------------------
 
-void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats) {
+void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats, const Eigen::MatrixXd& endpoints) {
   if (W.rows() != s_.surface.num_vertices() || W.cols() != num_handles())
     throw Error("weights are " + std::to_string(W.rows()) + " x " + std::to_string(W.cols()) + " but the scene has " +
                 std::to_string(s_.surface.num_vertices()) + " vertices and " + std::to_string(num_handles()) +
                 " handles");
   if (!W.allFinite()) throw Error("weights contain NaN or infinity");
+  if (endpoints.size() > 0 &&
+      (endpoints.rows() != W.rows() || endpoints.cols() != s_.rig.skeleton.num_bones() || !endpoints.allFinite() ||
+       endpoints.minCoeff() < 0 || endpoints.maxCoeff() > 1))
+    throw Error("endpoint weights must be #V x #bones (" + std::to_string(W.rows()) + " x " +
+                std::to_string(s_.rig.skeleton.num_bones()) + ") in [0, 1], got " + std::to_string(endpoints.rows()) +
+                " x " + std::to_string(endpoints.cols()));
   execute("bind", kWeights, "", [&](SceneData& s) {
     s.weights = W;
+    s.endpoint_weights = endpoints;
     s.bind_stats = stats;
     weights_note_.clear();
   });

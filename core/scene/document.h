@@ -113,6 +113,9 @@ struct SceneData {
   BindSettings bind_settings;
   int inbetweens = 4;       // animation manifold: baked layers strictly inside each key interval
   Eigen::MatrixXd weights;  // #V x #handles, or empty (not bound / invalidated)
+  // #V x #bones STBS endpoint weights from the bind (core/bind/endpoint_weights.h), or empty: STBS then
+  // projects onto each bone (weights not from a bind, scenes saved before).
+  Eigen::MatrixXd endpoint_weights;
   BindStats bind_stats;
   std::vector<SceneKey> keys;
   Eigen::VectorXd mask;     // shape-preservation mask per surface vertex in [0,1] (painted)
@@ -162,6 +165,8 @@ class Document {
   const BindSettings& bind_settings() const { return s_.bind_settings; }
   bool has_weights() const;  // weights present and matching the surface and rig
   const Eigen::MatrixXd& weights() const { return s_.weights; }
+  // The bind's STBS endpoint weights (#V x #bones), or empty: STBS projects onto each bone.
+  const Eigen::MatrixXd& endpoint_weights() const { return s_.endpoint_weights; }
   const BindStats& bind_stats() const { return s_.bind_stats; }
   // Why the weights are absent ("not bound yet", "rig changed after bind: ..."); "" when bound.
   const std::string& weights_note() const { return weights_note_; }
@@ -247,7 +252,8 @@ class Document {
   void paint_region(int region, const std::vector<int>& vertices, bool erase);
 
   // The result of a bind (run elsewhere): #V x num_handles, rows should sum to 1.
-  void set_weights(const Eigen::MatrixXd& W, const BindStats& stats);
+  // endpoints: the bind's STBS endpoint weights (#V x #bones, in [0, 1]) or empty (the projection).
+  void set_weights(const Eigen::MatrixXd& W, const BindStats& stats, const Eigen::MatrixXd& endpoints = {});
   void set_bind_settings(const BindSettings& s);
   void set_method(SkinMethod m);
   void set_inbetweens(int n);  // 0..1000

@@ -340,6 +340,16 @@ void read_bind_results(const SceneReader& R, const json& j, SceneData& s) {
   if (s.weights.size() > 0 && (s.weights.rows() != nv || s.weights.cols() != num_handles(s.rig)))
     R.fail("'weights' is " + std::to_string(s.weights.rows()) + " x " + std::to_string(s.weights.cols()) +
            ", expected #vertices x #handles = " + std::to_string(nv) + " x " + std::to_string(num_handles(s.rig)));
+  // Optional: scenes from before the bind's endpoint weights (STBS then projects onto the bones).
+  if (j.contains("endpoint_weights")) {
+    s.endpoint_weights = R.f64(j["endpoint_weights"], "endpoint_weights");
+    const Eigen::MatrixXd& E = s.endpoint_weights;
+    if (E.size() > 0 && (s.weights.size() == 0 || E.rows() != nv || E.cols() != s.rig.skeleton.num_bones() ||
+                         E.minCoeff() < 0 || E.maxCoeff() > 1))
+      R.fail("'endpoint_weights' is " + std::to_string(E.rows()) + " x " + std::to_string(E.cols()) +
+             ", expected #vertices x #bones = " + std::to_string(nv) + " x " +
+             std::to_string(s.rig.skeleton.num_bones()) + " in [0, 1] beside the weights");
+  }
   const json& st = R.field(j, "bind_stats", "scene");
   s.bind_stats.seconds = R.number(R.field(st, "seconds", "bind_stats"), "bind_stats.seconds");
   s.bind_stats.tet_vertices =
@@ -462,6 +472,7 @@ void write_scene(const std::string& json_path, const SceneData& s) {
                                  {"sigma", s.bind_settings.volume.cut.sigma},
                                  {"surface_factor", s.bind_settings.volume.cut.surface_factor}}}};
   j["weights"] = blob.add(s.weights);
+  if (s.endpoint_weights.size() > 0) j["endpoint_weights"] = blob.add(s.endpoint_weights);
   j["bind_stats"] = {{"seconds", s.bind_stats.seconds},
                      {"tet_vertices", s.bind_stats.tet_vertices},
                      {"tets", s.bind_stats.tets},

@@ -27,7 +27,7 @@ SkinMethod parse_skin_method(const std::string& name) {
 }
 
 SkinBinding make_skin_binding(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Eigen::MatrixXd& W,
-                              const Rig& rig, int k) {
+                              const Rig& rig, int k, const Eigen::MatrixXd& bone_endpoints) {
   const int nh = num_handles(rig);
   if (W.rows() != V.rows())
     throw Error("weights have " + std::to_string(W.rows()) + " rows but the mesh has " + std::to_string(V.rows()) +
@@ -41,7 +41,18 @@ SkinBinding make_skin_binding(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N
   b.N = N;
   b.num_handles = nh;
   b.influences = k <= 0 ? all_influences(W) : top_influences(W, k, true);
-  b.endpoints = gather_by_influence(b.influences, bone_endpoint_weights(V, rig));
+  const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
+  if (bone_endpoints.size() == 0) {
+    b.endpoints = gather_by_influence(b.influences, bone_endpoint_weights(V, rig));
+  } else {
+    if (bone_endpoints.rows() != V.rows() || bone_endpoints.cols() != nb)
+      throw Error("endpoint weights are " + std::to_string(bone_endpoints.rows()) + " x " +
+                  std::to_string(bone_endpoints.cols()) + ", expected #V x #bones = " + std::to_string(V.rows()) +
+                  " x " + std::to_string(nb));
+    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(V.rows(), nh);  // per handle: bones' columns only
+    E.middleCols(np, nb) = bone_endpoints;
+    b.endpoints = gather_by_influence(b.influences, E);
+  }
   return b;
 }
 

@@ -33,8 +33,10 @@ struct SkinBinding {
 
 // k <= 0 keeps every weight unchanged (the exact reference); else the k largest, renormalized.
 // W: #V x num_handles(rig). Throws dfm::Error on size mismatches.
+// bone_endpoints: STBS endpoint weights from the bind (#V x #bones, core/bind/endpoint_weights.h); empty:
+// the projection onto each bone (bone_endpoint_weights).
 SkinBinding make_skin_binding(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Eigen::MatrixXd& W,
-                              const Rig& rig, int k);
+                              const Rig& rig, int k, const Eigen::MatrixXd& bone_endpoints = {});
 
 struct SkinResult {
   Eigen::MatrixXd V;

@@ -9,3 +9,5 @@ target_compile_definitions(test_pose_cli PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:d
 add_dependencies(test_pose_cli deform)
 # The candy wrapper (Jacobson 2013, Fig. 6.1) on arm.obj: LBS collapses a turned wrist, STBS keeps it.
 dfm_test(test_candy_wrapper SOURCES test_candy_wrapper.cpp LIBS dfm_scene)
+# STBS endpoint weights from the bind (Jacobson 2013, 6.2.3): Eq. 6.7, the joint constraints, the arm and hand.
+dfm_test(test_endpoint_weights SOURCES test_endpoint_weights.cpp LIBS dfm_bind dfm_skin dfm_mesh)
