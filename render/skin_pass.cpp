@@ -108,6 +108,9 @@ void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
       put_row(d + 40, Eigen::Vector4d(s.stretch.x(), s.stretch.y(), s.stretch.z(), 0.0));
       const Eigen::Affine3d Tp = T * s.unstretched;
       for (int r = 0; r < 3; ++r) put_row(d + 44 + 4 * r, Tp.matrix().row(r).transpose());
+      const DqsHandle tq = dqs_handle(Tp);
+      put_row(d + 56, tq.real);
+      put_row(d + 60, tq.dual);
     }
   }
   handle_data_.upload(GL_TEXTURE_BUFFER, data, GL_STREAM_DRAW);
@@ -121,7 +124,10 @@ void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
 const Program& SkinPass::program(SkinMethod m) {
   auto it = programs_.find(m);
   if (it != programs_.end()) return it->second;
-  const char* define = m == SkinMethod::LBS ? "METHOD_LBS" : m == SkinMethod::DQS ? "METHOD_DQS" : "METHOD_STBS";
+  const char* define = m == SkinMethod::LBS    ? "METHOD_LBS"
+                       : m == SkinMethod::DQS  ? "METHOD_DQS"
+                       : m == SkinMethod::STBS ? "METHOD_STBS"
+                                               : "METHOD_STBS_DQS";
   ProgramDesc desc;
   desc.vertex = "skin.vert.glsl";
   desc.defines = {define};

@@ -1,6 +1,6 @@
 // Skinning by transform feedback: rest position + normal -> posed position + normal (PosNormal).
-// One method per compiled program: METHOD_LBS, METHOD_DQS or METHOD_STBS.
-// Mirrors core/skin/{lbs,dqs,stbs}.cpp term by term (those are the double-precision references).
+// One method per compiled program: METHOD_LBS, METHOD_DQS, METHOD_STBS or METHOD_STBS_DQS.
+// Mirrors core/skin/{lbs,dqs,stbs,stbs_dqs}.cpp term by term (the double-precision references).
 // Influences: every nonzero weight of the vertex, in compressed sparse rows (SparseInfluences):
 //   row_offsets  R32I, #V + 1: vertex i's entries are row_offsets[i] .. row_offsets[i + 1] - 1
 //   pairs        RG32I per entry: handle index, float bits of the weight (largest weight first)
@@ -13,6 +13,7 @@
 //   9    STBS: unit bone axis (xyz), 1 if the bone is active (w)
 //   10   STBS: stretch offset (sigma - 1)(b - a) (xyz)
 //   11-13  STBS: rows of T' = T W^-1 (the bone without its twist/stretch) for active bones
+//   14-15  STBS over DQS: the dual quaternion of T' (real, dual) for active bones
 #define HANDLE_TEXELS 16
 
 layout(location = 0) in vec3 rest_position;
@@ -43,6 +44,8 @@ vec3 transform_normal(mat3 M, vec3 n) {
 vec3 dq_transform(vec4 r, vec4 d, vec3 p) {
   return p + 2.0 * cross(r.xyz, cross(r.xyz, p) + r.w * p) + 2.0 * (r.w * d.xyz - d.w * r.xyz + cross(r.xyz, d.xyz));
 }
+
+vec4 qmul(vec4 a, vec4 b) { return vec4(a.w * b.xyz + b.w * a.xyz + cross(a.xyz, b.xyz), a.w * b.w - dot(a.xyz, b.xyz)); }
 
 mat3 axis_rotation(vec3 u, float angle) {
   float c = cos(angle), s = sin(angle);
@@ -90,7 +93,7 @@ void main() {
   out_normal = transform_normal(A, n);
 #endif
 
-#ifdef METHOD_DQS
+#if defined(METHOD_DQS) || defined(METHOD_STBS_DQS)
   vec4 pivot = first < last ? texel(texelFetch(pairs, first).x, 3) : vec4(0.0);
   vec4 br = vec4(0.0), bd = vec4(0.0);
   mat3 S = mat3(1.0);
@@ -99,9 +102,29 @@ void main() {
     int h = entry.x;
     float w = intBitsToFloat(entry.y);
     vec4 r = texel(h, 3);
+    vec4 d = texel(h, 4);
+#ifdef METHOD_STBS_DQS
+    vec4 axis = texel(h, 9);
+    if (axis.w > 0.5) {  // T' composed with the twist and stretch at this vertex's endpoint weight
+      float e = texelFetch(endpoints, j).x;
+      vec4 origin = texel(h, 8);
+      float half_angle = 0.5 * e * origin.w;
+      vec4 q = vec4(sin(half_angle) * axis.xyz, cos(half_angle));
+      vec3 t = origin.xyz - axis_rotation(axis.xyz, e * origin.w) * origin.xyz + e * texel(h, 10).xyz;
+      vec4 tr = texel(h, 14), td = texel(h, 15);
+      r = qmul(tr, q);
+      d = qmul(tr, 0.5 * qmul(vec4(t, 0.0), q)) + qmul(td, q);
+      if (j == first) pivot = r;
+      float sw = dot(r, pivot) < 0.0 ? -w : w;
+      br += sw * r;
+      bd += sw * d;
+      continue;  // T' is rigid: no stretch term
+    }
+    if (j == first) pivot = r;
+#endif
     float sw = dot(r, pivot) < 0.0 ? -w : w;
     br += sw * r;
-    bd += sw * texel(h, 4);
+    bd += sw * d;
     S += w * (rows3(h, 5) - mat3(1.0));
   }
   float len = length(br);

@@ -93,4 +93,26 @@ TEST_CASE("candy wrapper: LBS collapses a turned wrist; STBS with the forearm tw
   CHECK(turn[1] < turn[2]);
   CHECK(turn[0] < 90);
   CHECK(turn[2] > 90);
+
+  // STBS over DQS (6.2.1, Fig. 6.7): at rest twist it is DQS bit for bit; twisted, a vertex on the
+  // forearm alone moves as STBS over LBS moves it; with the elbow bent too it keeps more of the arm's
+  // volume than STBS over LBS.
+  run(d, "reset-pose\nselect " + std::to_string(forearm) + "\nrotate 100 0 0 1\nset-method dqs\n");
+  const TriMesh dqs_bent = posed_surface(d);
+  run(d, "set-method stbs-dqs\n");
+  CHECK(posed_surface(d).V == dqs_bent.V);
+  run(d, "twist " + std::to_string(forearm) + " 180\n");
+  const TriMesh over_dqs = posed_surface(d);
+  run(d, "set-method stbs\n");
+  const TriMesh over_lbs = posed_surface(d);
+  double single = 0;
+  int on_forearm = 0;
+  for (int i = 0; i < W.rows(); ++i)
+    if (W(i, forearm) == 1.0) single = std::max(single, (over_dqs.V.row(i) - over_lbs.V.row(i)).norm()), ++on_forearm;
+  REQUIRE(on_forearm > 10);
+  CHECK(single < 1e-12);
+  const double v_dqs = enclosed_volume(over_dqs.V, over_dqs.F) / rest_volume;
+  const double v_lbs = enclosed_volume(over_lbs.V, over_lbs.F) / rest_volume;
+  WARN("elbow bent 100 degrees, forearm twisted 180: volume " << v_lbs << " of the rest over LBS, " << v_dqs << " over DQS");
+  CHECK(std::abs(v_dqs - 1) < std::abs(v_lbs - 1));
 }

@@ -219,3 +219,60 @@ TEST_CASE("recent files: most recent first, no duplicates, bounded", "[editor]")
   REQUIRE(r.size() == 5);
   REQUIRE(r.front() == "19");
 }
+
+TEST_CASE("bone twist ring: picked where drawn; a drag turns the bone by the swept angle, right-handed about it",
+          "[gizmo][stbs]") {
+  for (bool ortho : {false, true}) {
+    INFO("orthographic " << ortho);
+    view::Camera c = cam(ortho);
+    GizmoBone bone;
+    bone.a = Vector3d(0.1, 0.0, 0.2);
+    bone.b = bone.a + 0.8 * view::camera_forward(c) * -1.0 + Vector3d(0.05, 0.02, 0);  // roughly toward the viewer
+    bone.rest_length = 0.5;
+    const GizmoShape g = gizmo_shape(c, bone.a, true, {}, &bone);
+    REQUIRE(g.has_bone);
+    REQUIRE(g.twist_ring.size() >= 24);
+    const Vector3d u = (bone.b - bone.a).normalized(), mid = 0.5 * (bone.a + bone.b);
+    for (const Vector3d& p : g.twist_ring) CHECK(std::abs((p - mid).dot(u)) < 1e-12);  // about the axis
+    CHECK(gizmo_hit(c, g, px(c, g.twist_ring[5])) == GizmoPart::TwistRing);
+    CHECK(gizmo_hit(c, g, px(c, mid)) != GizmoPart::TwistRing);
+    // A quarter turn of the ring's points about the axis, right-handed, is a twist of +90 degrees.
+    const Vector3d from = g.twist_ring[0];
+    const Vector3d to = mid + Eigen::AngleAxisd(M_PI / 2, u) * (from - mid);
+    CHECK(gizmo_twist(c, g, px(c, from), px(c, to)) == Approx(M_PI / 2).margin(0.05));
+    CHECK(gizmo_twist(c, g, px(c, to), px(c, from)) == Approx(-M_PI / 2).margin(0.05));
+    // The bone pointing away from the viewer: the same world turn, the same twist.
+    GizmoBone away = bone;
+    std::swap(away.a, away.b);
+    const GizmoShape h = gizmo_shape(c, away.a, true, {}, &away);
+    const Vector3d w = (away.b - away.a).normalized();
+    const Vector3d to_w = mid + Eigen::AngleAxisd(M_PI / 3, w) * (from - mid);
+    CHECK(gizmo_twist(c, h, px(c, from), px(c, to_w)) == Approx(M_PI / 3).margin(0.05));
+  }
+}
+
+TEST_CASE("bone stretch handle: picked at the bone's end; a drag along it changes the stretch by distance over rest length",
+          "[gizmo][stbs]") {
+  for (bool ortho : {false, true}) {
+    INFO("orthographic " << ortho);
+    const view::Camera c = cam(ortho);
+    GizmoBone bone;
+    bone.a = Vector3d(-0.4, 0.1, 0.0);
+    bone.b = Vector3d(0.4, 0.3, 0.1);
+    bone.rest_length = 0.5;
+    const GizmoShape g = gizmo_shape(c, bone.a, false, {}, &bone);
+    CHECK(gizmo_hit(c, g, px(c, bone.b)) == GizmoPart::Stretch);
+    for (const Vector3d& p : g.stretch_handle) CHECK(gizmo_hit(c, g, px(c, p)) == GizmoPart::Stretch);  // drawn = picked
+    CHECK(gizmo_hit(c, g, px(c, bone.a)) != GizmoPart::Stretch);
+    const Vector3d u = (bone.b - bone.a).normalized();
+    // 0.2 along the bone from its end: +0.4 of a 0.5 rest length; a sideways drag changes nothing.
+    CHECK(gizmo_stretch(c, g, px(c, bone.b), px(c, bone.b + 0.2 * u)) == Approx(0.4).margin(1e-6));
+    const Vector3d across = u.cross(view::camera_forward(c)).normalized();
+    // (Exactly none in orthographic views; in perspective the ray's closest point moves a little.)
+    CHECK(std::abs(gizmo_stretch(c, g, px(c, bone.b), px(c, bone.b + 0.2 * across))) < (ortho ? 1e-6 : 0.04));
+    // Without a bone the gizmo has neither part.
+    const GizmoShape plain = gizmo_shape(c, bone.a, false);
+    CHECK(gizmo_hit(c, plain, px(c, bone.b)) != GizmoPart::Stretch);
+    CHECK(gizmo_stretch(c, plain, px(c, bone.b), px(c, bone.b + 0.2 * u)) == 0.0);
+  }
+}

@@ -33,7 +33,7 @@ static void check_binding(gl::Context& ctx, const SkinBinding& b, const Rig& rig
   if (k > 0) REQUIRE(pass.max_influences() <= k);
   pass.set_pose(pose, stbs);
   const double diag = bbox_diagonal(b.V);
-  for (SkinMethod m : {SkinMethod::LBS, SkinMethod::DQS, SkinMethod::STBS}) {
+  for (SkinMethod m : {SkinMethod::LBS, SkinMethod::DQS, SkinMethod::STBS, SkinMethod::STBS_DQS}) {
     INFO("method " << skin_method_name(m) << ", k = " << k << ", " << ctx.renderer());
     pass.run(m);
     const SkinResult gpu = pass.read_back_result();

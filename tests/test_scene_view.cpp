@@ -14,6 +14,7 @@
 #include "app/editor/scene_view.h"
 #include "core/scene/document.h"
 #include "core/scene/key_surfaces.h"
+#include "app/editor/pose_tool.h"
 #include "tests/mock_render_backend.h"
 #include "tests/key_mesh_test_meshes.h"
 #include "tests/volume_test_meshes.h"
@@ -772,4 +773,48 @@ TEST_CASE("scene view: the grid shows without a surface", "[editor][scene_view]"
   // ...and framing fits that grid (the floor of the 2-unit box about the origin).
   REQUIRE(scene.framing_bounds().contains(Vector3d(0.9, 0, -0.9)));
   REQUIRE(scene.framing_bounds().contains(Vector3d(-0.9, 0, 0.9)));
+}
+
+TEST_CASE("pose tool on a bone: a drag on its twist ring twists it, one undo step; the skin takes the bind's endpoint weights",
+          "[editor][scene_view][stbs]") {
+  Document doc;
+  doc.set_surface(test::octahedron(), "octahedron");
+  doc.add_bone_chain({Vector3d(-0.5, 0, 0), Vector3d(0.5, 0, 0)});
+  Eigen::MatrixXd E(6, 1);
+  E << 0.9, 0.1, 0.5, 0.5, 0.5, 0.5;  // octahedron vertices: +x, -x, then the four around the axis
+  doc.set_weights(Eigen::MatrixXd::Ones(6, 1), BindStats{}, E);
+  doc.set_selection(Selection{{0}});
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  scene.sync(doc, ViewSettings{});
+  REQUIRE(gpu.skins.size() == 1);
+  CHECK(gpu.skins[0]->binding.endpoints == E);  // one influence a vertex: E in influence order is E
+
+  view::Camera cam;
+  cam.width = 800, cam.height = 600;
+  cam.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(-0.6, Vector3d::UnitY()));  // the bone not edge-on
+  editor::PoseTool tool;
+  editor::PoseTool::Input in;
+  in.rotate = true;
+  in.rig_shown = true;
+  REQUIRE(tool.update(doc, scene, cam, in));
+  REQUIRE(tool.has_shape());
+  const editor::GizmoShape& g = tool.shape();
+  REQUIRE(g.has_bone);
+  const Vector3d mid(0, 0, 0), u(1, 0, 0);
+  const Vector3d from = g.twist_ring[0];
+  const int steps = doc.undo_depth();
+  in.mouse = view::project_to_pixel(cam, from).head<2>();
+  in.clicked = true;
+  REQUIRE(tool.update(doc, scene, cam, in));
+  CHECK(tool.dragging());
+  in.clicked = false;
+  for (int k = 1; k <= 6; ++k) {  // in steps along the ring, as a mouse moves
+    in.mouse = view::project_to_pixel(cam, mid + Eigen::AngleAxisd(M_PI / 2 * k / 6, u) * (from - mid)).head<2>();
+    in.released = k == 6;
+    tool.update(doc, scene, cam, in);
+  }
+  CHECK_FALSE(tool.dragging());
+  CHECK(doc.pose_params().bone_twist_stretch[0].twist == Approx(M_PI / 2).margin(0.05));
+  CHECK(doc.undo_depth() == steps + 1);
 }

@@ -24,7 +24,7 @@ namespace {
 const char* kUsage =
     "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]\n"
     "                   [--endpoints E.dmat]] [--points P.txt] [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
-    "                   [--method lbs|dqs|stbs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
+    "                   [--method lbs|dqs|stbs|stbs-dqs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
     "  INPUT              surface (.obj .off .ply .stl) or tet mesh (.mesh .node/.ele: all its vertices\n"
     "                     are posed, its surface triangles saved)\n"
     "  --weights W.dmat   #V x #handles weights (handle order: point handles, then bones)\n"
@@ -42,7 +42,7 @@ const char* kUsage =
     "                     tet-mesh INPUT. Prints 'fast: iteration I energy E' per iteration\n"
     "  --free H,H,...     handles solved entirely: 0-based indices or names ('point 2', 'bone 3')\n"
     "  --iterations N     local-global iterations (default 20)\n"
-    "  --method M         lbs (default), dqs or stbs\n"
+    "  --method M         lbs (default), dqs, stbs (stretchable, twistable bones over LBS) or stbs-dqs (over DQS)\n"
     "  -k K               keep only the K = 4 or 8 largest weights per vertex (renormalized), as glTF\n"
     "                     does; default: every nonzero weight (exact, on the GPU too)\n"
     "  --cpu              skin on the CPU even when an OpenGL context is available\n"
@@ -222,7 +222,7 @@ int run(const dfm::cli::Args& args) {
         E.maxCoeff() > 1)
       throw dfm::file_error(o.endpoints, 0, "expected #V x #bones = " + std::to_string(in.V.rows()) + " x " +
                                               std::to_string(rig.skeleton.num_bones()) + " values in [0, 1]");
-  } else if (o.method == dfm::SkinMethod::STBS && rig.skeleton.num_bones() > 0) {
+  } else if (dfm::is_stbs(o.method) && rig.skeleton.num_bones() > 0) {
     std::printf("pose: STBS endpoint weights by projection onto each bone (no --endpoints from the bind)\n");
   }
   const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, o.k, E);

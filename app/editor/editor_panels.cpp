@@ -405,9 +405,9 @@ void Editor::draw_bind_section() {
     ImGui::PopStyleColor();
   }
   int m = static_cast<int>(doc_.method());
-  const char* methods[] = {"LBS", "DQS", "Stretch/twist bones"};
+  const char* methods[] = {"LBS", "DQS", "Stretch/twist bones (LBS)", "Stretch/twist bones (DQS)"};
   ImGui::SetNextItemWidth(-1);
-  if (ImGui::Combo("##method", &m, methods, 3)) run_ui_command({"set-method", skin_method_name(static_cast<SkinMethod>(m))});
+  if (ImGui::Combo("##method", &m, methods, 4)) run_ui_command({"set-method", skin_method_name(static_cast<SkinMethod>(m))});
 }
 
 void Editor::draw_weights_section() {

@@ -44,8 +44,23 @@ double world_per_pixels(const view::Camera& cam, const Eigen::Vector3d& p, doubl
 }
 
 GizmoShape gizmo_shape(const view::Camera& cam, const Eigen::Vector3d& origin, bool rotate_mode,
-                       const GizmoLayout& L) {
+                       const GizmoLayout& L, const GizmoBone* bone) {
   GizmoShape g;
+  if (bone && (bone->b - bone->a).norm() > 0) {
+    g.has_bone = true;
+    g.bone = *bone;
+    const Eigen::Vector3d mid = 0.5 * (bone->a + bone->b), u = (bone->b - bone->a).normalized();
+    const Eigen::Vector3d e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+    const Eigen::Vector3d side = u.cross(view::camera_forward(cam));
+    const Eigen::Vector3d n = side.norm() > 1e-9 ? side.normalized() : e1;  // across the bone on screen
+    const double s = world_per_pixels(cam, bone->b, L.stretch_px);
+    g.stretch_handle = {bone->b + s * n, bone->b + s * u, bone->b - s * n, bone->b - s * u};
+    const double r = world_per_pixels(cam, mid, L.twist_px);
+    for (int i = 0; i < 48; ++i) {
+      const double t = 2 * M_PI * i / 48;
+      g.twist_ring.push_back(mid + r * (std::cos(t) * e1 + std::sin(t) * e2));
+    }
+  }
   g.origin = origin;
   g.rotate = rotate_mode;
   g.pick_px = L.pick_px;
@@ -62,8 +77,25 @@ GizmoShape gizmo_shape(const view::Camera& cam, const Eigen::Vector3d& origin, b
   return g;
 }
 
+// The bone's part under the cursor, if any (twist ring in rotate mode, stretch handle else).
+GizmoPart bone_hit(const view::Camera& cam, const GizmoShape& g, const Eigen::Vector2d& px) {
+  if (!g.has_bone) return GizmoPart::None;
+  if (!g.rotate) {  // within the diamond's image, or pick_px of its edges
+    const Eigen::Vector2d c = image(cam, g.bone.b);
+    double reach = 0;
+    for (const Eigen::Vector3d& p : g.stretch_handle) reach = std::max(reach, (image(cam, p) - c).norm());
+    return (px - c).norm() <= reach + g.pick_px ? GizmoPart::Stretch : GizmoPart::None;
+  }
+  const size_t n = g.twist_ring.size();
+  for (size_t i = 0; i < n; ++i)
+    if (segment_distance(image(cam, g.twist_ring[i]), image(cam, g.twist_ring[(i + 1) % n]), px) <= g.pick_px)
+      return GizmoPart::TwistRing;
+  return GizmoPart::None;
+}
+
 GizmoPart gizmo_hit(const view::Camera& cam, const GizmoShape& g, const Eigen::Vector2d& px) {
   const Eigen::Vector2d o = image(cam, g.origin);
+  if (const GizmoPart b = bone_hit(cam, g, px); b != GizmoPart::None) return b;
   if (g.rotate) {
     const double r = (px - o).norm();
     if (std::abs(r - g.ring_px) <= g.pick_px) return GizmoPart::Ring;
@@ -98,6 +130,25 @@ GizmoPart gizmo_hit(const view::Camera& cam, const Eigen::Vector3d& origin, bool
 
 Eigen::Vector4f gizmo_hover_color() { return {1.0f, 0.9f, 0.3f, 1.0f}; }
 
+// The bone's twist ring, or its stretch handle: a diamond at its end in a plane through the bone.
+void add_bone_lines(const GizmoShape& g, GizmoPart hover, std::vector<gl::OverlayVertex>& l) {
+  if (!g.has_bone) return;
+  const Eigen::Vector4f orange(1.0f, 0.55f, 0.15f, 1.0f);
+  if (g.rotate) {
+    const Eigen::Vector4f c = hover == GizmoPart::TwistRing ? gizmo_hover_color() : orange;
+    for (size_t i = 0; i < g.twist_ring.size(); ++i) {
+      l.push_back(gl::overlay_vertex(g.twist_ring[i], c));
+      l.push_back(gl::overlay_vertex(g.twist_ring[(i + 1) % g.twist_ring.size()], c));
+    }
+    return;
+  }
+  const Eigen::Vector4f c = hover == GizmoPart::Stretch ? gizmo_hover_color() : orange;
+  for (int e = 0; e < 4; ++e) {
+    l.push_back(gl::overlay_vertex(g.stretch_handle[e], c));
+    l.push_back(gl::overlay_vertex(g.stretch_handle[(e + 1) % 4], c));
+  }
+}
+
 std::vector<gl::OverlayVertex> gizmo_lines(const GizmoShape& g, GizmoPart hover) {
   auto hl = [&](GizmoPart p, const Eigen::Vector4f& c) { return hover == p ? gizmo_hover_color() : c; };
   std::vector<gl::OverlayVertex> l;
@@ -106,6 +157,7 @@ std::vector<gl::OverlayVertex> gizmo_lines(const GizmoShape& g, GizmoPart hover)
     const Eigen::Vector4f disc = hover == GizmoPart::Trackball ? Eigen::Vector4f(1, 0.9f, 0.3f, 0.35f)
                                                                : Eigen::Vector4f(1, 1, 1, 0.12f);
     for (const auto& v : gl::circle_lines(g.origin, g.ring_normal, 0.98 * g.ring_radius, disc, 72)) l.push_back(v);
+    add_bone_lines(g, hover, l);  // over the disc
     return l;
   }
   const Eigen::Vector4f ax[3] = {{0.95f, 0.3f, 0.3f, 1.0f}, {0.4f, 0.9f, 0.35f, 1.0f}, {0.35f, 0.55f, 1.0f, 1.0f}};
@@ -119,6 +171,7 @@ std::vector<gl::OverlayVertex> gizmo_lines(const GizmoShape& g, GizmoPart hover)
       l.push_back(gl::overlay_vertex(g.plane[k][(e + 1) % 4], pc));
     }
   }
+  add_bone_lines(g, hover, l);
   return l;
 }
 
@@ -164,6 +217,28 @@ Eigen::Quaterniond gizmo_rotation(const view::Camera& cam, const Eigen::Vector3d
     return cam.orientation * q_cam * cam.orientation.conjugate();
   }
   return Eigen::Quaterniond::Identity();
+}
+
+double gizmo_twist(const view::Camera& cam, const GizmoShape& g, const Eigen::Vector2d& from_px,
+                   const Eigen::Vector2d& to_px) {
+  if (!g.has_bone) return 0;
+  const Eigen::Vector2d o = image(cam, 0.5 * (g.bone.a + g.bone.b));
+  const Eigen::Vector2d a = from_px - o, b = to_px - o;
+  if (a.norm() < 1e-9 || b.norm() < 1e-9) return 0;
+  // As the view ring: counter-clockwise on screen (y down) turns positively about the axis toward the
+  // viewer; the bone's axis turns the same way where it points at the viewer, the other way else.
+  const double angle = -std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));
+  const Eigen::Vector3d u = (g.bone.b - g.bone.a).normalized();
+  return u.dot(-view::camera_forward(cam)) >= 0 ? angle : -angle;
+}
+
+double gizmo_stretch(const view::Camera& cam, const GizmoShape& g, const Eigen::Vector2d& from_px,
+                     const Eigen::Vector2d& to_px) {
+  if (!g.has_bone || !(g.bone.rest_length > 0)) return 0;
+  const Eigen::Vector3d u = (g.bone.b - g.bone.a).normalized();
+  const view::Ray r0 = view::pixel_ray(cam, from_px.x(), from_px.y());
+  const view::Ray r1 = view::pixel_ray(cam, to_px.x(), to_px.y());
+  return (axis_parameter(r1, g.bone.b, u) - axis_parameter(r0, g.bone.b, u)) / g.bone.rest_length;
 }
 
 }  // namespace dfm::editor

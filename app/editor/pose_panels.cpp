@@ -56,9 +56,9 @@ void PosePanels::draw_twist_stretch(Document& doc, int bone) {
   if (twist_started || stretch_started) doc.begin_gesture();
   if (twisted || stretched) doc.set_bone_twist_stretch(bone, {v[0] * M_PI / 180, std::max(0.05f, v[1])});
   if (twist_done || stretch_done) doc.end_gesture();
-  if (doc.method() != SkinMethod::STBS && (ts.twist != 0 || ts.stretch != 1))
-    text_disabled_wrapped("the method STBS spreads them along the bone");
-  if (doc.method() == SkinMethod::STBS && doc.has_weights())
+  if (!is_stbs(doc.method()) && (ts.twist != 0 || ts.stretch != 1))
+    text_disabled_wrapped("the methods STBS spread them along the bone");
+  if (is_stbs(doc.method()) && doc.has_weights())
     text_disabled_wrapped(doc.endpoint_weights().size() ? "endpoint weights: the bind's (shape-aware)"
                                                         : "endpoint weights: projection onto the bone (weights not from a bind)");
 }

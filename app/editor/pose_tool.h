@@ -1,7 +1,10 @@
 #pragma once
 // The Pose tool (G: move, R: rotate): the gizmo on the active handle, drawn and picked from one
 // GizmoShape (gizmo.h), and its drag, one undo step per drag through the document's translate_handle
-// and rotate_handle. Owns its drag state; the editor hands it the frame's input.
+// and rotate_handle; on a bone also its twist ring (R) and stretch handle (G), through
+// set_bone_twist_stretch. Owns its drag state; the editor hands it the frame's input.
+#include <optional>
+
 #include <Eigen/Core>
 
 #include "app/editor/gizmo.h"
@@ -31,6 +34,8 @@ class PoseTool {
 
  private:
   void drag(Document& doc, const view::Camera& cam, int handle, const Input& in);
+  // A bone's twist ring or stretch handle: the document's twist or stretch (one undo step a drag).
+  void drag_twist_stretch(Document& doc, const view::Camera& cam, int bone, const Input& in);
 
   GizmoPart part_ = GizmoPart::None;  // the part being dragged
   Eigen::Vector2d last_ = Eigen::Vector2d::Zero();

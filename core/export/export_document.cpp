@@ -62,7 +62,7 @@ GltfExportReport export_document_gltf(const Document& doc, const std::string& pa
                       "pose keys are exported");
   if (shows_more_than_lbs(doc))
     r.notes.push_back(std::string("the document skins with ") + skin_method_name(doc.method()) +
-                      (doc.method() == SkinMethod::STBS ? " (twist and stretch)" : "") +
+                      (is_stbs(doc.method()) ? " (twist and stretch)" : "") +
                       "; glTF skinning is linear (LBS): " +
                       (r.residual_targets > 0 ? "the residual morph targets make its keys and current pose the document's "
                                                 "surface; between keys the correction blends linearly"

@@ -100,7 +100,7 @@ void add_pose_commands(std::vector<Command>& t) {
   add(t, "stretch", "stretch BONE_HANDLE FACTOR", 2, 2, {handle_arg(), number_arg()}, stretch);
   add(t, "fast", "fast on|off [ITERATIONS]", 1, 2, {word_arg()}, fast);
   add(t, "ik-chain", "ik-chain BONE_HANDLE", 1, 1, {handle_arg()}, ik_chain);
-  add(t, "set-method", "set-method lbs|dqs|stbs", 1, 1, {word_arg()},
+  add(t, "set-method", "set-method lbs|dqs|stbs|stbs-dqs", 1, 1, {word_arg()},
       [](CommandContext& x, const CommandWords& w) { x.doc.set_method(parse_skin_method(w[1])); });
   add(t, "reset-pose", "reset-pose", 0, 0, {}, [](CommandContext& x, const CommandWords&) { x.doc.reset_pose(); });
   c = &add(t, "undo", "undo", 0, 0, {}, [](CommandContext& x, const CommandWords&) { x.doc.undo(); });

@@ -7,16 +7,13 @@
 
 namespace dfm {
 
-namespace {
-// Quaternion product on (x, y, z, w) coefficient vectors.
-Eigen::Vector4d qmul(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
+Eigen::Vector4d quaternion_product(const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
   const Eigen::Vector3d av = a.head<3>(), bv = b.head<3>();
   Eigen::Vector4d r;
   r.head<3>() = a[3] * bv + b[3] * av + av.cross(bv);
   r[3] = a[3] * b[3] - av.dot(bv);
   return r;
 }
-}  // namespace
 
 DqsHandle dqs_handle(const Eigen::Affine3d& T) {
   const Eigen::Matrix3d A = T.linear();
@@ -39,7 +36,7 @@ DqsHandle dqs_handle(const Eigen::Affine3d& T) {
   }
   h.real = Eigen::Quaterniond(R).normalized().coeffs();
   Eigen::Vector4d t(T.translation().x(), T.translation().y(), T.translation().z(), 0.0);
-  h.dual = 0.5 * qmul(t, h.real);
+  h.dual = 0.5 * quaternion_product(t, h.real);
   return h;
 }
 

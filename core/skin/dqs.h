@@ -26,6 +26,9 @@ struct DqsHandle {
 DqsHandle dqs_handle(const Eigen::Affine3d& T);
 std::vector<DqsHandle> dqs_handles(const Pose& pose);
 
+// The quaternion product a b on (x, y, z, w) coefficient vectors.
+Eigen::Vector4d quaternion_product(const Eigen::Vector4d& a, const Eigen::Vector4d& b);
+
 // Applies a unit dual quaternion (real, dual) to p.
 Eigen::Vector3d dq_transform_point(const Eigen::Vector4d& real, const Eigen::Vector4d& dual, const Eigen::Vector3d& p);
 

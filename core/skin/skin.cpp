@@ -13,6 +13,7 @@ const char* skin_method_name(SkinMethod m) {
     case SkinMethod::LBS: return "lbs";
     case SkinMethod::DQS: return "dqs";
     case SkinMethod::STBS: return "stbs";
+    case SkinMethod::STBS_DQS: return "stbs-dqs";
   }
   return "?";
 }
@@ -23,7 +24,8 @@ SkinMethod parse_skin_method(const std::string& name) {
   if (s == "lbs") return SkinMethod::LBS;
   if (s == "dqs") return SkinMethod::DQS;
   if (s == "stbs") return SkinMethod::STBS;
-  throw Error("unknown skinning method '" + name + "' (expected lbs, dqs or stbs)");
+  if (s == "stbs-dqs") return SkinMethod::STBS_DQS;
+  throw Error("unknown skinning method '" + name + "' (expected lbs, dqs, stbs or stbs-dqs)");
 }
 
 SkinBinding make_skin_binding(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Eigen::MatrixXd& W,
@@ -62,10 +64,13 @@ SkinResult skin(SkinMethod method, const SkinBinding& b, const Pose& pose, const
   switch (method) {
     case SkinMethod::LBS: lbs(b.V, b.N, b.influences, pose, r.V, NU); break;
     case SkinMethod::DQS: dqs(b.V, b.N, b.influences, pose, r.V, NU); break;
-    case SkinMethod::STBS: {
+    case SkinMethod::STBS:
+    case SkinMethod::STBS_DQS: {
       std::vector<StbsHandle> none;
       if (stbs.empty()) none.resize(pose.size());
-      dfm::stbs(b.V, b.N, b.influences, b.endpoints, pose, stbs.empty() ? none : stbs, r.V, NU);
+      const std::vector<StbsHandle>& h = stbs.empty() ? none : stbs;
+      if (method == SkinMethod::STBS) dfm::stbs(b.V, b.N, b.influences, b.endpoints, pose, h, r.V, NU);
+      else stbs_dqs(b.V, b.N, b.influences, b.endpoints, pose, h, r.V, NU);
       break;
     }
   }

@@ -13,12 +13,16 @@
 #include "core/skin/influences.h"
 #include "core/skin/lbs.h"
 #include "core/skin/stbs.h"
+#include "core/skin/stbs_dqs.h"
 
 namespace dfm {
 
-enum class SkinMethod { LBS, DQS, STBS };
+// STBS: stretchable, twistable bones over LBS; STBS_DQS: over dual quaternions (stbs_dqs.h).
+enum class SkinMethod { LBS, DQS, STBS, STBS_DQS };
 
-const char* skin_method_name(SkinMethod m);  // "lbs", "dqs", "stbs"
+const char* skin_method_name(SkinMethod m);  // "lbs", "dqs", "stbs", "stbs-dqs"
+// STBS over either: the methods that read twist, stretch and endpoint weights.
+inline bool is_stbs(SkinMethod m) { return m == SkinMethod::STBS || m == SkinMethod::STBS_DQS; }
 // Accepts those names (any case); throws dfm::Error otherwise.
 SkinMethod parse_skin_method(const std::string& name);
 

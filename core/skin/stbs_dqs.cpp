@@ -1,0 +1,77 @@
+#include "core/skin/stbs_dqs.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/skin/dqs.h"
+#include "core/skin/lbs.h"
+#include "core/util/error.h"
+
+namespace dfm {
+
+namespace {
+
+struct DualQuaternion {
+  Eigen::Vector4d real, dual;
+};
+
+// T'_b's dual quaternion composed with the bone's twist and stretch at endpoint weight e.
+DualQuaternion bone_motion(const DqsHandle& T, const StbsHandle& h, double e) {
+  const double half = 0.5 * e * h.twist;
+  Eigen::Vector4d q;
+  q << std::sin(half) * h.axis, std::cos(half);
+  const Eigen::Vector3d moved_origin = Eigen::AngleAxisd(e * h.twist, h.axis) * h.origin;
+  const Eigen::Vector3d t = h.origin - moved_origin + e * h.stretch;
+  const Eigen::Vector4d d = 0.5 * quaternion_product(Eigen::Vector4d(t.x(), t.y(), t.z(), 0.0), q);
+  return {quaternion_product(T.real, q), quaternion_product(T.real, d) + quaternion_product(T.dual, q)};
+}
+
+}  // namespace
+
+void stbs_dqs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Eigen::MatrixXd& E,
+              const Pose& pose, const std::vector<StbsHandle>& handles, Eigen::MatrixXd& U, Eigen::MatrixXd* NU) {
+  check_skin_inputs(V, N, inf, pose);
+  if (static_cast<int>(handles.size()) != pose.size())
+    throw Error("stretchable-twistable skinning: " + std::to_string(handles.size()) + " handle records for " +
+                std::to_string(pose.size()) + " transforms");
+  if (E.rows() != V.rows() || E.cols() != inf.k())
+    throw Error("stretchable-twistable skinning: endpoint weights must be #V x k");
+  std::vector<DqsHandle> H = dqs_handles(pose);
+  for (int h = 0; h < pose.size(); ++h)  // T'_b = T_b W_b^-1 for active bones
+    if (handles[h].active) H[h] = dqs_handle(pose.transforms[h] * handles[h].unstretched);
+  const int n = static_cast<int>(V.rows()), k = inf.k();
+  const bool normals = NU && N.size();
+  U.resize(n, 3);
+  if (normals) NU->resize(n, 3);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector4d br = Eigen::Vector4d::Zero(), bd = Eigen::Vector4d::Zero(), pivot = Eigen::Vector4d::Zero();
+    Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
+    bool any_stretch = false;
+    for (int j = 0; j < k; ++j) {
+      const double w = inf.weight(i, j);
+      if (w == 0) continue;
+      const int hi = inf.index(i, j);
+      const DqsHandle& T = H[hi];
+      const DualQuaternion m = handles[hi].active ? bone_motion(T, handles[hi], E(i, j)) : DualQuaternion{T.real, T.dual};
+      if (j == 0) pivot = m.real;  // influences are sorted, largest first
+      const double sw = m.real.dot(pivot) < 0 ? -w : w;
+      br += sw * m.real;
+      bd += sw * m.dual;
+      if (!T.rigid) S += w * (T.stretch - Eigen::Matrix3d::Identity()), any_stretch = true;
+    }
+    const double len = br.norm();
+    if (len == 0) {
+      U.row(i) = V.row(i);
+      if (normals) NU->row(i) = N.row(i);
+      continue;
+    }
+    br /= len;
+    bd /= len;
+    const Eigen::Vector3d p = any_stretch ? Eigen::Vector3d(S * V.row(i).transpose()) : Eigen::Vector3d(V.row(i).transpose());
+    U.row(i) = dq_transform_point(br, bd, p).transpose();
+    if (normals)
+      NU->row(i) = dq_transform_point(br, Eigen::Vector4d::Zero(), transform_normal(S, N.row(i).transpose())).transpose();
+  }
+}
+
+}  // namespace dfm
