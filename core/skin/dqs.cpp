@@ -77,21 +77,26 @@ void dqs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& i
       bd += sw * h.dual;
       if (any_stretch) S += w * (h.stretch - Eigen::Matrix3d::Identity());
     }
-    const double len = br.norm();
-    if (len == 0) {  // no weight at all: leave the vertex where it is
-      U.row(i) = V.row(i);
-      if (normals) NU->row(i) = N.row(i);
-      continue;
-    }
-    br /= len;
-    bd /= len;
-    const Eigen::Vector3d p = any_stretch ? Eigen::Vector3d(S * V.row(i).transpose()) : Eigen::Vector3d(V.row(i).transpose());
-    U.row(i) = dq_transform_point(br, bd, p).transpose();
-    if (normals) {
-      const Eigen::Vector3d sn = transform_normal(S, N.row(i).transpose());
-      // Rotation only: the dual quaternion with zero dual part.
-      NU->row(i) = dq_transform_point(br, Eigen::Vector4d::Zero(), sn).transpose();
-    }
+    apply_dq_blend(br, bd, S, any_stretch, i, V, N, U, normals ? NU : nullptr);
+  }
+}
+
+void apply_dq_blend(Eigen::Vector4d br, Eigen::Vector4d bd, const Eigen::Matrix3d& S, bool stretch, int i,
+                    const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, Eigen::MatrixXd& U, Eigen::MatrixXd* NU) {
+  const double len = br.norm();
+  if (len == 0) {  // no weight at all: leave the vertex where it is
+    U.row(i) = V.row(i);
+    if (NU) NU->row(i) = N.row(i);
+    return;
+  }
+  br /= len;
+  bd /= len;
+  const Eigen::Vector3d p = stretch ? Eigen::Vector3d(S * V.row(i).transpose()) : Eigen::Vector3d(V.row(i).transpose());
+  U.row(i) = dq_transform_point(br, bd, p).transpose();
+  if (NU) {
+    const Eigen::Vector3d sn = transform_normal(S, N.row(i).transpose());
+    // Rotation only: the dual quaternion with zero dual part.
+    NU->row(i) = dq_transform_point(br, Eigen::Vector4d::Zero(), sn).transpose();
   }
 }
 

@@ -32,6 +32,12 @@ Eigen::Vector4d quaternion_product(const Eigen::Vector4d& a, const Eigen::Vector
 // Applies a unit dual quaternion (real, dual) to p.
 Eigen::Vector3d dq_transform_point(const Eigen::Vector4d& real, const Eigen::Vector4d& dual, const Eigen::Vector3d& p);
 
+// Vertex i of V (and of N when NU is set) moved by the blend (br, bd) of its handles' dual quaternions
+// (normalized here) after the blended stretch S (when `stretch`); no weight at all (a zero blend)
+// leaves it where it is. Shared by dqs() and stbs_dqs().
+void apply_dq_blend(Eigen::Vector4d br, Eigen::Vector4d bd, const Eigen::Matrix3d& S, bool stretch, int i,
+                    const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, Eigen::MatrixXd& U, Eigen::MatrixXd* NU);
+
 void dqs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Pose& pose,
          Eigen::MatrixXd& U, Eigen::MatrixXd* NU = nullptr);
 

@@ -49,14 +49,19 @@ static Eigen::Vector3d rotate(const Eigen::Vector3d& u, double angle, const Eige
   return v * c + u.cross(v) * s + u * (u.dot(v) * (1.0 - c));
 }
 
-void stbs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Eigen::MatrixXd& E,
-          const Pose& pose, const std::vector<StbsHandle>& handles, Eigen::MatrixXd& U, Eigen::MatrixXd* NU) {
+void check_stbs_inputs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Eigen::MatrixXd& E,
+                       const Pose& pose, const std::vector<StbsHandle>& handles) {
   check_skin_inputs(V, N, inf, pose);
   if (static_cast<int>(handles.size()) != pose.size())
     throw Error("stretchable-twistable skinning: " + std::to_string(handles.size()) + " handle records for " +
                 std::to_string(pose.size()) + " transforms");
   if (E.rows() != V.rows() || E.cols() != inf.k())
     throw Error("stretchable-twistable skinning: endpoint weights must be #V x k");
+}
+
+void stbs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Eigen::MatrixXd& E,
+          const Pose& pose, const std::vector<StbsHandle>& handles, Eigen::MatrixXd& U, Eigen::MatrixXd* NU) {
+  check_stbs_inputs(V, N, inf, E, pose, handles);
   // T'_b = T_b W_b^-1 for active bones.
   std::vector<Eigen::Affine3d> Tp(pose.transforms);
   for (int h = 0; h < pose.size(); ++h)

@@ -37,6 +37,10 @@ std::vector<StbsHandle> stbs_handles(const Rig& rig, const std::vector<BoneTwist
 // without a kink.
 Eigen::MatrixXd bone_endpoint_weights(const Eigen::MatrixXd& V, const Rig& rig);
 
+// Throws dfm::Error unless the inputs fit (check_skin_inputs, one record a handle, E #V x k).
+void check_stbs_inputs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Eigen::MatrixXd& E,
+                       const Pose& pose, const std::vector<StbsHandle>& handles);
+
 // E: #V x k endpoint weights in influence order (gather_by_influence(inf, bone_endpoint_weights(...))).
 void stbs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Eigen::MatrixXd& E,
           const Pose& pose, const std::vector<StbsHandle>& handles, Eigen::MatrixXd& U, Eigen::MatrixXd* NU = nullptr);

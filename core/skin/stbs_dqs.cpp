@@ -30,12 +30,7 @@ DualQuaternion bone_motion(const DqsHandle& T, const StbsHandle& h, double e) {
 
 void stbs_dqs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& inf, const Eigen::MatrixXd& E,
               const Pose& pose, const std::vector<StbsHandle>& handles, Eigen::MatrixXd& U, Eigen::MatrixXd* NU) {
-  check_skin_inputs(V, N, inf, pose);
-  if (static_cast<int>(handles.size()) != pose.size())
-    throw Error("stretchable-twistable skinning: " + std::to_string(handles.size()) + " handle records for " +
-                std::to_string(pose.size()) + " transforms");
-  if (E.rows() != V.rows() || E.cols() != inf.k())
-    throw Error("stretchable-twistable skinning: endpoint weights must be #V x k");
+  check_stbs_inputs(V, N, inf, E, pose, handles);
   std::vector<DqsHandle> H = dqs_handles(pose);
   for (int h = 0; h < pose.size(); ++h)  // T'_b = T_b W_b^-1 for active bones
     if (handles[h].active) H[h] = dqs_handle(pose.transforms[h] * handles[h].unstretched);
@@ -59,18 +54,7 @@ void stbs_dqs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influenc
       bd += sw * m.dual;
       if (!T.rigid) S += w * (T.stretch - Eigen::Matrix3d::Identity()), any_stretch = true;
     }
-    const double len = br.norm();
-    if (len == 0) {
-      U.row(i) = V.row(i);
-      if (normals) NU->row(i) = N.row(i);
-      continue;
-    }
-    br /= len;
-    bd /= len;
-    const Eigen::Vector3d p = any_stretch ? Eigen::Vector3d(S * V.row(i).transpose()) : Eigen::Vector3d(V.row(i).transpose());
-    U.row(i) = dq_transform_point(br, bd, p).transpose();
-    if (normals)
-      NU->row(i) = dq_transform_point(br, Eigen::Vector4d::Zero(), transform_normal(S, N.row(i).transpose())).transpose();
+    apply_dq_blend(br, bd, S, any_stretch, i, V, N, U, normals ? NU : nullptr);
   }
 }
 
