@@ -200,3 +200,22 @@ TEST_CASE("deform bind --endpoints, deform pose --endpoints: the bind's endpoint
                    " --endpoints " + (dir / "bad.dmat").string() + " --method stbs --cpu -o " + out) == 1);
   fs::remove_all(dir);
 }
+
+TEST_CASE("deform transfer-weights: onto the source itself the weights come back; bad input exits 1 or 2", "[cli][transfer]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_test_transfer_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const TriMesh s = test::icosphere(Eigen::Vector3d::Zero(), 1.0, 2);
+  write_surface((dir / "s.obj").string(), s);
+  Eigen::MatrixXd W(s.V.rows(), 2);
+  for (int i = 0; i < W.rows(); ++i) W.row(i) << 0.5 + 0.5 * s.V(i, 0), 0.5 - 0.5 * s.V(i, 0);
+  write_dmat((dir / "w.dmat").string(), W);
+  const std::string common = (dir / "s.obj").string() + " --weights " + (dir / "w.dmat").string() + " " + (dir / "s.obj").string();
+  REQUIRE(run_deform("transfer-weights " + common + " -o " + (dir / "t.dmat").string()) == 0);
+  CHECK((read_dmat((dir / "t.dmat").string()) - W).cwiseAbs().maxCoeff() < 1e-12);  // the .dmat text keeps 17 digits or so
+  CHECK(run_deform("transfer-weights " + common) == 2);  // no -o
+  CHECK(run_deform("transfer-weights " + common + " --angle 200 -o " + (dir / "t.dmat").string()) == 2);
+  write_dmat((dir / "short.dmat").string(), W.topRows(5));
+  CHECK(run_deform("transfer-weights " + (dir / "s.obj").string() + " --weights " + (dir / "short.dmat").string() + " " +
+                   (dir / "s.obj").string() + " -o " + (dir / "t.dmat").string()) == 1);
+  fs::remove_all(dir);
+}

@@ -4,7 +4,10 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "core/bind/weight_transfer.h"
+#include "core/mesh/io.h"
 #include "core/scene/command_parts.h"
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
 namespace dfm::command_detail {
@@ -133,6 +136,37 @@ void report(CommandContext& x, const CommandWords& w) {
   x.print(out.str());
 }
 
+// A bound scene's surface and weights, or a mesh and its weights file, carried onto the document's
+// surface (core/bind/weight_transfer.h); the handles correspond by number.
+void transfer(CommandContext& x, const CommandWords& w) {
+  TriMesh source;
+  Eigen::MatrixXd W;
+  if (file_extension(w[1]) == "json") {
+    Document from;
+    from.load_scene(w[1]);
+    if (!from.has_weights()) throw Error(w[1] + ": the scene has no weights to transfer (" + from.weights_note() + ")");
+    source = from.surface();
+    W = from.weights();
+  } else {
+    if (w.size() < 3) throw Error("a mesh needs its weights: transfer-weights " + w[1] + " W.dmat");
+    source = read_surface(w[1]);
+    W = read_dmat(w[2]);
+  }
+  if (W.cols() != x.doc.num_handles())
+    throw Error((w.size() > 2 ? w[2] : w[1]) + ": " + std::to_string(W.cols()) + " handles' weights, but the rig has " +
+                std::to_string(x.doc.num_handles()) + " (handles correspond by number)");
+  if (x.doc.surface().num_vertices() == 0) throw Error("no surface to transfer the weights onto (open a mesh first)");
+  WeightTransferReport r;
+  const Eigen::MatrixXd T = transfer_weights(source.V, source.F, W, x.doc.surface().V, x.doc.surface().F, {}, &r);
+  std::ostringstream out;
+  out << w[0] << ": " << r.matched << " vertices matched on " << w[1] << ", " << r.inpainted << " inpainted, " << r.nearest
+      << " in pieces with no match (their closest points)";
+  BindStats st;
+  st.notes = {out.str()};
+  x.doc.set_weights(T, st);
+  x.print(out.str());
+}
+
 }  // namespace
 
 void add_weight_commands(std::vector<Command>& t) {
@@ -149,6 +183,7 @@ void add_weight_commands(std::vector<Command>& t) {
       .check = line_check([](const CommandWords& w) { mirror_options(w); });
   add(t, "weights-report", "weights-report [THRESHOLD]", 0, 1, {a_number}, report).check =
       line_check([](const CommandWords& w) { report_threshold(w); });
+  add(t, "transfer-weights", "transfer-weights SCENE.json | MESH W.dmat", 1, 2, {file_arg(), file_arg()}, transfer);
   // Each one undo step on the weights; they need weights to work on (weights-report only reads them).
   for (Command& c : t)
     if (c.name.rfind("weights-", 0) == 0) c.poll = needs_weights, c.undoable = c.name != "weights-report";

@@ -11,3 +11,5 @@ add_dependencies(test_pose_cli deform)
 dfm_test(test_candy_wrapper SOURCES test_candy_wrapper.cpp LIBS dfm_scene)
 # STBS endpoint weights from the bind (Jacobson 2013, 6.2.3): Eq. 6.7, the joint constraints, the arm and hand.
 dfm_test(test_endpoint_weights SOURCES test_endpoint_weights.cpp LIBS dfm_bind dfm_skin dfm_mesh)
+# Weight transfer onto other surfaces (issue 34; Abdrashitov et al. 2023): closest points, then inpainting.
+dfm_test(test_weight_transfer SOURCES test_weight_transfer.cpp LIBS dfm_bind dfm_mesh)
