@@ -9,6 +9,7 @@
 #include "app/editor/editor.h"
 #include "app/editor/theme.h"
 #include "core/pose/fast_rig.h"
+#include "core/rig/forward_kinematics.h"
 #include "core/rig/rig.h"
 
 namespace dfm::editor {
@@ -42,8 +43,7 @@ void PosePanels::draw_transform(Document& doc, const Pose& pose, const std::stri
 // The bone's twist (degrees, at its second joint) and stretch (length factor), dragged: one undo step a
 // drag (Jacobson 2013 ch. 6: STBS spreads them along the bone; every method moves the bones below).
 void PosePanels::draw_twist_stretch(Document& doc, int bone) {
-  const std::vector<BoneTwistStretch>& all = doc.pose_params().bone_twist_stretch;
-  const BoneTwistStretch ts = bone < static_cast<int>(all.size()) ? all[bone] : BoneTwistStretch{};
+  const BoneTwistStretch ts = twist_stretch_of(doc.pose_params(), bone);
   float v[2] = {float(ts.twist * 180 / M_PI), float(ts.stretch)};
   ImGui::SetNextItemWidth(-1);
   const bool twisted = ImGui::DragFloat("##twist", &v[0], 0.5f, -720.0f, 720.0f, "twist %.1f deg");
@@ -56,7 +56,7 @@ void PosePanels::draw_twist_stretch(Document& doc, int bone) {
   if (twist_started || stretch_started) doc.begin_gesture();
   if (twisted || stretched) doc.set_bone_twist_stretch(bone, {v[0] * M_PI / 180, std::max(0.05f, v[1])});
   if (twist_done || stretch_done) doc.end_gesture();
-  if (!is_stbs(doc.method()) && (ts.twist != 0 || ts.stretch != 1))
+  if (!is_stbs(doc.method()) && !is_rest_twist_stretch(ts))
     text_disabled_wrapped("the methods STBS spread them along the bone");
   if (is_stbs(doc.method()) && doc.has_weights())
     text_disabled_wrapped(doc.endpoint_weights().size() ? "endpoint weights: the bind's (shape-aware)"

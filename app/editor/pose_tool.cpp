@@ -23,8 +23,7 @@ std::optional<GizmoBone> shown_bone(const Document& doc, const SceneView& view, 
 }  // namespace
 
 void PoseTool::drag_twist_stretch(Document& doc, const view::Camera& cam, int bone, const Input& in) {
-  const std::vector<BoneTwistStretch>& all = doc.pose_params().bone_twist_stretch;
-  BoneTwistStretch ts = bone < static_cast<int>(all.size()) ? all[bone] : BoneTwistStretch{};
+  BoneTwistStretch ts = twist_stretch_of(doc.pose_params(), bone);
   if (part_ == GizmoPart::TwistRing) ts.twist += gizmo_twist(cam, shape_, last_, in.mouse);
   else ts.stretch = std::max(0.05, ts.stretch + gizmo_stretch(cam, shape_, last_, in.mouse));
   doc.set_bone_twist_stretch(bone, ts);

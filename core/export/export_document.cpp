@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "core/rig/forward_kinematics.h"
 #include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
 
@@ -11,7 +12,7 @@ namespace {
 
 bool twisted_or_stretched(const PoseParams& p) {
   for (const BoneTwistStretch& ts : p.bone_twist_stretch)
-    if (ts.twist != 0 || ts.stretch != 1) return true;
+    if (!is_rest_twist_stretch(ts)) return true;
   return false;
 }
 

@@ -37,6 +37,11 @@ struct PoseParams {
   std::map<int, Eigen::Affine3d> solved;
 };
 
+// Bone b's twist and stretch (rest where the params hold none for it).
+inline BoneTwistStretch twist_stretch_of(const PoseParams& p, int bone) {
+  return bone >= 0 && bone < static_cast<int>(p.bone_twist_stretch.size()) ? p.bone_twist_stretch[bone] : BoneTwistStretch{};
+}
+
 // Sizes every vector to the rig, identity entries.
 PoseParams rest_pose_params(const Rig& rig);
 // Forward kinematics + pseudo-edge rotation inference -> one affine per handle (rig.h order), then the

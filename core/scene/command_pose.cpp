@@ -44,21 +44,16 @@ int bone_at(const Document& doc, const CommandWords& w, int i) {
   return r.index;
 }
 
-BoneTwistStretch twist_stretch_of(const Document& doc, int bone) {
-  const std::vector<BoneTwistStretch>& v = doc.pose_params().bone_twist_stretch;
-  return bone < static_cast<int>(v.size()) ? v[bone] : BoneTwistStretch{};
-}
-
 void twist(CommandContext& x, const CommandWords& w) {
   const int b = bone_at(x.doc, w, 1);
-  BoneTwistStretch ts = twist_stretch_of(x.doc, b);
+  BoneTwistStretch ts = twist_stretch_of(x.doc.pose_params(), b);
   ts.twist = num(w, 2) * M_PI / 180.0;
   x.doc.set_bone_twist_stretch(b, ts);
 }
 
 void stretch(CommandContext& x, const CommandWords& w) {
   const int b = bone_at(x.doc, w, 1);
-  BoneTwistStretch ts = twist_stretch_of(x.doc, b);
+  BoneTwistStretch ts = twist_stretch_of(x.doc.pose_params(), b);
   ts.stretch = num(w, 2);
   x.doc.set_bone_twist_stretch(b, ts);
 }
