@@ -506,8 +506,10 @@ TEST_CASE("transition: one closed piece to two", "[transition]") {
                                         dfm::test::icosphere(Eigen::Vector3d(0.35, 0, 0.02), 0.25, 3));
   // Flat tetrahedra under the stretched sphere's surface cannot be filled: where the level set folds
   // onto them the folds are sealed (key_time_seal.h, tested with the key plane above), and the key
-  // slice is held exact either way.
+  // slice is held exact either way. With 24 layers slices cross vertex times as sphere to torus's do
+  // (t = 9/21 passes 1.9e-7 from one: well-shaped triangles 3e-7 across), their size reported.
   Expect want;
+  want.no_slivers = false;
   check_transition(blob, two, "one piece to two", want);
 }
 

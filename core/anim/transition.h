@@ -59,7 +59,9 @@ namespace dfm {
 
 struct TransitionOptions {
   // Middle layers between the keys (one lattice, its blend at each layer's time; layer_extrusion.h).
-  int layers = 8;
+  // A slice between two layers crosses their staircase prisms' 4-simplices; close layers keep those
+  // pieces nearly coplanar (bench_transition_quality measures the slices).
+  int layers = 24;
   // Spacing of the points off the surfaces, in mean surface edge lengths: each key's own near it;
   // the middle lattice's cube edge is the finer key's (in-betweens as finely sampled as it).
   double spacing = 2.0;
