@@ -14,7 +14,10 @@
 #include "app/editor/scene_view.h"
 #include "core/scene/document.h"
 #include "core/scene/key_surfaces.h"
+#include "app/editor/paint_tool.h"
 #include "app/editor/pose_tool.h"
+#include "core/scene/command.h"
+#include "core/scene/script.h"
 #include "tests/mock_render_backend.h"
 #include "tests/key_mesh_test_meshes.h"
 #include "tests/volume_test_meshes.h"
@@ -817,4 +820,90 @@ TEST_CASE("pose tool on a bone: a drag on its twist ring twists it, one undo ste
   CHECK_FALSE(tool.dragging());
   CHECK(doc.pose_params().bone_twist_stretch[0].twist == Approx(M_PI / 2).margin(0.05));
   CHECK(doc.undo_depth() == steps + 1);
+}
+
+TEST_CASE("paint tool on weights: a stroke is paint-weights lines, one undo step, and the lines repeat it exactly",
+          "[editor][scene_view][weights]") {
+  // A flat square of 2 x 2 cells in z = 0 facing +z, two point handles.
+  auto make = [](Document& doc) {
+    TriMesh m;
+    m.V.resize(25, 3);
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i) m.V.row(i + 5 * j) << 0.25 * i - 0.5, 0.25 * j - 0.5, 0;
+    m.F.resize(32, 3);
+    for (int j = 0, f = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const int a = i + 5 * j;
+        m.F.row(f++) << a, a + 1, a + 6;
+        m.F.row(f++) << a, a + 6, a + 5;
+      }
+    doc.set_surface(m, "square");
+    doc.add_point(Vector3d(-0.5, 0, 0));
+    doc.add_point(Vector3d(0.5, 0, 0));
+    Eigen::MatrixXd W(25, 2);
+    for (int v = 0; v < 25; ++v) W(v, 1) = 0.2 + 0.6 * (m.V(v, 0) + 0.5), W(v, 0) = 1 - W(v, 1);
+    doc.set_weights(W, BindStats{});
+    doc.set_selection(Selection{{0}});
+  };
+  Document doc;
+  make(doc);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  scene.sync(doc, ViewSettings{});
+  view::Camera cam;
+  cam.width = 800, cam.height = 600;
+  view::frame_box(cam, Vector3d(-0.5, -0.5, 0), Vector3d(0.5, 0.5, 0));
+  REQUIRE(camera_forward(cam).z() < -0.9);  // looking at the square's front
+
+  editor::PaintTool tool;
+  tool.set_target(editor::PaintTarget::Weights);
+  tool.set_brush(0.3, 0.4, 0.5);  // radius a fraction of the diagonal
+  tool.set_weight_brush(WeightPaintMode::Add, 1, true, false);
+  std::vector<CommandWords> lines;
+  const editor::PaintTool::Run run = [&](const CommandWords& w) {
+    lines.push_back(w);
+    run_command(doc, w);
+    return true;
+  };
+  const Eigen::MatrixXd before = doc.weights();
+  const int depth = doc.undo_depth();
+  editor::PaintTool::Input in;
+  in.hovered = true;
+  for (int k = 0; k <= 4; ++k) {
+    in.mouse = view::project_to_pixel(cam, Vector3d(-0.3 + 0.15 * k, 0.05, 0)).head<2>();
+    in.clicked = k == 0, in.down = true, in.released = k == 4;
+    tool.update(doc, scene, cam, in, run);
+  }
+  CHECK_FALSE(tool.painting());
+  REQUIRE(lines.size() == 5);
+  CHECK(lines[0][0] == "paint-weights");
+  CHECK(lines[0][2] == "add");
+  CHECK(doc.undo_depth() == depth + 1);
+  const Eigen::MatrixXd after = doc.weights();
+  CHECK(after != before);
+  CHECK((after.rowwise().sum().array() - 1).abs().maxCoeff() < 1e-12);
+
+  // The lines as a script on a fresh document: the same weights, bit for bit.
+  Document replay;
+  make(replay);
+  std::string text;
+  for (const CommandWords& w : lines) {
+    for (size_t i = 0; i < w.size(); ++i) text += (i ? " " : "") + w[i];
+    text += "\n";
+  }
+  run_script(replay, parse_script(text, "stroke.txt"), "stroke.txt");
+  CHECK(replay.weights() == after);
+  doc.undo();
+  CHECK(doc.weights() == before);
+
+  // Held Ctrl subtracts; with no handle selected nothing is painted.
+  in.erase = true;
+  in.mouse = view::project_to_pixel(cam, Vector3d(0, 0, 0)).head<2>();
+  in.clicked = true, in.released = true;
+  tool.update(doc, scene, cam, in, run);
+  CHECK(lines.back()[2] == "subtract");
+  doc.set_selection(Selection{});
+  const size_t n = lines.size();
+  tool.update(doc, scene, cam, in, run);
+  CHECK(lines.size() == n);
 }

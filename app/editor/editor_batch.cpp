@@ -167,6 +167,7 @@ void Editor::apply_ui_options(const std::string& spec) {
       else if (v == "point") tool_ = Tool::PlacePoint;
       else if (v == "bone") tool_ = Tool::DrawBone;
       else if (v == "paint") tool_ = Tool::Paint;
+      else if (v == "paint-weights") tool_ = Tool::Paint, paint_tool_.set_target(PaintTarget::Weights);
       else if (v == "move") tool_ = Tool::Pose, gizmo_rotate_ = false;
       else if (v == "rotate") tool_ = Tool::Pose, gizmo_rotate_ = true;
       else if (v == "pair") tool_ = Tool::Pair;

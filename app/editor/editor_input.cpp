@@ -238,7 +238,8 @@ void Editor::tool_paint(bool down, bool clicked, bool released) {
   in.hovered = viewport_hovered_;
   in.down = down, in.clicked = clicked, in.released = released;
   in.erase = ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift;
-  paint_tool_.update(doc_, *view_, cam_, in);
+  in.locked = weight_tools_.locked;
+  paint_tool_.update(doc_, *view_, cam_, in, [this](const CommandWords& w) { return run_ui_command(w); });
 }
 
 void Editor::tool_pose(bool clicked, bool released) {

@@ -16,6 +16,7 @@
 #include "core/anim/slice.h"
 #include "core/mesh/io.h"
 #include "core/scene/command.h"
+#include "core/util/atomic_file.h"
 #include "core/util/error.h"
 #include "core/view/color.h"
 #include "core/view/colormap.h"
@@ -127,6 +128,8 @@ void Editor::draw_ui() {
   if (files_.draw()) {  // the chosen file completes its command's line
     const CommandWords words = files_.command_line();
     if (words[0] == "open") open_any(words[1]);  // asks first when the document has unsaved changes
+    else if (words[0] == "transfer-weights" && words.size() == 2 && file_extension(words[1]) != "json")
+      files_.show(FilePanel::Mode::Open, "Weights of " + words[1] + " (.dmat)", "transfer-weights", "", {}, {words[1]});
     else run_ui_command(words);
   }
   draw_quit_prompt();

@@ -63,8 +63,9 @@ FilePanel::FilePanel() : recent_(load_recent()) {
 }
 
 void FilePanel::show(Mode mode, const std::string& title, const std::string& command, const std::string& default_name,
-                     const std::vector<std::string>& more_args) {
+                     const std::vector<std::string>& more_args, const std::vector<std::string>& lead_args) {
   open_ = true;
+  lead_args_ = lead_args;
   mode_ = mode;
   title_ = title;
   command_ = command;
@@ -75,7 +76,9 @@ void FilePanel::show(Mode mode, const std::string& title, const std::string& com
 }
 
 std::vector<std::string> FilePanel::command_line() const {
-  std::vector<std::string> words{command_, chosen_};
+  std::vector<std::string> words{command_};
+  words.insert(words.end(), lead_args_.begin(), lead_args_.end());
+  words.push_back(chosen_);
   words.insert(words.end(), more_args_.begin(), more_args_.end());
   return words;
 }

@@ -18,10 +18,10 @@ class FilePanel {
  public:
   enum class Mode { Open, Save };
   FilePanel();
-  // Opens the panel for `command FILE more_args...`; `title` e.g. "Open", "Save scene as";
+  // Opens the panel for `command lead_args... FILE more_args...`; `title` e.g. "Open", "Save scene as";
   // default_name pre-fills the name field.
   void show(Mode mode, const std::string& title, const std::string& command, const std::string& default_name = "",
-            const std::vector<std::string>& more_args = {});
+            const std::vector<std::string>& more_args = {}, const std::vector<std::string>& lead_args = {});
   // Draws it when open; returns true on the frame a path is chosen (then command_line()).
   bool draw();
   // The command with the chosen path as its first argument.
@@ -34,7 +34,7 @@ class FilePanel {
   bool open_ = false;
   Mode mode_ = Mode::Open;
   std::string title_, command_, chosen_;
-  std::vector<std::string> more_args_;
+  std::vector<std::string> more_args_, lead_args_;
   std::string dir_;
   char name_[512] = {0};
   std::vector<std::pair<std::string, bool>> entries_;  // name, is_dir

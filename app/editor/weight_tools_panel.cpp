@@ -152,6 +152,16 @@ void WeightToolsUi::draw(const Document& doc, const Run& run_command) {
 
 void Editor::draw_weight_tools_section() {
   weight_tools_.draw(doc_, [&](const CommandWords& words, std::string& printed) { return run_ui_command(words, &printed); });
+  // transfer-weights: a bound scene, or a mesh and then its weights file (editor_panels.cpp asks for it).
+  const std::string why = command_unavailable("transfer-weights", doc_);
+  const bool can = why.empty() && doc_.num_handles() > 0;
+  if (!can) ImGui::BeginDisabled();
+  if (ImGui::Button("Weights from..."))
+    files_.show(FilePanel::Mode::Open, "Weights from a bound scene, or a mesh (then its weights)", "transfer-weights");
+  if (!can) ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s", can ? "Carries another surface's weights onto this one (closest points, the rest inpainted)"
+                                : "needs a surface and handles");
 }
 
 }  // namespace dfm::editor

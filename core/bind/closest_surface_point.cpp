@@ -1,5 +1,10 @@
 #include "core/bind/closest_surface_point.h"
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -86,6 +91,55 @@ SurfaceSample SurfaceLocator::closest(const Eigen::Vector3d& p) const {
           for (int k = 0; k < 3; ++k) best.vertex[k] = F_(f, k), best.weight[k] = w(k);
         }
       }
+  return best;
+}
+
+namespace {
+using AabbKernel = CGAL::Simple_cartesian<double>;
+using AabbTriangles = std::vector<AabbKernel::Triangle_3>;
+using AabbPrimitive = CGAL::AABB_triangle_primitive<AabbKernel, AabbTriangles::const_iterator>;
+using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<AabbKernel, AabbPrimitive>>;
+}  // namespace
+
+struct SurfaceTree::Impl {
+  const Eigen::MatrixXd& V;
+  const Eigen::MatrixXi& F;
+  double max_distance;
+  AabbTriangles triangles;
+  AabbTree tree;
+};
+
+SurfaceTree::SurfaceTree(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, double max_distance)
+    : impl_(new Impl{V, F, max_distance, {}, {}}) {
+  if (F.size() && (F.minCoeff() < 0 || F.maxCoeff() >= V.rows()))
+    throw Error("surface tree: face index out of range (" + std::to_string(V.rows()) + " vertices)");
+  if (!(max_distance >= 0)) throw Error("surface tree: the search distance must be >= 0");
+  auto p = [&](int v) { return AabbKernel::Point_3(V(v, 0), V(v, 1), V(v, 2)); };
+  impl_->triangles.reserve(F.rows());
+  for (int f = 0; f < F.rows(); ++f) impl_->triangles.emplace_back(p(F(f, 0)), p(F(f, 1)), p(F(f, 2)));
+  if (F.rows() == 0) return;
+  impl_->tree.insert(impl_->triangles.cbegin(), impl_->triangles.cend());
+  impl_->tree.build();
+  impl_->tree.accelerate_distance_queries();
+}
+
+SurfaceTree::~SurfaceTree() = default;
+
+SurfaceSample SurfaceTree::closest(const Eigen::Vector3d& p) const {
+  SurfaceSample best;
+  if (impl_->triangles.empty()) return best;
+  const auto hit = impl_->tree.closest_point_and_primitive(AabbKernel::Point_3(p.x(), p.y(), p.z()));
+  const int f = static_cast<int>(hit.second - impl_->triangles.cbegin());
+  const Eigen::MatrixXd& V = impl_->V;
+  const Eigen::Vector3d a = V.row(impl_->F(f, 0)), b = V.row(impl_->F(f, 1)), c = V.row(impl_->F(f, 2));
+  Eigen::Vector3d w = closest_point_barycentric(p, a, b, c);
+  const double d = (w(0) * a + w(1) * b + w(2) * c - p).norm();
+  if (d > impl_->max_distance) return best;
+  for (int k = 0; k < 3; ++k)
+    if (w(k) < 1e-9) w(k) = 0;
+  w /= w.sum();
+  best.distance = d;
+  for (int k = 0; k < 3; ++k) best.vertex[k] = impl_->F(f, k), best.weight[k] = w(k);
   return best;
 }
 

@@ -2,6 +2,7 @@
 // Closest points on a triangle surface, as barycentric samples (a point's value is the blend of its
 // triangle's three vertex values): the weight mirror reads the weights at each vertex's reflection.
 #include <array>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -36,6 +37,20 @@ class SurfaceLocator {
   double max_distance_, cell_;
   Eigen::Vector3d origin_;
   std::unordered_map<long long, std::vector<int>> cells_;
+};
+
+// The same query by a bounding-volume tree of the triangles (CGAL's AABB tree): logarithmic at any
+// distance, where the grid's cells grow with max_distance (weight transfer searches 5% of the
+// diagonal). Queries may run on several threads at once. Of triangles equally near, the tree's choice.
+class SurfaceTree {
+ public:
+  SurfaceTree(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, double max_distance);
+  ~SurfaceTree();
+  SurfaceSample closest(const Eigen::Vector3d& p) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace dfm

@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "core/bind/closest_surface_point.h"
+#include "core/bind/parallel_for.h"
 #include "core/bind/surface_laplacian.h"
 #include "core/mesh/mesh_info.h"
 #include "core/skin/skin.h"
@@ -35,19 +36,19 @@ Eigen::Vector3d face_normal(const Eigen::MatrixXd& V, const SurfaceSample& s) {
 std::vector<char> match_closest(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, const Eigen::MatrixXd& W,
                                 const Eigen::MatrixXd& TV, const Eigen::MatrixXi& TF, double max_distance,
                                 double max_angle, Eigen::MatrixXd& out) {
-  const SurfaceLocator near(V, F, max_distance);
+  const SurfaceTree near(V, F, max_distance);
   const Eigen::MatrixXd N = vertex_normals(TV, TF);
   const double cos_max = std::cos(max_angle * M_PI / 180.0);
   std::vector<char> match(TV.rows(), 0);
-  for (Eigen::Index i = 0; i < TV.rows(); ++i) {
+  parallel_for(static_cast<int>(TV.rows()), 0, [&](int i) {
     const SurfaceSample s = near.closest(TV.row(i).transpose());
-    if (!s.found() || s.distance > max_distance) continue;
+    if (!s.found() || s.distance > max_distance) return;
     const Eigen::Vector3d n = N.row(i).transpose(), m = face_normal(V, s);
     const bool at = s.distance < 1e-12 * max_distance;  // on the source: the normal does not matter
-    if (!at && !(n.norm() > 0 && m.norm() > 0 && n.normalized().dot(m.normalized()) >= cos_max)) continue;
+    if (!at && !(n.norm() > 0 && m.norm() > 0 && n.normalized().dot(m.normalized()) >= cos_max)) return;
     out.row(i) = sample_weights(s, W);
     match[i] = 1;
-  }
+  });
   return match;
 }
 
@@ -65,7 +66,7 @@ void fill_unmatched_pieces(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F, c
     if (fixed[i] && piece[i] >= 0) has_match[piece[i]] = 1;
   const double diag = (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm();
   const Eigen::Vector3d far = TV.rows() ? Eigen::Vector3d((TV.colwise().maxCoeff() - TV.colwise().minCoeff()).transpose()) : Eigen::Vector3d::Zero();
-  const SurfaceLocator anywhere(V, F, 2 * (diag + far.norm()) + 1e-9);
+  const SurfaceTree anywhere(V, F, 2 * (diag + far.norm()) + 1e-9);
   for (Eigen::Index i = 0; i < TV.rows(); ++i) {
     if (fixed[i] || (piece[i] >= 0 && has_match[piece[i]])) continue;
     out.row(i) = sample_weights(anywhere.closest(TV.row(i).transpose()), W);

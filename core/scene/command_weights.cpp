@@ -167,6 +167,73 @@ void transfer(CommandContext& x, const CommandWords& w) {
   x.print(out.str());
 }
 
+// paint-weights HANDLE MODE X Y Z RADIUS STRENGTH [VALUE] [falloff=F] [front=DX,DY,DZ] [mirror]
+// [locked=H,H,...]: one dab of the weight brush (weight_brush.h), as the Paint tool makes it.
+struct PaintWeightsLine {
+  WeightBrush brush;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();
+  bool mirror = false;
+  std::vector<std::string> locked;  // handle words
+};
+
+WeightPaintMode paint_mode(const std::string& m) {
+  if (m == "add") return WeightPaintMode::Add;
+  if (m == "subtract") return WeightPaintMode::Subtract;
+  if (m == "mix") return WeightPaintMode::Mix;
+  if (m == "smooth") return WeightPaintMode::Smooth;
+  throw Error("brush mode must be add, subtract, mix or smooth, got '" + m + "'");
+}
+
+std::vector<std::string> split_commas(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string part; std::getline(in, part, ',');) out.push_back(part);
+  return out;
+}
+
+PaintWeightsLine paint_weights_line(const CommandWords& w) {
+  PaintWeightsLine p;
+  p.brush.mode = paint_mode(w[2]);
+  p.center = Eigen::Vector3d(number(w[3]), number(w[4]), number(w[5]));
+  p.brush.radius = number(w[6]);
+  p.brush.strength = number(w[7]);
+  if (!(p.brush.radius > 0)) throw Error("radius must be > 0, got " + w[6]);
+  if (!(p.brush.strength >= 0 && p.brush.strength <= 1)) throw Error("strength must be in [0, 1], got " + w[7]);
+  size_t i = 8;
+  if (p.brush.mode == WeightPaintMode::Mix) {
+    if (w.size() <= i) throw Error("mix needs the VALUE to blend toward");
+    p.brush.value = number(w[i++]);
+    if (!(p.brush.value >= 0 && p.brush.value <= 1)) throw Error("the mix value must be in [0, 1], got " + w[i - 1]);
+  }
+  for (; i < w.size(); ++i) {
+    const std::string& o = w[i];
+    if (o == "mirror") {
+      p.mirror = true;
+    } else if (o.rfind("falloff=", 0) == 0) {
+      p.brush.falloff = number(o.substr(8));
+      if (!(p.brush.falloff >= 0 && p.brush.falloff <= 1)) throw Error("falloff must be in [0, 1], got " + o.substr(8));
+    } else if (o.rfind("front=", 0) == 0) {
+      const std::vector<std::string> d = split_commas(o.substr(6));
+      if (d.size() != 3) throw Error("front= takes a view direction DX,DY,DZ, got '" + o.substr(6) + "'");
+      p.brush.facing = Eigen::Vector3d(number(d[0]), number(d[1]), number(d[2]));
+    } else if (o.rfind("locked=", 0) == 0) {
+      p.locked = split_commas(o.substr(7));
+    } else {
+      throw Error("unknown option '" + o + "' (falloff=F, front=DX,DY,DZ, mirror, locked=H,H)");
+    }
+  }
+  return p;
+}
+
+void paint_weights(CommandContext& x, const CommandWords& w) {
+  const PaintWeightsLine p = paint_weights_line(w);
+  const int handle = find_handle(x.doc.rig(), w[1]);
+  std::vector<int> locked;
+  for (const std::string& h : p.locked) locked.push_back(find_handle(x.doc.rig(), h));
+  const int changed = x.doc.paint_weights(handle, p.center, p.brush, locked, p.mirror);
+  x.print(w[0] + ": " + std::to_string(changed) + " vertices changed");
+}
+
 }  // namespace
 
 void add_weight_commands(std::vector<Command>& t) {
@@ -184,6 +251,12 @@ void add_weight_commands(std::vector<Command>& t) {
   add(t, "weights-report", "weights-report [THRESHOLD]", 0, 1, {a_number}, report).check =
       line_check([](const CommandWords& w) { report_threshold(w); });
   add(t, "transfer-weights", "transfer-weights SCENE.json | MESH W.dmat", 1, 2, {file_arg(), file_arg()}, transfer);
+  Command& paint = add(t, "paint-weights",
+                       "paint-weights HANDLE add|subtract|mix|smooth X Y Z RADIUS STRENGTH [VALUE] [falloff=F] "
+                       "[front=DX,DY,DZ] [mirror] [locked=H,H]",
+                       7, 12, {a_handle, a_word, a_number, a_number, a_number, a_number, a_number, a_word}, paint_weights);
+  paint.check = line_check([](const CommandWords& w) { paint_weights_line(w); });
+  paint.poll = needs_weights;
   // Each one undo step on the weights; they need weights to work on (weights-report only reads them).
   for (Command& c : t)
     if (c.name.rfind("weights-", 0) == 0) c.poll = needs_weights, c.undoable = c.name != "weights-report";

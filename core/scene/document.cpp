@@ -153,6 +153,7 @@ void Document::rig_edit(const std::string& name, const std::string& merge_target
 void Document::after_change(unsigned parts) {
   ++revision_;
   if (parts & (kSurface | kWeights)) ++surface_weights_revision_;
+  if (parts & (kSurface | kRig)) ++surface_rig_revision_;
   // Selection is view state: keep it valid whatever changed underneath.
   const int n = num_handles();
   auto& h = s_.selection.handles;

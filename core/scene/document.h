@@ -30,6 +30,7 @@
 #include "core/rig/pose.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig.h"
+#include "core/scene/weight_brush.h"
 #include "core/skin/skin.h"  // SkinMethod
 
 namespace dfm {
@@ -267,6 +268,11 @@ class Document {
   MirrorReport weights_mirror(const MirrorOptions& opts);
   // Handles whose largest weight is below threshold (empty without weights).
   std::vector<ZeroWeightHandle> weights_report(double threshold = 1e-3) const;
+  // Weight brush (weight_brush.h): one dab on `handle`'s weights, `locked` handles and the bind's
+  // constrained rows kept; with mirror_x also the same dab at the centre's reflection across x = 0 on
+  // the handle's mirror (weight_mirror.h's pairing). Merges within a gesture. Returns the rows changed.
+  int paint_weights(int handle, const Eigen::Vector3d& center, const WeightBrush& brush, const std::vector<int>& locked,
+                    bool mirror_x);
 
   // Posing (no effect on weights). Translate/rotate act on the pose of one handle:
   //   point: translation / explicit rotation about the point; bone: translation / rotation about its
@@ -340,6 +346,9 @@ class Document {
   void replay_step(std::vector<std::unique_ptr<Step>>& from, std::vector<std::unique_ptr<Step>>& to);
   std::uint64_t next_serial_ = 1, saved_serial_ = 0, revision_ = 0, surface_weights_revision_ = 0;
   std::unique_ptr<FastPosing> fast_;  // caches only: not part of the scene or of undo
+  struct PaintCache;  // what the weight brush reads of the surface and rig (document_weights.cpp)
+  std::shared_ptr<const PaintCache> paint_cache_;
+  std::uint64_t surface_rig_revision_ = 0;  // bumped when the surface or the rig changes
   FastSolveReport last_fast_;
   bool gesture_open_ = false;
   bool gesture_merge_ok_ = false;  // the top step was made inside the current gesture

@@ -24,3 +24,4 @@ target_compile_definitions(test_commands PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURC
 dfm_test(test_twist_stretch_script SOURCES test_twist_stretch_script.cpp LIBS dfm_scene)
 # The script's transfer-weights (issue 34): a scene's or a mesh's weights onto the document's surface.
 dfm_test(test_transfer_weights_script SOURCES test_transfer_weights_script.cpp LIBS dfm_scene)
+target_compile_definitions(test_transfer_weights_script PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
