@@ -105,7 +105,7 @@ void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
       const StbsHandle& s = stbs[h];
       put_row(d + 32, Eigen::Vector4d(s.origin.x(), s.origin.y(), s.origin.z(), s.twist));
       put_row(d + 36, Eigen::Vector4d(s.axis.x(), s.axis.y(), s.axis.z(), 1.0));
-      put_row(d + 40, Eigen::Vector4d(s.stretch.x(), s.stretch.y(), s.stretch.z(), 0.0));
+      put_row(d + 40, Eigen::Vector4d(s.stretch.x(), s.stretch.y(), s.stretch.z(), s.twist_start));
       const Eigen::Affine3d Tp = T * s.unstretched;
       for (int r = 0; r < 3; ++r) put_row(d + 44 + 4 * r, Tp.matrix().row(r).transpose());
       const DqsHandle tq = dqs_handle(Tp);

@@ -9,9 +9,9 @@
 //   0-2  rows of [A | t]
 //   3    dual quaternion real part (x y z w)      4  dual part
 //   5-7  rows of the DQS stretch S = R^T A
-//   8    STBS: bone origin a (xyz), twist angle (w)
+//   8    STBS: bone origin a (xyz), twist angle at the second joint (w)
 //   9    STBS: unit bone axis (xyz), 1 if the bone is active (w)
-//   10   STBS: stretch offset (sigma - 1)(b - a) (xyz)
+//   10   STBS: stretch offset (sigma - 1)(b - a) (xyz), twist angle at the first joint (w)
 //   11-13  STBS: rows of T' = T W^-1 (the bone without its twist/stretch) for active bones
 //   14-15  STBS over DQS: the dual quaternion of T' (real, dual) for active bones
 #define HANDLE_TEXELS 16
@@ -74,10 +74,11 @@ void main() {
       vec3 t = vec3(s0.w, s1.w, s2.w);
       vec4 origin = texel(h, 8);
       float e = texelFetch(endpoints, j).x;
-      float angle = e * origin.w;
+      vec4 stretch = texel(h, 10);  // w: the twist at the first joint
+      float angle = mix(stretch.w, origin.w, e);  // (1 - e) theta_a + e theta_b, Eq. 6.5
       mat3 R = axis_rotation(axis.xyz, angle);
       vec3 rel = p - origin.xyz;
-      vec3 pp = p + (R * rel - rel) + e * texel(h, 10).xyz;
+      vec3 pp = p + (R * rel - rel) + e * stretch.xyz;
       q += w * (L * pp + t);
       A += w * (L * R);
       continue;
@@ -108,9 +109,10 @@ void main() {
     if (axis.w > 0.5) {  // T' composed with the twist and stretch at this vertex's endpoint weight
       float e = texelFetch(endpoints, j).x;
       vec4 origin = texel(h, 8);
-      float half_angle = 0.5 * e * origin.w;
-      vec4 q = vec4(sin(half_angle) * axis.xyz, cos(half_angle));
-      vec3 t = origin.xyz - axis_rotation(axis.xyz, e * origin.w) * origin.xyz + e * texel(h, 10).xyz;
+      vec4 stretch = texel(h, 10);  // w: the twist at the first joint
+      float angle = mix(stretch.w, origin.w, e);  // Eq. 6.5
+      vec4 q = vec4(sin(0.5 * angle) * axis.xyz, cos(0.5 * angle));
+      vec3 t = origin.xyz - axis_rotation(axis.xyz, angle) * origin.xyz + e * stretch.xyz;
       vec4 tr = texel(h, 14), td = texel(h, 15);
       r = qmul(tr, q);
       d = qmul(tr, 0.5 * qmul(vec4(t, 0.0), q)) + qmul(td, q);

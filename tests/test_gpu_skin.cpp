@@ -67,7 +67,7 @@ static PoseParams posed_hand(const Rig& rig, const std::string& qfile) {
   PoseParams params = rest_pose_params(rig);
   params.bone_rotation = read_bone_rotations(qfile, rig.skeleton.num_bones());
   params.bone_translation[10] = Eigen::Vector3d(0.05, 0.1, -0.02);
-  params.bone_twist_stretch[3] = {1.0, 1.2};
+  params.bone_twist_stretch[3] = {1.0, 1.2, -0.4};  // with a twist at its first joint too
   params.bone_twist_stretch[7] = {-2.0, 0.8};
   return params;
 }

@@ -144,6 +144,22 @@ TEST_CASE("deform pose --twist-stretch: a stretch moves what hangs below by the 
       if (turned || p.x() > 2 - 1e-12) CHECK((got.V.row(i) - want).norm() < 1e-6);
     }
   }
+  // A third column twists the bone at its first joint too (Eq. 6.5): 180 degrees at both ends turns
+  // every vertex of the second bone alone, under STBS as under LBS.
+  Eigen::MatrixXd ts3(2, 3);
+  ts3 << 0, 1.5, 0, 180, 1, 180;
+  write_dmat((dir / "ts3.dmat").string(), ts3);
+  REQUIRE(run_deform("pose " + common + " --twist-stretch " + (dir / "ts3.dmat").string() + " --method stbs -o " +
+                     (dir / "out3.obj").string()) == 0);
+  const TriMesh got3 = read_surface((dir / "out3.obj").string());
+  int second = 0;
+  for (int i = 0; i < got3.V.rows(); ++i) {
+    const Eigen::RowVector3d p = t.mesh.V.row(i);
+    if (p.x() < 1.4) continue;
+    ++second;
+    CHECK((got3.V.row(i) - Eigen::RowVector3d(p.x() + 0.5, -p.y(), -p.z())).norm() < 1e-6);
+  }
+  CHECK(second > 10);
   // A file of the wrong shape, a stretch that is not positive: exit 1 naming the file.
   write_dmat((dir / "short.dmat").string(), Eigen::MatrixXd::Ones(1, 2));
   CHECK(run_deform("pose " + common + " --twist-stretch " + (dir / "short.dmat").string() + " -o " + (dir / "x.obj").string()) == 1);

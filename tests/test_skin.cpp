@@ -250,6 +250,36 @@ TEST_CASE("STBS: twist grows from 0 at the first joint to full at the second; st
   REQUIRE((l.V.row(0).transpose() - Vector3d(-1, 0, 1)).norm() < 1e-12);
 }
 
+TEST_CASE("STBS: a twist at the first joint turns the skin by (1 - e) theta_a + e theta_b (Eq. 6.5), over LBS and DQS",
+          "[skin][stbs]") {
+  Rig rig = bones_rig(1);  // bone from (-1,0,0) to (1,0,0)
+  MatrixXd V(4, 3);
+  V << -1, 1, 0,  // e = 0
+      0, 1, 0,    // e = 0.5
+      1, 0, 1,    // e = 1
+      0.5, 0, 1;  // t = 0.75 -> e = 0.84375
+  const SkinBinding b = make_skin_binding(V, MatrixXd(), MatrixXd::Ones(4, 1), rig, 0);
+  PoseParams p = rest_pose_params(rig);
+  const double ta = -kPi / 3, tb = kPi / 2;
+  p.bone_twist_stretch[0] = {tb, 1.0, ta};
+  const Pose pose = evaluate_pose(rig, p);
+  const double es[4] = {0, 0.5, 1, 0.75 * 0.75 * (3 - 1.5)};
+  for (SkinMethod m : {SkinMethod::STBS, SkinMethod::STBS_DQS}) {
+    const SkinResult r = skin(m, b, pose, stbs_handles(rig, p.bone_twist_stretch));
+    for (int i = 0; i < 4; ++i) {
+      const double a = (1 - es[i]) * ta + es[i] * tb;  // about +x, the bone's axis; the bone itself stays
+      const Vector3d q = V.row(i).transpose();
+      const Vector3d expect(q.x(), std::cos(a) * q.y() - std::sin(a) * q.z(), std::sin(a) * q.y() + std::cos(a) * q.z());
+      INFO(skin_method_name(m) << " vertex " << i);
+      CHECK((r.V.row(i).transpose() - expect).norm() < 1e-12);
+    }
+  }
+  // The twist at the first joint alone makes the bone active; LBS and the bone's frame ignore it.
+  p.bone_twist_stretch[0] = {0.0, 1.0, ta};
+  CHECK(stbs_handles(rig, p.bone_twist_stretch)[0].active);
+  CHECK((skin(SkinMethod::LBS, b, evaluate_pose(rig, p)).V - V).norm() == 0);
+}
+
 TEST_CASE("truncation error: zero with every weight, positive with fewer", "[skin][influences]") {
   const int h = 6;
   const MatrixXd V = random_points(200, 16), W = random_weights(200, h, 17);

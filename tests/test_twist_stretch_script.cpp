@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "core/scene/key_surfaces.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
 #include "tests/volume_test_meshes.h"
@@ -67,6 +68,38 @@ TEST_CASE("twist and stretch: bones by number or name, one undo step each; the w
   CHECK_THROWS_WITH(run(d, "twist 7 10\n"), Catch::Contains("ts.txt:1"));
   CHECK_THROWS_WITH(run(d, "twist 1 nan\n"), Catch::Contains("ts.txt:1"));
   CHECK(d.undo_depth() == steps + 1);  // no failed line left a step
+}
+
+TEST_CASE("the twist at a bone's first joint (Eq. 6.5): set by twist and stretch, kept by scenes, interpolated by keys") {
+  Document d;
+  make_arm(d);
+  run(d, "twist 2 90 -30\nstretch 1 1.5 10\n");
+  const std::vector<BoneTwistStretch>& ts = d.pose_params().bone_twist_stretch;
+  CHECK(ts[1].twist_start == Approx(-M_PI / 6).epsilon(1e-15));
+  CHECK(ts[0].twist_start == Approx(M_PI / 18).epsilon(1e-15));
+  CHECK(ts[0].twist == 0.0);
+  run(d, "twist 2 45\n");  // without the third word the start stays
+  CHECK(d.pose_params().bone_twist_stretch[1].twist_start == Approx(-M_PI / 6).epsilon(1e-15));
+
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("dfm_ts_start_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  d.save_scene((dir / "a.scene.json").string());
+  Document back;
+  back.load_scene((dir / "a.scene.json").string());
+  for (int b = 0; b < 2; ++b) {
+    CHECK(back.pose_params().bone_twist_stretch[b].twist_start == d.pose_params().bone_twist_stretch[b].twist_start);
+    CHECK(back.pose_params().bone_twist_stretch[b].twist == d.pose_params().bone_twist_stretch[b].twist);
+  }
+  fs::remove_all(dir);
+
+  // Keyed at 0 (rest) and at 1: halfway, half of each.
+  Document k;
+  make_arm(k);
+  run(k, "set-method stbs\nset-key 0\ntwist 2 90 -30\nset-key 1\n");
+  const PoseParams mid = animation_params(k, 0.5);
+  CHECK(mid.bone_twist_stretch[1].twist_start == Approx(-M_PI / 12).epsilon(1e-12));
+  CHECK(mid.bone_twist_stretch[1].twist == Approx(M_PI / 4).epsilon(1e-12));
 }
 
 TEST_CASE("stretch (Fig. 6.15): what hangs below the bone moves (s - 1) bone lengths along it, nothing farther") {

@@ -40,22 +40,34 @@ void PosePanels::draw_transform(Document& doc, const Pose& pose, const std::stri
   if (ImGui::Button("Reset pose", ImVec2(-1, 0))) doc.reset_pose();
 }
 
-// The bone's twist (degrees, at its second joint) and stretch (length factor), dragged: one undo step a
-// drag (Jacobson 2013 ch. 6: STBS spreads them along the bone; every method moves the bones below).
+// The bone's twist (degrees, at its second joint), stretch (length factor) and twist at its first joint
+// (Eq. 6.5's theta_a), dragged: one undo step a drag (Jacobson 2013 ch. 6: STBS spreads them along the
+// bone; every method moves the bones below by the twist and stretch).
 void PosePanels::draw_twist_stretch(Document& doc, int bone) {
   const BoneTwistStretch ts = twist_stretch_of(doc.pose_params(), bone);
-  float v[2] = {float(ts.twist * 180 / M_PI), float(ts.stretch)};
-  ImGui::SetNextItemWidth(-1);
-  const bool twisted = ImGui::DragFloat("##twist", &v[0], 0.5f, -720.0f, 720.0f, "twist %.1f deg");
-  const bool twist_started = ImGui::IsItemActivated(), twist_done = ImGui::IsItemDeactivated();
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Twist about the bone's axis at its second joint (script: twist)");
-  ImGui::SetNextItemWidth(-1);
-  const bool stretched = ImGui::DragFloat("##stretch", &v[1], 0.005f, 0.05f, 10.0f, "stretch %.3f");
-  const bool stretch_started = ImGui::IsItemActivated(), stretch_done = ImGui::IsItemDeactivated();
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Length factor of the bone (script: stretch)");
-  if (twist_started || stretch_started) doc.begin_gesture();
-  if (twisted || stretched) doc.set_bone_twist_stretch(bone, {v[0] * M_PI / 180, std::max(0.05f, v[1])});
-  if (twist_done || stretch_done) doc.end_gesture();
+  float v[3] = {float(ts.twist * 180 / M_PI), float(ts.stretch), float(ts.twist_start * 180 / M_PI)};
+  struct Field {
+    const char* id;
+    float speed, lo, hi;
+    const char* format;
+    const char* tip;
+  };
+  const Field fields[3] = {
+      {"##twist", 0.5f, -720.0f, 720.0f, "twist %.1f deg", "Twist about the bone's axis at its second joint (script: twist)"},
+      {"##stretch", 0.005f, 0.05f, 10.0f, "stretch %.3f", "Length factor of the bone (script: stretch)"},
+      {"##twist_start", 0.5f, -720.0f, 720.0f, "twist at start %.1f deg",
+       "Twist at the bone's first joint: STBS turns its skin from this to the twist (script: twist BONE DEG START)"}};
+  bool changed = false, started = false, done = false;
+  for (int i = 0; i < 3; ++i) {
+    ImGui::SetNextItemWidth(-1);
+    changed |= ImGui::DragFloat(fields[i].id, &v[i], fields[i].speed, fields[i].lo, fields[i].hi, fields[i].format);
+    started |= ImGui::IsItemActivated();
+    done |= ImGui::IsItemDeactivated();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", fields[i].tip);
+  }
+  if (started) doc.begin_gesture();
+  if (changed) doc.set_bone_twist_stretch(bone, {v[0] * M_PI / 180, std::max(0.05f, v[1]), v[2] * M_PI / 180});
+  if (done) doc.end_gesture();
   if (!is_stbs(doc.method()) && !is_rest_twist_stretch(ts))
     text_disabled_wrapped("the methods STBS spread them along the bone");
   if (is_stbs(doc.method()) && doc.has_weights())

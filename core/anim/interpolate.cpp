@@ -86,7 +86,8 @@ PoseParams interpolate_pose_params(const Rig& rig, const PoseParams& a, const Po
         blend_each(a.bone_twist_stretch.empty() ? rest : a.bone_twist_stretch,
                    b.bone_twist_stretch.empty() ? rest : b.bone_twist_stretch, "bone twists",
                    [u](const BoneTwistStretch& p, const BoneTwistStretch& q) {
-                     return BoneTwistStretch{(1.0 - u) * p.twist + u * q.twist, (1.0 - u) * p.stretch + u * q.stretch};
+                     return BoneTwistStretch{(1.0 - u) * p.twist + u * q.twist, (1.0 - u) * p.stretch + u * q.stretch,
+                                             (1.0 - u) * p.twist_start + u * q.twist_start};
                    });
   }
   if (!a.solved.empty() || !b.solved.empty()) {

@@ -30,7 +30,9 @@ std::vector<Eigen::Affine3d> forward_kinematics(const Skeleton& skeleton,
 // W_b: rotation by `twist` about the rest axis through joint a, after scaling by `stretch` along that
 // axis about a. Exactly the identity for twist 0 and stretch 1.
 Eigen::Affine3d twist_stretch_transform(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const BoneTwistStretch& ts);
-inline bool is_rest_twist_stretch(const BoneTwistStretch& ts) { return ts.twist == 0.0 && ts.stretch == 1.0; }
+inline bool is_rest_twist_stretch(const BoneTwistStretch& ts) {
+  return ts.twist == 0.0 && ts.stretch == 1.0 && ts.twist_start == 0.0;
+}
 
 // World rotation of a bone's parent chain (FK composes T_parent * R_b): the product of the parents'
 // rotations, root first. A world-space offset or turn of the bone maps into its parent's frame by it.

@@ -58,14 +58,15 @@ void write_point_translations(const std::string& path, const std::vector<Eigen::
 
 std::vector<BoneTwistStretch> read_bone_twist_stretch(const std::string& path, int bones) {
   const Eigen::MatrixXd M = read_dmat(path);
-  if (M.rows() != bones || M.cols() != 2)
-    throw file_error(path, 0, "expected " + std::to_string(bones) + " x 2 (a row per bone: twist in degrees, stretch), got " +
-                                  std::to_string(M.rows()) + " x " + std::to_string(M.cols()));
+  if (M.rows() != bones || (M.cols() != 2 && M.cols() != 3))
+    throw file_error(path, 0, "expected " + std::to_string(bones) + " x 2 or 3 (a row per bone: twist in degrees, stretch, " +
+                                  "optionally the twist at its first joint), got " + std::to_string(M.rows()) + " x " +
+                                  std::to_string(M.cols()));
   std::vector<BoneTwistStretch> out(bones);
   for (int i = 0; i < bones; ++i) {
     if (!M.row(i).allFinite()) throw file_error(path, 0, "bone " + std::to_string(i) + ": a value is not finite");
     if (!(M(i, 1) > 0)) throw file_error(path, 0, "bone " + std::to_string(i) + ": the stretch must be positive");
-    out[i] = {M(i, 0) * M_PI / 180.0, M(i, 1)};
+    out[i] = {M(i, 0) * M_PI / 180.0, M(i, 1), M.cols() == 3 ? M(i, 2) * M_PI / 180.0 : 0.0};
   }
   return out;
 }

@@ -16,11 +16,14 @@
 
 namespace dfm {
 
-// Stretchable, twistable bones (Jacobson 2013 ch. 6): per bone, a twist about its own axis that grows
-// from 0 at the first joint to `twist` at the second, and a length factor (1 = rest length).
+// Stretchable, twistable bones (Jacobson 2013 ch. 6): per bone, a twist about its own axis that goes
+// from `twist_start` at the first joint to `twist` at the second ((1 - e) theta_a + e theta_b, Eq. 6.5),
+// and a length factor (1 = rest length). The bone's frame (and its children's) carries `twist`;
+// `twist_start` only spreads the twist along the bone's own skin.
 struct BoneTwistStretch {
-  double twist = 0.0;    // radians, right-handed about (b - a)
-  double stretch = 1.0;  // posed length / rest length
+  double twist = 0.0;        // radians, right-handed about (b - a), at the second joint
+  double stretch = 1.0;      // posed length / rest length
+  double twist_start = 0.0;  // radians, at the first joint
 };
 
 struct PoseParams {

@@ -48,6 +48,7 @@ void twist(CommandContext& x, const CommandWords& w) {
   const int b = bone_at(x.doc, w, 1);
   BoneTwistStretch ts = twist_stretch_of(x.doc.pose_params(), b);
   ts.twist = num(w, 2) * M_PI / 180.0;
+  if (w.size() > 3) ts.twist_start = num(w, 3) * M_PI / 180.0;
   x.doc.set_bone_twist_stretch(b, ts);
 }
 
@@ -55,6 +56,7 @@ void stretch(CommandContext& x, const CommandWords& w) {
   const int b = bone_at(x.doc, w, 1);
   BoneTwistStretch ts = twist_stretch_of(x.doc.pose_params(), b);
   ts.stretch = num(w, 2);
+  if (w.size() > 3) ts.twist_start = num(w, 3) * M_PI / 180.0;
   x.doc.set_bone_twist_stretch(b, ts);
 }
 
@@ -91,8 +93,8 @@ void add_pose_commands(std::vector<Command>& t) {
       [](CommandContext& x, const CommandWords& w) {
         x.doc.set_handle_state(handle_at(x.doc, w, 1), parse_constraint_state(w[2]));
       });
-  add(t, "twist", "twist BONE_HANDLE DEGREES", 2, 2, {handle_arg(), number_arg()}, twist);
-  add(t, "stretch", "stretch BONE_HANDLE FACTOR", 2, 2, {handle_arg(), number_arg()}, stretch);
+  add(t, "twist", "twist BONE_HANDLE DEGREES [AT_START_DEGREES]", 2, 3, {handle_arg(), number_arg()}, twist);
+  add(t, "stretch", "stretch BONE_HANDLE FACTOR [AT_START_DEGREES]", 2, 3, {handle_arg(), number_arg()}, stretch);
   add(t, "fast", "fast on|off [ITERATIONS]", 1, 2, {word_arg()}, fast);
   add(t, "ik-chain", "ik-chain BONE_HANDLE", 1, 1, {handle_arg()}, ik_chain);
   add(t, "set-method", "set-method lbs|dqs|stbs|stbs-dqs", 1, 1, {word_arg()},

@@ -151,7 +151,8 @@ void Document::rotate_handle(int handle, const Eigen::Quaterniond& q_in) {
 void Document::set_bone_twist_stretch(int bone, const BoneTwistStretch& ts) {
   const int nb = s_.rig.skeleton.num_bones();
   if (bone < 0 || bone >= nb) throw Error("no bone " + std::to_string(bone) + " (the rig has " + std::to_string(nb) + ")");
-  if (!std::isfinite(ts.twist) || !std::isfinite(ts.stretch)) throw Error("twist and stretch must be finite");
+  if (!std::isfinite(ts.twist) || !std::isfinite(ts.stretch) || !std::isfinite(ts.twist_start))
+    throw Error("twist and stretch must be finite");
   if (!(ts.stretch > 0)) throw Error("a bone's stretch must be positive, got " + std::to_string(ts.stretch));
   execute("twist/stretch " + handle_name(s_.rig, num_point_handles(s_.rig) + bone), kPose, "twist/stretch " + std::to_string(bone), [&](SceneData& s) {
     if (s.pose.bone_twist_stretch.size() != static_cast<size_t>(nb)) s.pose.bone_twist_stretch.resize(nb);

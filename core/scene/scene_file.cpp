@@ -77,7 +77,7 @@ json params_json(const PoseParams& p) {
   j["bone_rotation"] = list(p.bone_rotation, quat);
   j["bone_translation"] = list(p.bone_translation, vec3);
   j["bone_twist_stretch"] =
-      list(p.bone_twist_stretch, [](const BoneTwistStretch& t) { return json::array({t.twist, t.stretch}); });
+      list(p.bone_twist_stretch, [](const BoneTwistStretch& t) { return json::array({t.twist, t.stretch, t.twist_start}); });
   j["point_translation"] = list(p.point_translation, vec3);
   j["point_rotation"] = list(p.point_rotation, quat);
   j["cage_translation"] = list(p.cage_translation, vec3);

@@ -172,8 +172,9 @@ PoseParams SceneReader::params(const json& j, const Rig& rig, const std::string&
   list("bone_translation", nb, [&](const json& x, const std::string& c) { return vec3(x, c); }, p.bone_translation);
   list("bone_twist_stretch", nb,
        [&](const json& x, const std::string& c) {
-         array(x, c, 2);
-         return BoneTwistStretch{number(x[0], c), number(x[1], c)};
+         array(x, c);  // twist, stretch and (since the twist at the first joint) that twist
+         if (x.size() != 2 && x.size() != 3) fail("'" + c + "' has " + std::to_string(x.size()) + " entries, expected 2 or 3");
+         return BoneTwistStretch{number(x[0], c), number(x[1], c), x.size() == 3 ? number(x[2], c) : 0.0};
        },
        p.bone_twist_stretch);
   list("point_translation", np, [&](const json& x, const std::string& c) { return vec3(x, c); }, p.point_translation);

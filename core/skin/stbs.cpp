@@ -21,6 +21,7 @@ std::vector<StbsHandle> stbs_handles(const Rig& rig, const std::vector<BoneTwist
     h.origin = a;
     h.axis = (e - a).normalized();
     h.twist = ts[b].twist;
+    h.twist_start = ts[b].twist_start;
     h.stretch = (ts[b].stretch - 1.0) * (e - a);
     h.unstretched = twist_stretch_transform(a, e, ts[b]).inverse();
   }
@@ -85,7 +86,7 @@ void stbs(const Eigen::MatrixXd& V, const Eigen::MatrixXd& N, const Influences& 
         if (normals) A += w * T.linear();
         continue;
       }
-      const double e = E(i, j), angle = e * h.twist;
+      const double e = E(i, j), angle = (1.0 - e) * h.twist_start + e * h.twist;  // Eq. 6.5
       const Eigen::Vector3d r = p - h.origin;
       const Eigen::Vector3d pp = p + (rotate(h.axis, angle, r) - r) + e * h.stretch;
       q += w * (T.linear() * pp + T.translation());

@@ -5,7 +5,8 @@
 // (candy wrapper). STBS instead uses the bone's transform without W_b, T'_b = T_b W_b^-1, and spreads
 // the twist and stretch along the bone by an endpoint weight e(p) in [0,1] (0 at the first joint,
 // 1 at the second):
-//   p' = sum_j w_j T'_j ( p + [Rot(u_j, e_j(p) theta_j)(p - a_j) - (p - a_j)] + e_j(p) (sigma_j - 1)(b_j - a_j) )
+//   p' = sum_j w_j T'_j ( p + [Rot(u_j, theta_j(p))(p - a_j) - (p - a_j)] + e_j(p) (sigma_j - 1)(b_j - a_j) ),
+//   theta_j(p) = (1 - e_j(p)) theta_a + e_j(p) theta_b   (Eq. 6.5: the twists at the first and second joint)
 // Non-bone handles (and bones at zero twist, unit stretch) take T_j p: then STBS equals LBS exactly.
 // Normals: cof(sum_j w_j A'_j Rot_j) n, normalized (the derivative of e is ignored).
 #include <vector>
@@ -21,10 +22,11 @@ namespace dfm {
 
 // Per handle (rig.h order): what STBS needs beyond the pose.
 struct StbsHandle {
-  bool active = false;  // a bone with twist != 0 or stretch != 1
+  bool active = false;  // a bone with a twist (at either end) or stretch != 1
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();   // rest first joint a
   Eigen::Vector3d axis = Eigen::Vector3d::Zero();     // unit rest direction of b - a
-  double twist = 0.0;                                 // radians
+  double twist = 0.0;                                 // radians, at the second joint (e = 1)
+  double twist_start = 0.0;                           // radians, at the first joint (e = 0)
   Eigen::Vector3d stretch = Eigen::Vector3d::Zero();  // (sigma - 1)(b - a)
   Eigen::Affine3d unstretched = Eigen::Affine3d::Identity();  // W_b^-1, to turn T_b into T'_b
 };

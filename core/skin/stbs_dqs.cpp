@@ -17,10 +17,10 @@ struct DualQuaternion {
 
 // T'_b's dual quaternion composed with the bone's twist and stretch at endpoint weight e.
 DualQuaternion bone_motion(const DqsHandle& T, const StbsHandle& h, double e) {
-  const double half = 0.5 * e * h.twist;
+  const double angle = (1.0 - e) * h.twist_start + e * h.twist, half = 0.5 * angle;  // Eq. 6.5
   Eigen::Vector4d q;
   q << std::sin(half) * h.axis, std::cos(half);
-  const Eigen::Vector3d moved_origin = Eigen::AngleAxisd(e * h.twist, h.axis) * h.origin;
+  const Eigen::Vector3d moved_origin = Eigen::AngleAxisd(angle, h.axis) * h.origin;
   const Eigen::Vector3d t = h.origin - moved_origin + e * h.stretch;
   const Eigen::Vector4d d = 0.5 * quaternion_product(Eigen::Vector4d(t.x(), t.y(), t.z(), 0.0), q);
   return {quaternion_product(T.real, q), quaternion_product(T.real, d) + quaternion_product(T.dual, q)};
