@@ -9,9 +9,12 @@
 
 #include <unistd.h>
 
+#include "core/mesh/io.h"
+#include "core/rig/pose_io.h"
 #include "core/scene/key_surfaces.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
+#include "tests/cli_test_util.h"
 #include "tests/volume_test_meshes.h"
 
 using namespace dfm;
@@ -176,4 +179,45 @@ TEST_CASE("bind stores the STBS endpoint weights: saved and loaded with the scen
   CHECK(d.endpoint_weights() == E);
   run(d, "add-point 0 0.2 0\n");  // the rig changed: weights and endpoint weights go
   CHECK(d.endpoint_weights().size() == 0);
+}
+
+TEST_CASE("a keyed twist: the animation's frame at the key equals deform pose of that key's pose files") {
+  namespace fs = std::filesystem;
+  Document d;
+  make_arm(d);
+  run(d, "set-method stbs\nset-key 0\nselect 2\nrotate 30 0 0 1\ntwist 2 150 -40\nstretch 1 1.2\nset-key 1\nset-time 1\n");
+  const TriMesh frame = posed_surface(d);  // the animation's frame at the second key (its baked layer)
+  const PoseParams& key = d.keys().back().params;
+
+  const fs::path dir = fs::temp_directory_path() / ("dfm_ts_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  write_surface((dir / "arm.obj").string(), d.surface());
+  write_dmat((dir / "w.dmat").string(), d.weights());
+  TgfData tgf;
+  tgf.joints = d.rig().skeleton.joints;
+  tgf.edges.resize(2, 2);
+  tgf.edges << 0, 1, 1, 2;
+  tgf.flags = Eigen::MatrixXi::Zero(2, 3);
+  tgf.flags.col(0).setOnes();
+  write_tgf((dir / "s.tgf").string(), tgf);
+  write_points((dir / "p.txt").string(), Eigen::RowVector3d(0, 0.3, 0));
+  write_bone_rotations((dir / "q.dmat").string(), key.bone_rotation);
+  Eigen::MatrixXd ts(2, 3);
+  for (int b = 0; b < 2; ++b) {
+    const BoneTwistStretch t = twist_stretch_of(key, b);
+    ts.row(b) << t.twist * 180 / M_PI, t.stretch, t.twist_start * 180 / M_PI;
+  }
+  write_dmat((dir / "ts.dmat").string(), ts);
+  const std::string out = (dir / "out.obj").string();
+  const test::RunResult r = test::run_program(DFM_DEFORM_EXE, {"pose", (dir / "arm.obj").string(), "--weights", (dir / "w.dmat").string(),
+                                                               "--skeleton", (dir / "s.tgf").string(), "--points", (dir / "p.txt").string(),
+                                                               "--pose", (dir / "q.dmat").string(), "--twist-stretch", (dir / "ts.dmat").string(),
+                                                               "--method", "stbs", "--cpu", "-o", out},
+                                              dir);
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const TriMesh cli = read_surface(out);
+  CHECK(largest_difference(frame.V, cli.V) < 1e-5);  // the obj's printed digits
+  CHECK(largest_difference(frame.V, d.surface().V) > 0.1);
+  fs::remove_all(dir);
 }

@@ -22,6 +22,8 @@ dfm_test(test_commands SOURCES test_commands.cpp LIBS dfm_scene)
 target_compile_definitions(test_commands PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 # Twist and stretch an artist can reach (issue 33): the commands, the stretch's closed form, keys that carry them.
 dfm_test(test_twist_stretch_script SOURCES test_twist_stretch_script.cpp LIBS dfm_scene)
+target_compile_definitions(test_twist_stretch_script PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
+add_dependencies(test_twist_stretch_script deform)
 # The script's transfer-weights (issue 34): a scene's or a mesh's weights onto the document's surface.
 dfm_test(test_transfer_weights_script SOURCES test_transfer_weights_script.cpp LIBS dfm_scene)
 target_compile_definitions(test_transfer_weights_script PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
