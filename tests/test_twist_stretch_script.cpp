@@ -221,3 +221,42 @@ TEST_CASE("a keyed twist: the animation's frame at the key equals deform pose of
   CHECK(largest_difference(frame.V, d.surface().V) > 0.1);
   fs::remove_all(dir);
 }
+
+TEST_CASE("endpoint-filter (Fig. 6.9): STBS twists by the filtered endpoint weight; undoable, saved, refused by name") {
+  Document d;
+  TriMesh m;
+  m.V.resize(4, 3);
+  m.V << 1, 0.5, 0, 1, 0, 0.5, 0.5, -0.5, 0, 1.5, 0, -0.5;
+  m.F.resize(4, 3);
+  m.F << 0, 1, 2, 0, 3, 1, 1, 3, 2, 0, 2, 3;
+  d.set_surface(m, "bits");
+  d.add_bone_chain({Eigen::Vector3d(-2, 0, 0), Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 0, 0)});
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(4, 2);
+  W.col(1).setOnes();  // all on the second bone (0 -> 2): vertex 0 at t = 0.5, e = 0.5 by projection
+  d.set_weights(W, {});
+  run(d, "set-method stbs\ntwist 1 90\nendpoint-filter 1 0.5 0.1\n");
+  const double a = 0.1 * M_PI / 2;  // the filtered endpoint weight times the twist
+  const TriMesh posed = posed_surface(d);
+  CHECK((posed.V.row(0) - Eigen::RowVector3d(1, 0.5 * std::cos(a), 0.5 * std::sin(a))).norm() < 1e-12);
+  d.undo();
+  const double b = 0.5 * M_PI / 2;
+  CHECK((posed_surface(d).V.row(0) - Eigen::RowVector3d(1, 0.5 * std::cos(b), 0.5 * std::sin(b))).norm() < 1e-12);
+  d.redo();
+
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("dfm_ef_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  d.save_scene((dir / "f.scene.json").string());
+  Document back;
+  back.load_scene((dir / "f.scene.json").string());
+  REQUIRE(back.endpoint_filters().size() == 2);
+  CHECK(back.endpoint_filters()[0].empty());
+  CHECK(back.endpoint_filters()[1] == EndpointFilter{{0.5, 0.1}});
+  CHECK(posed_surface(back).V == posed_surface(d).V);
+  fs::remove_all(dir);
+
+  CHECK_THROWS_WITH(run(d, "endpoint-filter 1 0.5\n"), Catch::Contains("X Y pairs"));
+  CHECK_THROWS_WITH(run(d, "endpoint-filter 1 0.6 0.5 0.4 0.7\n"), Catch::Contains("point 2"));
+  run(d, "endpoint-filter 1\n");  // off
+  CHECK(posed_surface(d).V.row(0).isApprox(Eigen::RowVector3d(1, 0.5 * std::cos(b), 0.5 * std::sin(b)), 1e-12));
+}

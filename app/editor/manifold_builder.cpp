@@ -44,6 +44,8 @@ std::uint64_t manifold_signature(const Document& doc) {
       h = mix_matrix(h, keys[i].mesh.F);
     } else {
       for (const auto& T : poses[i].transforms) h = fnv1a(h, T.matrix().data(), sizeof(double) * 16);
+      for (const BoneTwistStretch& ts : keys[i].params.bone_twist_stretch)  // STBS reads the start twist too
+        h = fnv1a(h, &ts.twist_start, sizeof(double));
     }
   }
   const int ib = doc.inbetweens();  // arap / linear intervals between mesh keys use it too
@@ -55,6 +57,11 @@ std::uint64_t manifold_signature(const Document& doc) {
     // Not the data's address: a re-bind assigns same-size weights into the same storage.
     const std::uint64_t sw = doc.surface_weights_revision();
     h = fnv1a(h, &sw, sizeof sw);
+    for (const EndpointFilter& f : doc.endpoint_filters()) {
+      const size_t n = f.size();
+      h = fnv1a(h, &n, sizeof n);
+      for (const Eigen::Vector2d& p : f) h = fnv1a(h, p.data(), sizeof(double) * 2);
+    }
   }
   return h == 0 ? 1 : h;
 }

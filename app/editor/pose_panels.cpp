@@ -70,9 +70,38 @@ void PosePanels::draw_twist_stretch(Document& doc, int bone) {
   if (done) doc.end_gesture();
   if (!is_stbs(doc.method()) && !is_rest_twist_stretch(ts))
     text_disabled_wrapped("the methods STBS spread them along the bone");
-  if (is_stbs(doc.method()) && doc.has_weights())
+  if (is_stbs(doc.method()) && doc.has_weights()) {
     text_disabled_wrapped(doc.endpoint_weights().size() ? "endpoint weights: the bind's (shape-aware)"
                                                         : "endpoint weights: projection onto the bone (weights not from a bind)");
+    draw_endpoint_filter(doc, bone);
+  }
+}
+
+// Fig. 6.9: the endpoint weights through a curve from (0, 0) to (1, 1) via one point (x, y) dragged
+// here (scripts take more: endpoint-filter). Below the diagonal the twist gathers toward the second joint.
+void PosePanels::draw_endpoint_filter(Document& doc, int bone) {
+  const std::vector<EndpointFilter>& all = doc.endpoint_filters();
+  const EndpointFilter f = bone < static_cast<int>(all.size()) ? all[bone] : EndpointFilter{};
+  bool on = !f.empty();
+  float p[2] = {f.empty() ? 0.5f : float(f.front().x()), f.empty() ? 0.5f : float(f.front().y())};
+  const bool toggled = ImGui::Checkbox("Filter endpoint weights", &on);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Passes the bone's endpoint weights through a curve via one point: where the twist and stretch gather");
+  bool moved = false, started = false, done = false;
+  if (on && f.size() <= 1) {
+    ImGui::SetNextItemWidth(-1);
+    moved = ImGui::DragFloat2("##filter", p, 0.005f, 0.01f, 0.99f, "%.2f");
+    started = ImGui::IsItemActivated(), done = ImGui::IsItemDeactivated();
+  } else if (on) {
+    text_disabled_wrapped("a curve of several points (script endpoint-filter)");
+  }
+  if (started) doc.begin_gesture();
+  if (toggled || moved) {
+    EndpointFilter g;
+    if (on) g.emplace_back(std::clamp(double(p[0]), 0.01, 0.99), std::clamp(double(p[1]), 0.0, 1.0));
+    doc.set_endpoint_filter(bone, g);
+  }
+  if (done) doc.end_gesture();
 }
 
 // Typed values: world offset of the pivot and rotation (axis-angle) of this handle's transform, shown

@@ -21,6 +21,7 @@ class PosePanels {
   void draw_typed_values(Document& doc, int h, const Eigen::Affine3d& T, double drag_step);
   void draw_handle_state(Document& doc, int h);
   void draw_twist_stretch(Document& doc, int bone);
+  void draw_endpoint_filter(Document& doc, int bone);
 
   float rotate_deg_[3] = {0, 0, 0};  // "Apply rotation": degrees about world x, y, z
   int iterations_ = -1;              // the slider's value while it is dragged (-1: not yet shown)

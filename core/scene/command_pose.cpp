@@ -60,6 +60,14 @@ void stretch(CommandContext& x, const CommandWords& w) {
   x.doc.set_bone_twist_stretch(b, ts);
 }
 
+// endpoint-filter BONE [X1 Y1 X2 Y2 ...]: the curve the bone's endpoint weights pass through (none: off).
+void endpoint_filter(CommandContext& x, const CommandWords& w) {
+  if (w.size() % 2 != 0) throw Error("the filter's points come in X Y pairs");
+  EndpointFilter f;
+  for (size_t i = 2; i + 1 < w.size(); i += 2) f.emplace_back(num(w, static_cast<int>(i)), num(w, static_cast<int>(i + 1)));
+  x.doc.set_endpoint_filter(bone_at(x.doc, w, 1), f);
+}
+
 void ik_chain(CommandContext& x, const CommandWords& w) {
   PosingSettings p = x.doc.posing();
   p.fast = true;
@@ -95,6 +103,8 @@ void add_pose_commands(std::vector<Command>& t) {
       });
   add(t, "twist", "twist BONE_HANDLE DEGREES [AT_START_DEGREES]", 2, 3, {handle_arg(), number_arg()}, twist);
   add(t, "stretch", "stretch BONE_HANDLE FACTOR [AT_START_DEGREES]", 2, 3, {handle_arg(), number_arg()}, stretch);
+  add(t, "endpoint-filter", "endpoint-filter BONE_HANDLE [X1 Y1 X2 Y2 ...]", 1, 41, {handle_arg(), number_arg()},
+      endpoint_filter);
   add(t, "fast", "fast on|off [ITERATIONS]", 1, 2, {word_arg()}, fast);
   add(t, "ik-chain", "ik-chain BONE_HANDLE", 1, 1, {handle_arg()}, ik_chain);
   add(t, "set-method", "set-method lbs|dqs|stbs|stbs-dqs", 1, 1, {word_arg()},

@@ -2,10 +2,12 @@
 // on the surface and rig live in document_rig.cpp, posing and keys in document_posing.cpp.
 #include "core/scene/document.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/scene/document_parts.h"
 #include "core/scene/scene_file.h"
+#include "core/skin/stbs.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -65,6 +67,7 @@ void swap_parts(SceneData& a, SceneData& b, unsigned parts) {
   if (parts & 32u) swap(a.mask, b.mask);
   if (parts & 64u) {
     swap(a.method, b.method);
+    swap(a.endpoint_filters, b.endpoint_filters);
     swap(a.bind_settings, b.bind_settings);
     swap(a.inbetweens, b.inbetweens);
   }
@@ -88,6 +91,7 @@ void copy_parts(const SceneData& from, SceneData& to, unsigned parts) {
   if (parts & 32u) to.mask = from.mask;
   if (parts & 64u) {
     to.method = from.method;
+    to.endpoint_filters = from.endpoint_filters;
     to.bind_settings = from.bind_settings;
     to.inbetweens = from.inbetweens;
   }
@@ -137,8 +141,11 @@ void Document::execute(const std::string& name, unsigned parts, const std::strin
 
 void Document::rig_edit(const std::string& name, const std::string& merge_target,
                         const std::function<void(SceneData&)>& edit) {
-  execute(name, kRig | kPose | kKeys | kWeights, merge_target, [&](SceneData& s) {
+  execute(name, kRig | kPose | kKeys | kWeights | kSettings, merge_target, [&](SceneData& s) {
+    const int bones = s.rig.skeleton.num_bones();
     edit(s);
+    // Filters follow bone numbers: new bones are appended (no filter); a deletion renumbers, so clears them.
+    if (s.rig.skeleton.num_bones() < bones) s.endpoint_filters.clear();
     s.pose = fit_pose_params(s.rig, std::move(s.pose));
     for (SceneKey& k : s.keys) k.params = fit_pose_params(s.rig, std::move(k.params));
     if (s.weights.size() > 0) {
@@ -318,6 +325,28 @@ void Document::set_bind_settings(const BindSettings& b) {
 void Document::set_method(SkinMethod m) {
   if (m == s_.method) return;
   execute(std::string("method ") + skin_method_name(m), kSettings, "", [&](SceneData& s) { s.method = m; });
+}
+
+void Document::set_endpoint_filter(int bone, const EndpointFilter& filter) {
+  const int nb = s_.rig.skeleton.num_bones();
+  if (bone < 0 || bone >= nb) throw Error("no bone " + std::to_string(bone) + " (the rig has " + std::to_string(nb) + ")");
+  const std::string name = handle_name(s_.rig, num_point_handles(s_.rig) + bone);
+  check_endpoint_filter(filter, "endpoint filter of " + name);
+  execute("endpoint filter " + name, kSettings, "endpoint filter " + std::to_string(bone), [&](SceneData& s) {
+    if (static_cast<int>(s.endpoint_filters.size()) < nb) s.endpoint_filters.resize(nb);
+    s.endpoint_filters[bone] = filter;
+  });
+}
+
+Eigen::MatrixXd Document::skin_endpoints() const {
+  const bool filtered = std::any_of(s_.endpoint_filters.begin(), s_.endpoint_filters.end(),
+                                    [](const EndpointFilter& f) { return !f.empty(); });
+  if (!filtered) return s_.endpoint_weights;
+  const Eigen::MatrixXd E = s_.endpoint_weights.size() > 0
+                                ? s_.endpoint_weights
+                                : Eigen::MatrixXd(bone_endpoint_weights(s_.surface.V, s_.rig)
+                                                      .middleCols(num_point_handles(s_.rig), s_.rig.skeleton.num_bones()));
+  return filter_endpoints(E, s_.endpoint_filters);
 }
 
 void Document::set_inbetweens(int n) {

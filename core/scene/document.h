@@ -31,6 +31,7 @@
 #include "core/rig/pose_params.h"
 #include "core/rig/rig.h"
 #include "core/scene/weight_brush.h"
+#include "core/skin/endpoint_filter.h"
 #include "core/skin/skin.h"  // SkinMethod
 
 namespace dfm {
@@ -117,6 +118,9 @@ struct SceneData {
   // #V x #bones STBS endpoint weights from the bind (core/bind/endpoint_weights.h), or empty: STBS then
   // projects onto each bone (weights not from a bind, scenes saved before).
   Eigen::MatrixXd endpoint_weights;
+  // Per bone, the curve its endpoint weights pass through (endpoint_filter.h; Fig. 6.9), or fewer
+  // entries / empty ones: the identity. A skinning setting, kept across binds.
+  std::vector<EndpointFilter> endpoint_filters;
   BindStats bind_stats;
   std::vector<SceneKey> keys;
   Eigen::VectorXd mask;     // shape-preservation mask per surface vertex in [0,1] (painted)
@@ -168,6 +172,10 @@ class Document {
   const Eigen::MatrixXd& weights() const { return s_.weights; }
   // The bind's STBS endpoint weights (#V x #bones), or empty: STBS projects onto each bone.
   const Eigen::MatrixXd& endpoint_weights() const { return s_.endpoint_weights; }
+  const std::vector<EndpointFilter>& endpoint_filters() const { return s_.endpoint_filters; }
+  // The endpoint weights skinning uses (#V x #bones): the bind's, or the projection onto each bone,
+  // through each bone's filter; empty when there is no filter and no bind's (skin.h then projects).
+  Eigen::MatrixXd skin_endpoints() const;
   const BindStats& bind_stats() const { return s_.bind_stats; }
   // Why the weights are absent ("not bound yet", "rig changed after bind: ..."); "" when bound.
   const std::string& weights_note() const { return weights_note_; }
@@ -257,6 +265,8 @@ class Document {
   void set_weights(const Eigen::MatrixXd& W, const BindStats& stats, const Eigen::MatrixXd& endpoints = {});
   void set_bind_settings(const BindSettings& s);
   void set_method(SkinMethod m);
+  // Bone `bone`'s endpoint filter (checked by check_endpoint_filter; empty: none). Merges within a gesture.
+  void set_endpoint_filter(int bone, const EndpointFilter& filter);
   void set_inbetweens(int n);  // 0..1000
 
   // Weight tools (core/bind/weight_tools.h), each one undo step on the weights; they need weights

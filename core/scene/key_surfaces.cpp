@@ -30,7 +30,7 @@ SkinBinding pose_binding(const Document& doc) {
     throw Error("pose keys need weights: " + (doc.weights_note().empty() ? std::string("not bound") : doc.weights_note()) +
                 "; bind first");
   return make_skin_binding(doc.surface().V, Eigen::MatrixXd(), doc.weights(), doc.rig(),
-                           doc.bind_settings().max_influences, doc.endpoint_weights());
+                           doc.bind_settings().max_influences, doc.skin_endpoints());
 }
 
 KeyTrack pose_key_track(const Document& doc) {

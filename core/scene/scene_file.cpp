@@ -359,6 +359,27 @@ void read_bind_results(const SceneReader& R, const json& j, SceneData& s) {
   for (const json& n : notes) s.bind_stats.notes.push_back(R.string(n, "bind_stats.notes[]"));
 }
 
+// Optional (scenes before Fig. 6.9's filters have none): per bone a list of [x, y] points.
+void read_endpoint_filters(const SceneReader& R, const json& j, SceneData& s) {
+  if (!j.contains("endpoint_filters")) return;
+  const json& a = R.array(j["endpoint_filters"], "endpoint_filters", s.rig.skeleton.num_bones());
+  for (size_t b = 0; b < a.size(); ++b) {
+    const std::string c = "endpoint_filters[" + std::to_string(b) + "]";
+    EndpointFilter f;
+    for (size_t i = 0; i < R.array(a[b], c).size(); ++i) {
+      const std::string ci = c + "[" + std::to_string(i) + "]";
+      const json& p = R.array(a[b][i], ci, 2);
+      f.emplace_back(R.number(p[0], ci), R.number(p[1], ci));
+    }
+    try {
+      check_endpoint_filter(f, c);
+    } catch (const Error& e) {
+      R.fail(e.what());
+    }
+    s.endpoint_filters.push_back(std::move(f));
+  }
+}
+
 void read_mask(const SceneReader& R, const json& j, SceneData& s) {
   const Eigen::MatrixXd mask = R.f64(R.field(j, "mask", "scene"), "mask", 1);
   if (mask.size() > 0 && mask.rows() != s.surface.V.rows()) R.fail("'mask' must have one value per surface vertex");
@@ -422,6 +443,18 @@ json keys_json(const std::vector<SceneKey>& scene_keys, BlobWriter& blob) {
   return keys;
 }
 
+// One list of [x, y] points a bone (read_endpoint_filters reads them back).
+json endpoint_filters_json(const SceneData& s) {
+  json filters = json::array();
+  for (int b = 0; b < s.rig.skeleton.num_bones(); ++b) {
+    json points = json::array();
+    if (b < static_cast<int>(s.endpoint_filters.size()))
+      for (const Eigen::Vector2d& p : s.endpoint_filters[b]) points.push_back(json::array({p.x(), p.y()}));
+    filters.push_back(points);
+  }
+  return filters;
+}
+
 }  // namespace
 
 void write_scene(const std::string& json_path, const SceneData& s) {
@@ -458,6 +491,7 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   j["keys"] = keys_json(s.keys, blob);
   j["method"] = skin_method_name(s.method);
   j["inbetweens"] = s.inbetweens;
+  if (!s.endpoint_filters.empty()) j["endpoint_filters"] = endpoint_filters_json(s);
   {
     json states = json::array();
     for (HandleConstraint c : s.posing.states) states.push_back(constraint_state_name(c));
@@ -517,6 +551,7 @@ SceneData read_scene(const std::string& path) {
     R.fail(std::string("'method': ") + e.what());
   }
   s.inbetweens = static_cast<int>(R.integer(R.field(j, "inbetweens", "scene"), "inbetweens", 0, 1000));
+  read_endpoint_filters(R, j, s);
   read_posing(R, j, s);
   read_bind_settings(R, j, s.bind_settings);
   read_bind_results(R, j, s);

@@ -27,7 +27,7 @@ TriMesh skinned(const Document& doc, const SkinBinding& binding, const PoseParam
 SkinBinding binding_of(const Document& doc) {
   if (!doc.has_weights()) throw Error("the scene has no weights: " + doc.weights_note() + " (run: bind)");
   return make_skin_binding(doc.surface().V, vertex_normals(doc.surface().V, doc.surface().F), doc.weights(),
-                           doc.rig(), doc.bind_settings().max_influences, doc.endpoint_weights());
+                           doc.rig(), doc.bind_settings().max_influences, doc.skin_endpoints());
 }
 
 // The frame without an animation (fewer than two keys): the one key (its mesh, or its pose skinned),

@@ -4,6 +4,8 @@ dfm_test(test_skin SOURCES test_skin.cpp LIBS dfm_skin)
 dfm_test(test_skin_arm SOURCES test_skin_arm.cpp LIBS dfm_skin dfm_mesh)
 dfm_test(test_gpu_skin SOURCES test_gpu_skin.cpp LIBS dfm_render dfm_skin dfm_mesh GL)
 # Runs the `deform` executable end to end.
+# The endpoint weights' filter curve (Fig. 6.9).
+dfm_test(test_endpoint_filter SOURCES test_endpoint_filter.cpp LIBS dfm_skin)
 dfm_test(test_pose_cli SOURCES test_pose_cli.cpp LIBS dfm_skin dfm_mesh)
 target_compile_definitions(test_pose_cli PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
 add_dependencies(test_pose_cli deform)
