@@ -1,4 +1,5 @@
 // `deform pose`: skins a mesh with its weights into a pose and saves the posed surface.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -13,6 +14,8 @@
 #include "core/rig/pose_io.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
+#include "core/scene/document.h"
+#include "core/scene/script.h"
 #include "core/skin/skin.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
@@ -22,9 +25,12 @@
 namespace {
 
 const char* kUsage =
-    "usage: deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]\n"
+    "usage: deform pose SCENE.scene.json --at T [--method lbs|dqs|stbs|stbs-dqs] -o OUT.obj|.ply|.off|.stl\n"
+    "       deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]\n"
     "                   [--endpoints E.dmat]] [--points P.txt] [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
     "                   [--method lbs|dqs|stbs|stbs-dqs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
+    "  SCENE --at T       a bound scene (deform import's, the editor's) at time T of its animation in seconds,\n"
+    "                     as the editor shows it (its method unless --method)\n"
     "  INPUT              surface (.obj .off .ply .stl) or tet mesh (.mesh .node/.ele: all its vertices\n"
     "                     are posed, its surface triangles saved)\n"
     "  --weights W.dmat   #V x #handles weights (handle order: point handles, then bones)\n"
@@ -105,6 +111,9 @@ struct Options {
   int k = 0;  // 0: every weight
   int iterations = 20;
   bool force_cpu = false, fast = false;
+  bool method_given = false;
+  double at = 0;  // a scene's time
+  bool scene = false, at_given = false;
 };
 
 Options parse_options(const dfm::cli::Args& args) {
@@ -126,7 +135,8 @@ Options parse_options(const dfm::cli::Args& args) {
     else if (f == "--fast") o.fast = true;
     else if (f == "--free") o.free_list = a.value(f);
     else if (f == "--iterations") o.iterations = a.integer(f);
-    else if (f == "--method") method_name = a.value(f);
+    else if (f == "--method") method_name = a.value(f), o.method_given = true;
+    else if (f == "--at") o.at = a.number(f), o.at_given = true;
     else if (f == "-k") o.k = a.integer(f), k_given = true;
     else if (f == "--cpu") o.force_cpu = true;
     else if (!f.empty() && f[0] == '-') throw UsageError("unknown option " + f);
@@ -135,7 +145,11 @@ Options parse_options(const dfm::cli::Args& args) {
   }
   if (o.input.empty()) throw UsageError("INPUT is required");
   if (o.out.empty()) throw UsageError("-o OUT is required");
-  if (o.weights.empty()) throw UsageError("--weights W.dmat is required");
+  o.scene = o.input.size() > 11 && o.input.compare(o.input.size() - 11, 11, ".scene.json") == 0;
+  if (o.scene != o.at_given) throw UsageError(o.scene ? "a scene needs --at T" : "--at T takes a SCENE.scene.json");
+  if (o.scene && (!o.weights.empty() || !o.skeleton.empty() || !o.points.empty() || o.fast))
+    throw UsageError("a scene brings its own weights and rig: give only --at, --method and -o");
+  if (!o.scene && o.weights.empty()) throw UsageError("--weights W.dmat is required");
   if (k_given && o.k != 4 && o.k != 8) throw UsageError("-k must be 4 or 8");
   if (!o.pose_file.empty() && o.skeleton.empty()) throw UsageError("--pose needs --skeleton");
   if (!o.twist_stretch.empty() && o.skeleton.empty()) throw UsageError("--twist-stretch needs --skeleton");
@@ -207,8 +221,31 @@ dfm::SkinResult skin_anywhere(const Options& o, const dfm::SkinBinding& kept, co
   return dfm::skin(o.method, kept, pose, stbs);
 }
 
+// A scene at a time of its animation: what the editor shows there (the animation's frame; without
+// keys the scene's pose), skinned with the scene's weights.
+int pose_scene(const Options& o) {
+  dfm::Document doc;
+  doc.load_scene(o.input);
+  if (!doc.has_weights()) throw dfm::Error(o.input + ": the scene has no weights (" + doc.weights_note() + ")");
+  if (o.method_given) doc.set_method(o.method);
+  double t = o.at;
+  if (doc.keys().size() >= 2) {  // held before the first key and after the last, as glTF samples
+    t = std::clamp(t, doc.keys().front().time, doc.keys().back().time);
+    if (t != o.at) std::printf("pose: %g s is outside the keys (%g to %g s): the nearest key's pose\n", o.at,
+                               doc.keys().front().time, doc.keys().back().time);
+  }
+  doc.set_time(t);
+  const dfm::TriMesh posed = dfm::posed_surface(doc);
+  dfm::write_surface(o.out, posed);
+  std::printf("pose: %s at t = %g s (%d keys, %s): %d vertices -> %s\n", o.input.c_str(), o.at,
+              static_cast<int>(doc.keys().size()), dfm::skin_method_name(doc.method()), static_cast<int>(posed.V.rows()),
+              o.out.c_str());
+  return 0;
+}
+
 int run(const dfm::cli::Args& args) {
   const Options o = parse_options(args);
+  if (o.scene) return pose_scene(o);
   const Input in = read_input(o.input);
   Eigen::MatrixXd W;
   const dfm::Rig rig = read_rig(o, in, W);

@@ -1,5 +1,6 @@
 #include "core/scene/script.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -75,7 +76,10 @@ std::vector<ScriptLine> read_script(const std::string& path) {
 }
 
 TriMesh posed_surface(const Document& doc) {
-  if (doc.keys().size() >= 2) return manifold_frame(document_manifold(doc), doc.time()).mesh;
+  if (doc.keys().size() >= 2) {  // held at the first key before it and at the last after it
+    const double t = std::clamp(doc.time(), doc.keys().front().time, doc.keys().back().time);
+    return manifold_frame(document_manifold(doc), t).mesh;
+  }
   return still_frame(doc);
 }
 

@@ -9,3 +9,7 @@ dfm_test(test_gltf_data SOURCES test_gltf_data.cpp LIBS dfm_export dfm_scene dfm
 target_compile_definitions(test_gltf_data PRIVATE DFM_GLTF_VALIDATOR_DIR="${CMAKE_CURRENT_SOURCE_DIR}/gltf"
                            DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}" DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
 add_dependencies(test_gltf_data deform)
+# Import: a rigged, animated glTF file as a scene, against Blender's own posed meshes (../shared/data/rigged).
+dfm_test(test_gltf_scene_import SOURCES test_gltf_scene_import.cpp LIBS dfm_export dfm_scene)
+target_compile_definitions(test_gltf_scene_import PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
+add_dependencies(test_gltf_scene_import deform)
