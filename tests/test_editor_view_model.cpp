@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/scene/scene_import.h"
+
 #include "app/editor/view_model.h"
 #include "core/scene/document.h"
 #include "tests/key_mesh_test_meshes.h"
@@ -183,10 +185,13 @@ TEST_CASE("view model: fields show rounded values without negative zero; time as
 TEST_CASE("view model: opening a format the editor cannot read lists the ones it can", "[editor][view_model]") {
   for (const char* ok : {"a.scene.json", "a.obj", "b.OFF", "c.ply", "d.stl", "e.mesh", "f.node", "g.ele", "h.tgf"})
     CHECK(unopenable_reason(ok).empty());
-  const std::string glb = unopenable_reason("character.glb");
-  CHECK(glb.find(".glb") != std::string::npos);
-  CHECK(glb.find("Export glTF") != std::string::npos);
-  for (const char* listed : {".scene.json", ".obj", ".off", ".ply", ".stl", ".mesh", ".tgf"})
-    CHECK(glb.find(listed) != std::string::npos);
+  const std::string fbx = unopenable_reason("character.fbx");
+  CHECK(fbx.find(".fbx") != std::string::npos);
+  for (const char* listed : {".scene.json", ".glb", ".obj", ".off", ".ply", ".stl", ".mesh", ".tgf"})
+    CHECK(fbx.find(listed) != std::string::npos);
+  // A format some module imports as a scene (scene_import.h; the editor registers rigged glTF).
+  CHECK_FALSE(unopenable_reason("character.xyzscene").empty());
+  register_scene_importer("xyzscene", [](const std::string&, std::string&) { return SceneData{}; });
+  CHECK(unopenable_reason("character.xyzscene").empty());
   CHECK(unopenable_reason("noext").find("no file extension") != std::string::npos);
 }

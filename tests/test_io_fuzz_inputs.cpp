@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/export/gltf_scene_import.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
 #include "core/rig/rig_io.h"
@@ -38,6 +39,13 @@ void read_as(const std::string& reader, const std::string& bytes, const fs::path
     write_scene((tmp / "out2" / "x.scene.json").string(), read_scene((tmp / "out1" / "x.scene.json").string()));
     REQUIRE(slurp(tmp / "out1" / "x.scene.json") == slurp(tmp / "out2" / "x.scene.json"));
     REQUIRE(slurp(tmp / "out1" / "x.scene.bin") == slurp(tmp / "out2" / "x.scene.bin"));
+    return;
+  }
+  if (reader == "glb") {  // imported as a scene, which saves and loads back
+    spill(tmp / "in.glb", bytes);
+    const SceneData s = import_gltf_scene((tmp / "in.glb").string());
+    write_scene((tmp / "g.scene.json").string(), s);
+    REQUIRE(read_scene((tmp / "g.scene.json").string()).keys.size() == s.keys.size());
     return;
   }
   if (reader == "tetgen") {
@@ -102,7 +110,7 @@ TEST_CASE("fuzz corpus and crash reproducers load or fail cleanly", "[io][fuzz]"
   fs::remove_all(tmp);
   REQUIRE(inputs >= 10);
   REQUIRE(seeds_ok >= 10);  // the seeds are meant to be valid files: at least one per reader
-  for (const char* r : {"obj", "off", "ply", "stl", "mesh", "tetgen", "dmat", "tgf", "points", "scene"}) {
+  for (const char* r : {"obj", "off", "ply", "stl", "mesh", "tetgen", "dmat", "tgf", "points", "scene", "glb"}) {
     INFO(r);
     CHECK(seeds_per_reader[r] >= 1);
   }

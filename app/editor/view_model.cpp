@@ -7,6 +7,7 @@
 #include "core/util/atomic_file.h"
 #include "core/rig/handle_constraint.h"
 #include "core/rig/rig.h"
+#include "core/scene/scene_import.h"
 
 namespace dfm::editor {
 
@@ -48,11 +49,11 @@ std::string unopenable_reason(const std::string& path) {
   const std::string ext = file_extension(path);
   for (const char* e : {"json", "obj", "off", "ply", "stl", "mesh", "node", "ele", "tgf"})
     if (ext == e) return "";
+  if (scene_importer_for(path)) return "";  // rigged glTF (scene_import.h)
   std::string why = ext.empty() ? "'" + path + "' has no file extension"
                                 : "the editor cannot open '." + ext + "' files";
-  if (ext == "glb" || ext == "gltf") why += " (glTF is written by File > Export glTF, not read)";
-  return why + ". It opens scenes (.scene.json), surfaces (.obj .off .ply .stl), tet meshes (.mesh, .node/.ele) "
-               "and skeletons (.tgf); File > Load cage takes any surface file.";
+  return why + ". It opens scenes (.scene.json), rigged glTF (.glb .gltf), surfaces (.obj .off .ply .stl), tet meshes "
+               "(.mesh, .node/.ele) and skeletons (.tgf); File > Load cage takes any surface file.";
 }
 
 namespace {

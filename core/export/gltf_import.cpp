@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include <tiny_gltf.h>
 
@@ -55,14 +56,17 @@ GltfMeshData read_mesh(const tinygltf::Model& m, int mesh_index, const std::stri
   auto attr = [&](const std::string& name) { auto it = p.attributes.find(name); return it == p.attributes.end() ? -1 : it->second; };
   if (attr("POSITION") < 0) throw file_error(path, 0, "mesh '" + mesh.name + "' has no POSITION");
   d.V = read_accessor(m, attr("POSITION"), path);
+  if (d.V.cols() != 3 || !d.V.allFinite()) throw file_error(path, 0, "mesh '" + mesh.name + "': POSITION must be finite VEC3");
   if (attr("NORMAL") >= 0) d.N = read_accessor(m, attr("NORMAL"), path);
+  if (d.N.size() && (d.N.rows() != d.V.rows() || d.N.cols() != 3)) throw file_error(path, 0, "NORMAL does not match POSITION");
   const Eigen::MatrixXd idx = p.indices >= 0 ? read_accessor(m, p.indices, path) : Eigen::MatrixXd();
   const long n_idx = p.indices >= 0 ? idx.rows() : d.V.rows();
   if (n_idx % 3) throw file_error(path, 0, "triangle index count is not a multiple of 3");
   d.F.resize(n_idx / 3, 3);
   for (long i = 0; i < n_idx; ++i) {
-    const long vi = p.indices >= 0 ? static_cast<long>(idx(i, 0)) : i;
-    if (vi < 0 || vi >= d.V.rows()) throw file_error(path, 0, "triangle index out of range");
+    const double x = p.indices >= 0 ? idx(i, 0) : static_cast<double>(i);
+    if (!(x >= 0 && x < static_cast<double>(d.V.rows()))) throw file_error(path, 0, "triangle index out of range");
+    const long vi = static_cast<long>(x);
     d.F(i / 3, i % 3) = static_cast<int>(vi);
   }
   std::vector<Eigen::MatrixXd> J, W;
@@ -70,6 +74,12 @@ GltfMeshData read_mesh(const tinygltf::Model& m, int mesh_index, const std::stri
     if (attr("WEIGHTS_" + std::to_string(s)) < 0) throw file_error(path, 0, "JOINTS without WEIGHTS");
     J.push_back(read_accessor(m, attr("JOINTS_" + std::to_string(s)), path));
     W.push_back(read_accessor(m, attr("WEIGHTS_" + std::to_string(s)), path));
+    for (const Eigen::MatrixXd* a : {&J.back(), &W.back()})
+      if (a->rows() != d.V.rows() || a->cols() != 4 || !a->allFinite())
+        throw file_error(path, 0, "JOINTS_" + std::to_string(s) + " / WEIGHTS_" + std::to_string(s) +
+                                      " must be finite VEC4, one per vertex");
+    if (J.back().size() && (J.back().minCoeff() < 0 || J.back().maxCoeff() > 65535))
+      throw file_error(path, 0, "JOINTS_" + std::to_string(s) + " holds a joint index out of range");
   }
   if (!J.empty()) {
     d.joints.resize(d.V.rows(), 4 * J.size());
@@ -82,6 +92,8 @@ GltfMeshData read_mesh(const tinygltf::Model& m, int mesh_index, const std::stri
   for (const auto& t : p.targets) {
     auto it = t.find("POSITION");
     d.targets.push_back(it == t.end() ? Eigen::MatrixXd::Zero(d.V.rows(), 3) : read_accessor(m, it->second, path));
+    if (d.targets.back().rows() != d.V.rows() || d.targets.back().cols() != 3)
+      throw file_error(path, 0, "a morph target does not match POSITION");
   }
   d.default_weights = mesh.weights;
   d.default_weights.resize(d.targets.size(), 0.0);
@@ -205,6 +217,7 @@ GltfChannel read_channel(const tinygltf::Model& m, const tinygltf::Animation& a,
   c.times.assign(in.data(), in.data() + in.rows());
   Eigen::MatrixXd out = read_accessor(m, s.output, path);
   if (c.path == GltfChannel::Path::Weights) {  // flat scalars: #times x #targets
+    if (out.cols() != 1) throw file_error(path, 0, "animation output for 'weights' must be scalars");
     const long per = c.times.empty() ? 0 : out.rows() / static_cast<long>(c.times.size());
     Eigen::MatrixXd w(c.times.size(), per);
     for (long i = 0; i < w.rows(); ++i)
@@ -213,6 +226,14 @@ GltfChannel read_channel(const tinygltf::Model& m, const tinygltf::Animation& a,
   }
   if (out.rows() != static_cast<long>(c.times.size()) || c.times.empty())
     throw file_error(path, 0, "animation sampler input and output counts differ");
+  const long width = c.path == GltfChannel::Path::Rotation ? 4 : 3;
+  if (c.path != GltfChannel::Path::Weights && out.cols() != width)
+    throw file_error(path, 0, "animation output for '" + ch.target_path + "' has " + std::to_string(out.cols()) +
+                                  " components, expected " + std::to_string(width));
+  for (size_t i = 0; i < c.times.size(); ++i)
+    if (!std::isfinite(c.times[i]) || (i > 0 && !(c.times[i] > c.times[i - 1])))
+      throw file_error(path, 0, "animation input times must be finite and increasing");
+  if (!out.allFinite()) throw file_error(path, 0, "animation output for '" + ch.target_path + "' is not finite");
   c.values = out;
   return c;
 }
@@ -222,12 +243,16 @@ GltfChannel read_channel(const tinygltf::Model& m, const tinygltf::Animation& a,
 GltfDocument read_gltf(const std::string& path) {
   const tinygltf::Model m = load_model(path);
   GltfDocument doc;
-  read_nodes(m, path, doc);
-  find_mesh_nodes(m, doc);
-  if (doc.skinned_node >= 0) read_skin(m, path, doc);
-  if (doc.morph_node >= 0) doc.morph = read_mesh(m, doc.nodes[doc.morph_node].mesh, path);
-  if (!m.animations.empty())
-    for (const auto& ch : m.animations[0].channels) doc.channels.push_back(read_channel(m, m.animations[0], ch, path));
+  try {
+    read_nodes(m, path, doc);
+    find_mesh_nodes(m, doc);
+    if (doc.skinned_node >= 0) read_skin(m, path, doc);
+    if (doc.morph_node >= 0) doc.morph = read_mesh(m, doc.nodes[doc.morph_node].mesh, path);
+    if (!m.animations.empty())
+      for (const auto& ch : m.animations[0].channels) doc.channels.push_back(read_channel(m, m.animations[0], ch, path));
+  } catch (const std::out_of_range&) {  // an index into the file's arrays (.at()) past their end
+    throw file_error(path, 0, "an index (buffer view, buffer, mesh, node or sampler) is out of range");
+  }
   return doc;
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/export/gltf_import.h"
 #include "core/rig/pose_params.h"
+#include "core/scene/scene_import.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -72,6 +73,23 @@ Eigen::MatrixXd joint_weights(const GltfMeshData& m, const Welded& w, int joints
   return W;
 }
 
+// The skin's joints name nodes that exist, once each, each with an inverse bind matrix, and no node's
+// ancestry loops.
+void check_skin(const GltfDocument& g, const std::string& path) {
+  const int nn = static_cast<int>(g.nodes.size());
+  if (g.inverse_bind.size() != g.joints.size()) throw file_error(path, 0, "the skin's inverse bind matrices do not match its joints");
+  std::vector<char> used(nn, 0);
+  for (int n : g.joints) {
+    if (n < 0 || n >= nn) throw file_error(path, 0, "a skin joint names node " + std::to_string(n) + ", which does not exist");
+    if (used[n]++) throw file_error(path, 0, "node " + std::to_string(n) + " is a joint twice");
+  }
+  for (int i = 0; i < nn; ++i) {
+    int steps = 0;
+    for (int n = g.nodes[i].parent; n >= 0; n = g.nodes[n].parent)
+      if (n >= nn || ++steps > nn) throw file_error(path, 0, "the node hierarchy has a loop or a bad parent");
+  }
+}
+
 // Per joint, the nearest ancestor node that is a joint (its index in the skin), or -1.
 std::vector<int> parent_joints(const GltfDocument& g) {
   std::map<int, int> joint_of;
@@ -112,6 +130,8 @@ Skeleton joint_skeleton(const GltfDocument& g, const std::vector<Eigen::Affine3d
     b.a = point(head[j]);
     b.parent = parent[j];
     b.name = g.nodes[g.joints[j]].name.empty() ? "joint_" + std::to_string(j) : g.nodes[g.joints[j]].name;
+    const std::string ours = std::to_string(j) + ":";  // this program's export numbers its joints so
+    if (b.name.size() > ours.size() && b.name.compare(0, ours.size(), ours) == 0) b.name.erase(0, ours.size());
     s.bones.push_back(b);
   }
   auto tail_of = [&](int j) -> Eigen::Vector3d {
@@ -144,7 +164,7 @@ std::vector<Eigen::Affine3d> joint_matrices(const GltfDocument& g, double t) {
 // local transform, T_parent^-1 T_j, written as Translation(a + t) q Translation(-a) about its head a.
 PoseParams key_params(const Rig& rig, const std::vector<Eigen::Affine3d>& T, const std::vector<int>& parent,
                       const std::string& path, double time) {
-  PoseParams p = fit_pose_params(rig, {});
+  PoseParams p = rest_pose_params(rig);
   for (size_t j = 0; j < T.size(); ++j) {
     const Eigen::Affine3d X = parent[j] >= 0 ? T[parent[j]].inverse() * T[j] : T[j];
     const Eigen::Matrix3d L = X.linear();
@@ -175,6 +195,7 @@ std::string GltfImportReport::text() const {
 SceneData import_gltf_scene(const std::string& path, GltfImportReport* report) {
   const GltfDocument g = read_gltf(path);
   if (g.skinned_node < 0 || g.joints.empty()) throw file_error(path, 0, "no skinned mesh (a node with a mesh and a skin)");
+  check_skin(g, path);
   GltfImportReport r;
   if (g.morph_node >= 0 || !g.skinned.targets.empty()) r.skipped.push_back("morph targets (shape keys)");
   const Welded w = weld(g.skinned);
@@ -196,7 +217,7 @@ SceneData import_gltf_scene(const std::string& path, GltfImportReport* report) {
   s.surface = w.surface;
   s.surface_path = path;
   s.rig.skeleton = joint_skeleton(g, bind, parent, diagonal, &r.bones_along_axis);
-  s.pose = fit_pose_params(s.rig, {});
+  s.pose = rest_pose_params(s.rig);
   s.weights = joint_weights(g.skinned, w, n, path, &r.influences);
   s.bind_settings.max_influences = 0;  // every influence the file has
   for (double t : g.key_times()) {
@@ -210,6 +231,17 @@ SceneData import_gltf_scene(const std::string& path, GltfImportReport* report) {
   s.bind_stats.notes = {"imported from " + path + ": " + r.text()};
   if (report) *report = r;
   return s;
+}
+
+void register_gltf_scene_importer() {
+  const SceneImporter import = [](const std::string& path, std::string& report) {
+    GltfImportReport r;
+    SceneData s = import_gltf_scene(path, &r);
+    report = r.text();
+    return s;
+  };
+  register_scene_importer("glb", import);
+  register_scene_importer("gltf", import);
 }
 
 }  // namespace dfm

@@ -10,7 +10,8 @@
 //   bone runs from the joint's bind position (the inverse bind matrix's inverse applied to the origin)
 //   to its children's, when they all start at one point; otherwise (several children apart, or none)
 //   along the joint's own y axis (Blender's bone axis), as long as the mean distance to its children,
-//   else its parent bone, else 5% of the mesh's diagonal. Names are the joint nodes' names.
+//   else its parent bone, else 5% of the mesh's diagonal. Names are the joint nodes' names (without the
+//   "N:" prefix this program's export gives joint N).
 // - Weights: every JOINTS_n / WEIGHTS_n set summed per joint, rows normalized.
 // - Animation: the first animation sampled at each of its key times (glTF sampling: LINEAR and STEP).
 //   A key holds, per bone, the transform that reproduces the file's joint matrix G_j(t) IB_j exactly
@@ -37,5 +38,9 @@ struct GltfImportReport {
 // Throws dfm::Error naming the file and the problem (no skinned mesh, a singular inverse bind matrix,
 // joints or weights out of range, an animated scale, what read_gltf refuses).
 SceneData import_gltf_scene(const std::string& path, GltfImportReport* report = nullptr);
+
+// Registers import_gltf_scene for .glb and .gltf with core/scene/scene_import.h (the `open` command,
+// the editor). Call once before opening files.
+void register_gltf_scene_importer();
 
 }  // namespace dfm

@@ -3,6 +3,7 @@
 #include "core/scene/bind_document.h"
 #include "core/scene/brush.h"
 #include "core/scene/command_parts.h"
+#include "core/scene/scene_import.h"
 #include "core/util/error.h"
 
 namespace dfm::command_detail {
@@ -15,8 +16,10 @@ void opened(const CommandContext& x, Opened what) {
 }
 
 void open(CommandContext& x, const CommandWords& w) {
-  const bool scene = ends_with(w[1], ".json");
-  if (scene) x.doc.load_scene(w[1]);
+  const bool imported = scene_importer_for(w[1]) != nullptr;  // rigged glTF (scene_import.h)
+  const bool scene = imported || ends_with(w[1], ".json");
+  if (imported) x.print("open: " + x.doc.import_scene(w[1]));
+  else if (scene) x.doc.load_scene(w[1]);
   else x.doc.open_mesh(w[1]);  // a new document
   opened(x, scene ? Opened::Scene : Opened::NewMesh);
 }

@@ -7,6 +7,7 @@
 
 #include "core/scene/document_parts.h"
 #include "core/scene/scene_file.h"
+#include "core/scene/scene_import.h"
 #include "core/skin/stbs.h"
 #include "core/util/error.h"
 
@@ -257,6 +258,15 @@ Eigen::Vector3d Document::handle_pivot(int h) const {
 void Document::load_scene(const std::string& path) {
   SceneData d = read_scene(path);  // throws before anything changes
   start_document(std::move(d), path);
+}
+
+std::string Document::import_scene(const std::string& path) {
+  const SceneImporter* import = scene_importer_for(path);
+  if (!import) throw Error(path + ": no importer reads this kind of file");
+  std::string report;
+  SceneData d = (*import)(path, report);  // throws before anything changes
+  start_document(std::move(d), "");
+  return report;
 }
 
 void Document::start_document(SceneData d, const std::string& path) {

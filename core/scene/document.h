@@ -203,6 +203,9 @@ class Document {
   bool dirty() const;
   // Replace everything with a scene file (clears undo). Throws dfm::Error; the document is unchanged then.
   void load_scene(const std::string& path);
+  // A file a registered importer reads as a whole scene (scene_import.h: rigged glTF): a new, unsaved
+  // document. Returns the importer's report. Throws dfm::Error when no importer reads the extension.
+  std::string import_scene(const std::string& path);
   // Atomic save (sidecar first, then JSON); sets path() and clears dirty.
   void save_scene(const std::string& path);
   // Writes autosave_path(path()) (or autosave_path("untitled.scene.json") in the working directory if

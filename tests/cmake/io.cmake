@@ -3,7 +3,7 @@ dfm_test(test_io_data SOURCES test_io_data.cpp LIBS dfm_rig)
 dfm_test(test_io_roundtrip SOURCES test_io_roundtrip.cpp LIBS dfm_rig)
 dfm_test(test_io_hostile SOURCES test_io_hostile.cpp LIBS dfm_mesh dfm_scene)
 dfm_test(test_mesh_info SOURCES test_mesh_info.cpp LIBS dfm_mesh)
-dfm_test(test_io_fuzz_inputs SOURCES test_io_fuzz_inputs.cpp LIBS dfm_rig dfm_scene)
+dfm_test(test_io_fuzz_inputs SOURCES test_io_fuzz_inputs.cpp LIBS dfm_rig dfm_scene dfm_export)
 target_compile_definitions(test_io_fuzz_inputs PRIVATE DFM_FUZZ_DIR="${CMAKE_CURRENT_SOURCE_DIR}/fuzz")
 # Saves that fail (full disk, permission denied) keep the previous file: OBJ, PLY, dmat, scene.
 dfm_test(test_io_save SOURCES test_io_save.cpp LIBS dfm_scene dfm_mesh)

@@ -1,5 +1,5 @@
 // libFuzzer target for one reader, chosen by the program's name fuzz_<reader> (one binary, linked
-// under each name): obj off ply stl mesh tetgen dmat tgf points scene. The input is written to a temp file and read back
+// under each name): obj off ply stl mesh tetgen dmat tgf points scene glb (a rigged glTF imported as a scene). The input is written to a temp file and read back
 // through the public API. A dfm::Error is the expected outcome for bad input; any other exception,
 // a sanitizer report, or a failed round trip (read -> write -> read must give the same data) is a bug.
 #include <sys/stat.h>
@@ -13,6 +13,7 @@
 #include <iterator>
 #include <string>
 
+#include "core/export/gltf_scene_import.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
 #include "core/rig/rig_io.h"
@@ -132,6 +133,17 @@ void one_input(const uint8_t* data, size_t size) {
     check(again.skeleton.num_bones() == rig.skeleton.num_bones() && again.points.size() == rig.points.size() &&
               again.pseudo_edges == rig.pseudo_edges,
           "tgf rig");
+  } else if (reader == "glb") {
+    // Whatever imports is a valid scene: it saves and loads back.
+    const std::string path = base + ".glb";
+    put(path, data, size);
+    const dfm::SceneData sc = dfm::import_gltf_scene(path);
+    const std::string dir = scene_dir();
+    dfm::write_scene(dir + "/out1/g.scene.json", sc);
+    const dfm::SceneData back = dfm::read_scene(dir + "/out1/g.scene.json");
+    check(back.surface.V.rows() == sc.surface.V.rows() && back.rig.skeleton.num_bones() == sc.rig.skeleton.num_bones() &&
+              back.keys.size() == sc.keys.size(),
+          "glb scene");
   } else if (reader == "scene") {
     const std::string dir = scene_dir();
     put(dir + "/in.scene.json", data, size);

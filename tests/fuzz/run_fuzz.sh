@@ -9,7 +9,7 @@
 set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
-READERS="obj off ply stl mesh tetgen dmat tgf points scene"
+READERS="obj off ply stl mesh tetgen dmat tgf points scene glb"
 CXX=${FUZZ_CXX:-$(command -v clang++-14 || command -v clang++ || true)}
 
 build() {
@@ -19,9 +19,10 @@ build() {
   flags="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT -isystem /usr/include/eigen3"
   objs=""
   # The scene reader needs rig/ and skin/ (handle counts, skin method names) and the in-between method
-  # names, but not bind/ or the GL.
+  # names, but not bind/ or the GL; the glTF import its reader (tinygltf, linked) and the importers' table.
   for src in "$ROOT"/core/util/*.cpp "$ROOT"/core/mesh/*.cpp "$ROOT"/core/rig/*.cpp "$ROOT"/core/skin/*.cpp \
-             "$ROOT"/core/anim/inbetween_method.cpp "$ROOT"/core/scene/scene_file.cpp "$ROOT"/core/scene/scene_reader.cpp; do
+             "$ROOT"/core/anim/inbetween_method.cpp "$ROOT"/core/scene/scene_file.cpp "$ROOT"/core/scene/scene_reader.cpp \
+             "$ROOT"/core/scene/scene_import.cpp "$ROOT"/core/export/gltf_import.cpp "$ROOT"/core/export/gltf_scene_import.cpp; do
     o="$out/obj/$(basename "$src" .cpp).o"
     # Rebuilt when the source or any header it includes (its -MM dependency list) is newer.
     if [ ! -f "$o.d" ]; then "$CXX" $flags -MM -MT "$o" "$src" > "$o.d"; fi
@@ -37,7 +38,7 @@ build() {
     objs="$objs $o"
   done
   # One program; its name (fuzz_<reader>) picks the reader.
-  "$CXX" $flags -fsanitize=fuzzer,address,undefined "$HERE/fuzz_reader.cpp" $objs -o "$out/dfm_fuzz"
+  "$CXX" $flags -fsanitize=fuzzer,address,undefined "$HERE/fuzz_reader.cpp" $objs -ltinygltf -o "$out/dfm_fuzz"
   for r in $READERS; do ln -sf dfm_fuzz "$out/fuzz_$r"; done
 }
 
