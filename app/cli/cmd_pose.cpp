@@ -228,13 +228,11 @@ int pose_scene(const Options& o) {
   doc.load_scene(o.input);
   if (!doc.has_weights()) throw dfm::Error(o.input + ": the scene has no weights (" + doc.weights_note() + ")");
   if (o.method_given) doc.set_method(o.method);
-  double t = o.at;
-  if (doc.keys().size() >= 2) {  // held before the first key and after the last, as glTF samples
-    t = std::clamp(t, doc.keys().front().time, doc.keys().back().time);
-    if (t != o.at) std::printf("pose: %g s is outside the keys (%g to %g s): the nearest key's pose\n", o.at,
-                               doc.keys().front().time, doc.keys().back().time);
-  }
-  doc.set_time(t);
+  // posed_surface holds the first key's pose before it and the last's after it, as glTF samples.
+  if (doc.keys().size() >= 2 && (o.at < doc.keys().front().time || o.at > doc.keys().back().time))
+    std::printf("pose: %g s is outside the keys (%g to %g s): the nearest key's pose\n", o.at, doc.keys().front().time,
+                doc.keys().back().time);
+  doc.set_time(o.at);
   const dfm::TriMesh posed = dfm::posed_surface(doc);
   dfm::write_surface(o.out, posed);
   std::printf("pose: %s at t = %g s (%d keys, %s): %d vertices -> %s\n", o.input.c_str(), o.at,

@@ -308,7 +308,7 @@ void SceneView::update_skin(const Document& doc) {
   // Every weight the bind computed (sparse rows on the GPU), unless the scene prunes to k.
   const int k = doc.bind_settings().max_influences;
   auto same = [](const auto& a, const auto& b) { return a.rows() == b.rows() && a.cols() == b.cols() && a == b; };
-  const Eigen::MatrixXd E = doc.skin_endpoints();
+  const Eigen::MatrixXd& E = doc.skin_endpoints();
   const bool same_binding = d.skin && k == d.k && same(W, d.skin_W) && same(E, d.skin_E);
   if (!same_binding || !same(rest.V, d.skin_V) || !same(rest.F, d.skin_F)) {
     d.skin.reset();  // if the binding below throws, none: the rest shows with the error, and it is retried

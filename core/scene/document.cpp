@@ -162,6 +162,7 @@ void Document::after_change(unsigned parts) {
   ++revision_;
   if (parts & (kSurface | kWeights)) ++surface_weights_revision_;
   if (parts & (kSurface | kRig)) ++surface_rig_revision_;
+  if (parts & (kSurface | kRig | kWeights | kSettings)) ++skin_inputs_revision_;
   // Selection is view state: keep it valid whatever changed underneath.
   const int n = num_handles();
   auto& h = s_.selection.handles;
@@ -348,15 +349,19 @@ void Document::set_endpoint_filter(int bone, const EndpointFilter& filter) {
   });
 }
 
-Eigen::MatrixXd Document::skin_endpoints() const {
+const Eigen::MatrixXd& Document::skin_endpoints() const {
   const bool filtered = std::any_of(s_.endpoint_filters.begin(), s_.endpoint_filters.end(),
                                     [](const EndpointFilter& f) { return !f.empty(); });
   if (!filtered) return s_.endpoint_weights;
-  const Eigen::MatrixXd E = s_.endpoint_weights.size() > 0
-                                ? s_.endpoint_weights
-                                : Eigen::MatrixXd(bone_endpoint_weights(s_.surface.V, s_.rig)
-                                                      .middleCols(num_point_handles(s_.rig), s_.rig.skeleton.num_bones()));
-  return filter_endpoints(E, s_.endpoint_filters);
+  if (endpoints_revision_ != skin_inputs_revision_) {
+    const Eigen::MatrixXd E = s_.endpoint_weights.size() > 0
+                                  ? s_.endpoint_weights
+                                  : Eigen::MatrixXd(bone_endpoint_weights(s_.surface.V, s_.rig)
+                                                        .middleCols(num_point_handles(s_.rig), s_.rig.skeleton.num_bones()));
+    endpoints_ = filter_endpoints(E, s_.endpoint_filters);
+    endpoints_revision_ = skin_inputs_revision_;
+  }
+  return endpoints_;
 }
 
 void Document::set_inbetweens(int n) {

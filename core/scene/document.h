@@ -175,7 +175,8 @@ class Document {
   const std::vector<EndpointFilter>& endpoint_filters() const { return s_.endpoint_filters; }
   // The endpoint weights skinning uses (#V x #bones): the bind's, or the projection onto each bone,
   // through each bone's filter; empty when there is no filter and no bind's (skin.h then projects).
-  Eigen::MatrixXd skin_endpoints() const;
+  // Cached per change of the surface, rig, weights or settings (not recomputed per pose edit).
+  const Eigen::MatrixXd& skin_endpoints() const;
   const BindStats& bind_stats() const { return s_.bind_stats; }
   // Why the weights are absent ("not bound yet", "rig changed after bind: ..."); "" when bound.
   const std::string& weights_note() const { return weights_note_; }
@@ -362,6 +363,9 @@ class Document {
   struct PaintCache;  // what the weight brush reads of the surface and rig (document_weights.cpp)
   std::shared_ptr<const PaintCache> paint_cache_;
   std::uint64_t surface_rig_revision_ = 0;  // bumped when the surface or the rig changes
+  std::uint64_t skin_inputs_revision_ = 0;  // ... or the weights or settings (skin_endpoints' cache)
+  mutable std::uint64_t endpoints_revision_ = ~0ull;
+  mutable Eigen::MatrixXd endpoints_;
   FastSolveReport last_fast_;
   bool gesture_open_ = false;
   bool gesture_merge_ok_ = false;  // the top step was made inside the current gesture
