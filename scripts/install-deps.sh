@@ -8,6 +8,7 @@ PACKAGES=(
   libsuitesparse-dev libepoxy-dev nlohmann-json3-dev libtinygltf-dev
   libcgal-dev  # 4D Delaunay triangulations (dD, Epick_d) for transitions between keys
   libboost-dev  # Boost Graph (header-only): max-flow for the robust volume's graph cut
+  libassimp-dev  # FBX, Collada and BVH import (rigged characters, motion)
   xvfb xauth libgl1-mesa-dri
   clang libclang-rt-14-dev
   libopenblas0-pthread  # optimized BLAS behind CHOLMOD (Debian switches libblas.so.3 to it)
