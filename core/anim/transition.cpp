@@ -193,7 +193,8 @@ struct FieldPoints {
   int source_end = 0, lattice_size = 0, target_begin = 0;
   std::vector<int> layer_begin;  // per middle layer
 
-  // Values are kept at least `away` from 0: a crossing that close to a point would make slivers.
+  // Values are kept at least `away` from 0: a crossing that close to a point would make slivers. (Not
+  // much farther: the shift moves the level set, which reads as noise in the slices' normals.)
   // (Snapping such points onto the level set instead, as Raman and Wenger's snap marching cubes do,
   // can pinch it where the field has a saddle; moving the level set by `away` cannot.) A key's surface
   // vertices are anchored (f null): the level set passes through them.

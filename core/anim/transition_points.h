@@ -22,7 +22,7 @@ using PointField = std::function<Eigen::VectorXd(const Eigen::MatrixXd&)>;
 // Field values are kept at least this far from 0 (relative to the spacing), so that no crossing
 // sits on a point and no piece of the level set is flat.
 constexpr double kMinValue = 1e-4;
-constexpr double kAway = 0.05;  // middle points, in middle spacings
+constexpr double kAway = 0.025;  // in the spacing of the points' layer
 
 // |v| at least eps; positive values at least sqrt(2) eps, so that two clamped values never put a
 // crossing halfway between layers (a round time a user scrubs to, where a slice would pass through
