@@ -153,6 +153,32 @@ TEST_CASE("rig edits after a bind clear the weights; undo restores them") {
   CHECK_THROWS_AS(d.set_weights(Eigen::MatrixXd::Zero(3, 2), {}), Error);
 }
 
+TEST_CASE("a bind keeps the weights it replaced for the difference view; undo and rig edits follow") {
+  Document d;
+  d.set_surface(tetra_surface(), "tetra");
+  d.add_point({0.2, 0.2, 0.2});
+  d.add_point({0.1, 0.1, 0.3});
+  const Eigen::MatrixXd A = uniform_weights(d);
+  d.set_weights(A, BindStats{});
+  CHECK(d.replaced_weights().size() == 0);  // nothing bound before
+  Eigen::MatrixXd B = A;
+  B.col(0).setConstant(0.8);
+  B.col(1).setConstant(0.2);
+  d.set_weights(B, BindStats{});  // a Rebind
+  CHECK(d.weights() == B);
+  CHECK(d.replaced_weights() == A);
+  d.undo();
+  CHECK(d.weights() == A);
+  CHECK(d.replaced_weights().size() == 0);
+  d.redo();
+  CHECK(d.replaced_weights() == A);
+  // A rig edit clears both (they no longer match the handles); its undo brings both back.
+  d.move_point(1, {0.1, 0.1, 0.25});
+  CHECK(d.replaced_weights().size() == 0);
+  d.undo();
+  CHECK(d.replaced_weights() == A);
+}
+
 TEST_CASE("deleting handles keeps pose params, keys and pseudo-edges consistent") {
   Document d;
   d.set_surface(tetra_surface(), "tetra");

@@ -378,6 +378,25 @@ TEST_CASE("scene view: weight colours follow the Weights panel and the selection
   const float mask[6] = {1, 0, 0, 0, 0.25f, 0};
   for (int i = 0; i < 6; ++i) REQUIRE(gpu.data[i] == Vector4f(mask[i], 0, 0, 1));
 
+  // Difference: nothing replaced yet, so no data; after a Rebind the moved share per vertex (all
+  // handles) or the selected handle's change.
+  s.weight_view = WeightView::Difference;
+  scene.sync(doc, s);
+  REQUIRE(gpu.data.empty());
+  const Eigen::MatrixXd before = doc.weights();
+  Eigen::MatrixXd after = before;
+  after.row(3) = before.row(0);  // vertex 3 takes vertex 0's weights
+  doc.set_weights(after, BindStats{});
+  scene.sync(doc, s);
+  REQUIRE(gpu.data.size() == 6);
+  for (int i = 0; i < 6; ++i)
+    REQUIRE(gpu.data[i].x() == Approx(0.5 * (after.row(i) - before.row(i)).cwiseAbs().sum()).margin(1e-7));
+  REQUIRE(gpu.data[3].x() > 0.1f);
+  doc.set_selection(Selection{{0}, -1});
+  scene.sync(doc, s);
+  for (int i = 0; i < 6; ++i) REQUIRE(gpu.data[i].x() == Approx(std::abs(after(i, 0) - before(i, 0))).margin(1e-7));
+  doc.set_selection(Selection{{1, 2}, -1});
+
   // Off: shaded, no per-vertex data.
   s.weight_view = WeightView::Off;
   scene.sync(doc, s);
@@ -386,16 +405,31 @@ TEST_CASE("scene view: weight colours follow the Weights panel and the selection
   REQUIRE(gpu.data.empty());
   REQUIRE(gpu.surface_draws.back().style.mode == gl::SurfaceColorMode::Shaded);
 
-  // A slice has other vertices than the weights: no weight colours on it.
+  // A slice has other vertices than the weights: with a weight view on, an animation of pose keys
+  // shows skinned at the time (the animation's pose), with the weights on it; with the view off, the slice.
   doc.set_key(0.0);
   doc.translate_handle(0, Vector3d(0, 0.3, 0));
   doc.set_key(1.0);
   scene.sync(doc, s);  // a frame per edit, as in the editor: the scrub below comes after the pose edit
   doc.set_time(0.5);
+  scene.sync(doc, s);
+  REQUIRE(scene.showing_slice());
   s.weight_view = WeightView::Selected;
+  scene.sync(doc, s);
+  REQUIRE_FALSE(scene.showing_slice());
+  REQUIRE(gpu.data.size() == 6);
+  for (int i = 0; i < 6; ++i) REQUIRE(gpu.data[i].x() == float(doc.weights()(i, 1)));
+  const Pose half = scene.shown_pose(doc);
+  REQUIRE(half.transforms[0].translation().y() == Approx(0.15));  // halfway between the keys' 0 and 0.3
+  s.weight_view = WeightView::Off;
   scene.sync(doc, s);
   REQUIRE(scene.showing_slice());
   REQUIRE(gpu.data.empty());
+  // Before the first key the slice holds the first key's frame (as save-posed does), not nothing.
+  doc.set_time(-0.5);
+  scene.sync(doc, s);
+  REQUIRE(scene.showing_slice());
+  REQUIRE(scene.display_vertex_count() > 0);
 }
 
 TEST_CASE("scene view: region handles band the mask view", "[editor][scene_view]") {

@@ -10,7 +10,9 @@
 #include <numeric>
 
 #include "core/bind/surface_laplacian.h"
+#include "core/bind/weight_difference.h"
 #include "core/bind/weight_tools.h"
+#include "core/util/error.h"
 #include "tests/weight_tools_test_meshes.h"
 
 using namespace dfm;
@@ -340,4 +342,21 @@ TEST_CASE("zero-weight report lists the handles that move nothing") {
   CHECK(r[1].max_weight == Approx(1e-4));
   CHECK(zero_weight_report(W, s.rig, 0).empty());
   CHECK_THROWS(zero_weight_report(Eigen::MatrixXd::Zero(3, 2), s.rig));
+}
+
+TEST_CASE("weight difference: one handle's change, or the share of weight that moved", "[weights]") {
+  Eigen::MatrixXd W(3, 3), R(3, 3);
+  W << 1, 0, 0,  0.5, 0.5, 0,  0.2, 0.3, 0.5;
+  R << 0, 1, 0,  0.5, 0.5, 0,  0.5, 0.3, 0.2;
+  // Vertex 0 moved all its weight, vertex 1 none, vertex 2 0.3 from handle 0 to handle 2.
+  const Eigen::VectorXd all = weight_difference(W, R);
+  CHECK(all[0] == Approx(1.0));
+  CHECK(all[1] == 0.0);
+  CHECK(all[2] == Approx(0.3));
+  const Eigen::VectorXd h2 = weight_difference(W, R, 2);
+  CHECK(h2[0] == 0.0);
+  CHECK(h2[2] == Approx(0.3));
+  CHECK(weight_difference(W, W).maxCoeff() == 0.0);
+  CHECK_THROWS_AS(weight_difference(W, R.leftCols(2)), Error);
+  CHECK_THROWS_AS(weight_difference(W, R, 3), Error);
 }

@@ -142,6 +142,7 @@ class Editor {
   void draw_view_section();
   void draw_bind_section();
   void draw_weights_section();
+  void draw_weight_difference_note();
   void draw_transform_section();
   void draw_posing_section();  // pose_panels.cpp
   // --ui panels=weights:posing: the right panel's sections to show open (the others closed).

@@ -177,6 +177,7 @@ void Editor::apply_ui_options(const std::string& spec) {
       else if (v == "selected") weight_view_ = WeightView::Selected;
       else if (v == "all") weight_view_ = WeightView::AllHandles;
       else if (v == "mask") weight_view_ = WeightView::Mask;
+      else if (v == "difference") weight_view_ = WeightView::Difference;
       else throw bad();
     } else if (k == "wireframe" || k == "ortho" || k == "grid" || k == "handles") {
       if (v != "0" && v != "1") throw bad();

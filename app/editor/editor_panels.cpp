@@ -11,6 +11,7 @@
 #include <functional>
 
 #include "app/editor/editor.h"
+#include "core/bind/weight_difference.h"
 #include "app/editor/theme.h"
 
 #include "core/anim/slice.h"
@@ -413,16 +414,34 @@ void Editor::draw_bind_section() {
   if (ImGui::Combo("##method", &m, methods, 4)) run_ui_command({"set-method", skin_method_name(static_cast<SkinMethod>(m))});
 }
 
+// The difference view's legend: against what, and how far the weights moved (mean and largest).
+void Editor::draw_weight_difference_note() {
+  const Eigen::MatrixXd& R = doc_.replaced_weights();
+  if (!doc_.has_weights() || R.rows() != doc_.weights().rows() || R.cols() != doc_.weights().cols()) {
+    text_disabled_wrapped("bind again to compare the new weights with those the bind replaces");
+    return;
+  }
+  const int h = doc_.selection().handles.empty() ? -1 : doc_.selection().handles.front();
+  const Eigen::VectorXd d = weight_difference(doc_.weights(), R, h);
+  if (h < 0)
+    text_disabled_wrapped("share of each vertex's weight the last bind moved to other handles (select a handle "
+                          "for its own)");
+  else
+    ImGui::TextDisabled("%s: |new - replaced|", handle_name(doc_.rig(), h).c_str());
+  ImGui::Text("mean %.3f, largest %.3f", d.mean(), d.maxCoeff());
+}
+
 void Editor::draw_weights_section() {
   int v = static_cast<int>(weight_view_);
   ItemFlow flow;
   int i = 0;
-  for (const char* label : {"Off", "Selected", "All", "Mask"}) {
+  for (const char* label : {"Off", "Selected", "All", "Mask", "Difference"}) {
     flow.next(ItemFlow::check_width(label));
     ImGui::RadioButton(label, &v, i++);
   }
   weight_view_ = static_cast<WeightView>(v);
-  if (weight_view_ == WeightView::Selected) {
+  if (weight_view_ == WeightView::Difference) draw_weight_difference_note();
+  if (weight_view_ == WeightView::Selected || weight_view_ == WeightView::Difference) {
     // Colour bar legend for the turbo map.
     const ImVec2 p = ImGui::GetCursorScreenPos();
     const float w = ImGui::GetContentRegionAvail().x;
@@ -438,7 +457,8 @@ void Editor::draw_weights_section() {
     ImGui::TextDisabled("0");
     ImGui::SameLine(w - 8);
     ImGui::TextDisabled("1");
-    if (doc_.selection().handles.empty()) text_disabled_wrapped("select a handle to see its weights");
+    if (weight_view_ == WeightView::Selected && doc_.selection().handles.empty())
+      text_disabled_wrapped("select a handle to see its weights");
   }
   if (picked_vertex_ >= 0 && picked_vertex_ < doc_.surface().num_vertices()) {
     ImGui::Text("Vertex %d", picked_vertex_);

@@ -23,7 +23,7 @@ void usage(std::FILE* out) {
                "  --quit            exit after the script / screenshot instead of staying open\n"
                "  --size WxH        window size (default 1280x800)\n"
                "  --ui K=V,...      initial state: tool=select|point|bone|paint|paint-weights|move|rotate|pair,\n"
-               "                    weights=off|selected|all|mask, wireframe=0|1, ortho=0|1, grid=0|1,\n"
+               "                    weights=off|selected|all|mask|difference, wireframe=0|1, ortho=0|1, grid=0|1,\n"
                "                    preset=front|right|top|iso..., sweep=t|x|y|z, vertex=N,\n"
                "                    cursor=XxY (mouse held there), frame=all|selection,\n"
                "                    panels=view:bind:weights:transform:posing (the right panel's open sections)\n"

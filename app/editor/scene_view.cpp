@@ -18,6 +18,7 @@
 #include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
 #include "core/anim/slice_table.h"
+#include "core/bind/weight_difference.h"
 #include "core/mesh/mesh_info.h"
 #include "core/rig/forward_kinematics.h"
 #include "core/skin/skin.h"
@@ -146,10 +147,19 @@ void SceneView::show_rest(const TriMesh& rest, bool closed) {
   display_F_ = rest.F;
   display_is_rest_ = true;
   showing_slice_ = false;
+  showing_animation_pose_ = false;
   display_count_ = rest.num_vertices();
   display_faces_ = rest.num_faces();
   gpu_.show_mesh(rest);
 }
+
+namespace {
+bool pose_keys_only(const Document& doc) {
+  for (const SceneKey& k : doc.keys())
+    if (k.is_mesh()) return false;
+  return true;
+}
+}  // namespace
 
 void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
   Deformer& d = *deformer_;
@@ -186,11 +196,18 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       if (d.pose_sig != 0) d.prefer_pose = true;
       d.pose_sig = psig;
     }
-    if (d.has_manifold && (s.slice_axis != SliceAxis::T || !d.prefer_pose || !d.skin)) {
+    // A weight view on an animation of pose keys shows the animation skinned (the slice's vertices are
+    // not the weights'): the same frame, up to the baked in-betweens' interpolation.
+    const bool animate_skin = d.has_manifold && s.slice_axis == SliceAxis::T && !d.prefer_pose && d.skin &&
+                              s.weight_view != WeightView::Off && pose_keys_only(doc);
+    if (d.has_manifold && !animate_skin && (s.slice_axis != SliceAxis::T || !d.prefer_pose || !d.skin)) {
       show_slice(doc, s);
     } else if (d.skin) {
-      d.skin->set_pose(pose, stbs_handles(doc.rig(), doc.pose_params().bone_twist_stretch));
+      const PoseParams params = animate_skin ? animation_params(doc, doc.time()) : doc.pose_params();
+      d.skin->set_pose(animate_skin ? evaluate_pose(doc.rig(), params) : pose,
+                       stbs_handles(doc.rig(), params.bone_twist_stretch));
       d.skin->run(doc.method());
+      showing_animation_pose_ = animate_skin;
       const gl::GeometryRef g = d.skin->output();
       gpu_.show_geometry(g);
       display_closed_ = surface_closed(doc);  // a pose keeps the rest's triangles
@@ -238,6 +255,9 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
   const AnimationManifold& m = d.builder.manifold();
   const SliceAxis axis = s.slice_axis;
   double value = doc.time();
+  // Before the first key and after the last the frame holds, as posed_surface and glTF sampling do.
+  const std::vector<double>& span = d.interval_policy.times();
+  if (axis == SliceAxis::T && !span.empty()) value = std::clamp(value, span.front(), span.back());
   if (axis != SliceAxis::T) {
     const int c = static_cast<int>(axis);
     const double lo = m.V.col(c).minCoeff(), hi = m.V.col(c).maxCoeff();
@@ -287,6 +307,7 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
   d.have_slice_time = time_axis;
   d.slice_time = value;
   showing_slice_ = true;
+  showing_animation_pose_ = false;
   // Playing on: the interval after this one builds meanwhile, unless it is cached or too short.
   const int here = time_axis ? open_interval_of(d.interval_policy.times(), value) : -1;
   if (here >= 0) {
@@ -350,7 +371,7 @@ Pose SceneView::shown_pose(const Document& doc) const { return pose_on_screen(do
 
 Pose SceneView::pose_on_screen(const Document& doc, SliceAxis axis) const {
   // A time slice shows the animation: the key poses interpolated at the time (core's animation_pose).
-  if (showing_slice_ && axis == SliceAxis::T && deformer_->builder.track().size() >= 2) {
+  if ((showing_slice_ || showing_animation_pose_) && axis == SliceAxis::T && deformer_->builder.track().size() >= 2) {
     try {
       return animation_pose(doc, doc.time());
     } catch (...) {
@@ -372,6 +393,12 @@ void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
     }
   } else if (same_vertices && s.weight_view == WeightView::AllHandles && doc.has_weights()) {
     data = blend_handle_colors(doc.weights());
+  } else if (same_vertices && s.weight_view == WeightView::Difference && doc.has_weights() &&
+             doc.replaced_weights().rows() == doc.weights().rows() && doc.replaced_weights().cols() == doc.weights().cols()) {
+    const int h = doc.selection().handles.empty() ? -1 : doc.selection().handles.front();
+    const Eigen::VectorXd d = weight_difference(doc.weights(), doc.replaced_weights(), h);
+    data.resize(nv);
+    for (int i = 0; i < nv; ++i) data[i] = Eigen::Vector4f(float(d[i]), 0, 0, 1);
   } else if (same_vertices && s.weight_view == WeightView::Mask) {
     data.assign(nv, Eigen::Vector4f(0, 0, 0, 1));
     const Eigen::VectorXd& mask = doc.mask();

@@ -19,8 +19,10 @@
 
 namespace dfm::editor {
 
-// What the Weights panel colours the surface by.
-enum class WeightView { Off, Selected, AllHandles, Mask };
+// What the Weights panel colours the surface by. Difference: how far the weights moved from those the
+// last bind replaced (weight_difference.h): the selected handle's, or with none selected, the share of
+// each vertex's weight that moved (total variation).
+enum class WeightView { Off, Selected, AllHandles, Mask, Difference };
 
 struct ViewSettings {
   bool wireframe = false;
@@ -108,6 +110,7 @@ class SceneView {
   Eigen::MatrixXi display_F_;
   bool display_is_rest_ = true;
   bool showing_slice_ = false;
+  bool showing_animation_pose_ = false;  // the animation's pose skinned (a weight view on pose keys)
   bool showing_preview_ = false;
   bool display_closed_ = false;  // the displayed surface is closed and outward: cull its back faces
   mutable int display_count_ = 0;  // -1: a general-pass slice, counted when asked

@@ -62,6 +62,7 @@ void swap_parts(SceneData& a, SceneData& b, unsigned parts) {
   if (parts & 8u) swap(a.keys, b.keys);
   if (parts & 16u) {
     swap(a.weights, b.weights);
+    swap(a.replaced_weights, b.replaced_weights);
     swap(a.endpoint_weights, b.endpoint_weights);
     swap(a.bind_stats, b.bind_stats);
   }
@@ -86,6 +87,7 @@ void copy_parts(const SceneData& from, SceneData& to, unsigned parts) {
   if (parts & 8u) to.keys = from.keys;
   if (parts & 16u) {
     to.weights = from.weights;
+    to.replaced_weights = from.replaced_weights;
     to.endpoint_weights = from.endpoint_weights;
     to.bind_stats = from.bind_stats;
   }
@@ -151,6 +153,7 @@ void Document::rig_edit(const std::string& name, const std::string& merge_target
     for (SceneKey& k : s.keys) k.params = fit_pose_params(s.rig, std::move(k.params));
     if (s.weights.size() > 0) {
       s.weights.resize(0, 0);
+      s.replaced_weights.resize(0, 0);
       s.endpoint_weights.resize(0, 0);
       s.bind_stats = {};
       weights_note_ = "rig changed after bind (" + name + "): weights cleared, bind again";
@@ -320,6 +323,8 @@ void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats, con
                 std::to_string(s_.rig.skeleton.num_bones()) + ") in [0, 1], got " + std::to_string(endpoints.rows()) +
                 " x " + std::to_string(endpoints.cols()));
   execute("bind", kWeights, "", [&](SceneData& s) {
+    const bool same_shape = s.weights.rows() == W.rows() && s.weights.cols() == W.cols();
+    s.replaced_weights = same_shape ? std::move(s.weights) : Eigen::MatrixXd();
     s.weights = W;
     s.endpoint_weights = endpoints;
     s.bind_stats = stats;

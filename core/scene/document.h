@@ -122,6 +122,10 @@ struct SceneData {
   // entries / empty ones: the identity. A skinning setting, kept across binds.
   std::vector<EndpointFilter> endpoint_filters;
   BindStats bind_stats;
+  // The weights the last bind replaced, when it kept their shape (a Rebind of an imported character's
+  // own weights, or of an earlier bind), or empty: what the weight view's difference compares against.
+  // Not saved with the scene.
+  Eigen::MatrixXd replaced_weights;
   std::vector<SceneKey> keys;
   Eigen::VectorXd mask;     // shape-preservation mask per surface vertex in [0,1] (painted)
   Camera camera;
@@ -170,6 +174,8 @@ class Document {
   const BindSettings& bind_settings() const { return s_.bind_settings; }
   bool has_weights() const;  // weights present and matching the surface and rig
   const Eigen::MatrixXd& weights() const { return s_.weights; }
+  // The weights the last bind replaced (same shape as weights()), or empty.
+  const Eigen::MatrixXd& replaced_weights() const { return s_.replaced_weights; }
   // The bind's STBS endpoint weights (#V x #bones), or empty: STBS projects onto each bone.
   const Eigen::MatrixXd& endpoint_weights() const { return s_.endpoint_weights; }
   const std::vector<EndpointFilter>& endpoint_filters() const { return s_.endpoint_filters; }

@@ -78,6 +78,7 @@ void Document::install_surface(TriMesh surface, const std::string& path, TetMesh
             s.tets = std::move(tets);
             s.surface_to_tet = std::move(surface_to_tet);
             s.weights.resize(0, 0);
+            s.replaced_weights.resize(0, 0);
             s.endpoint_weights.resize(0, 0);
             s.bind_stats = {};
             s.mask.resize(0);
