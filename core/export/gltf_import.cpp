@@ -125,6 +125,12 @@ Eigen::VectorXd sample(const GltfChannel& c, double t) {
   const double u = (t - T[k]) / (T[k + 1] - T[k]);
   const Eigen::VectorXd a = c.values.row(k).transpose(), b = c.values.row(k + 1).transpose();
   if (c.step) return a;
+  if (c.cubic) {  // glTF 2.0, Appendix C: Hermite with tangents scaled by the interval
+    const double d = T[k + 1] - T[k], u2 = u * u, u3 = u2 * u;
+    const Eigen::VectorXd p = (2 * u3 - 3 * u2 + 1) * a + d * (u3 - 2 * u2 + u) * c.out_tangents.row(k).transpose() +
+                              (-2 * u3 + 3 * u2) * b + d * (u3 - u2) * c.in_tangents.row(k + 1).transpose();
+    return c.path == GltfChannel::Path::Rotation ? p.normalized() : p;
+  }
   if (c.path == GltfChannel::Path::Rotation) return slerp(a, b, u);
   return (1 - u) * a + u * b;
 }
@@ -211,20 +217,22 @@ GltfChannel read_channel(const tinygltf::Model& m, const tinygltf::Animation& a,
   else if (ch.target_path == "weights") c.path = GltfChannel::Path::Weights;
   else throw file_error(path, 0, "unknown animation path '" + ch.target_path + "'");
   if (s.interpolation == "STEP") c.step = true;
+  else if (s.interpolation == "CUBICSPLINE") c.cubic = true;
   else if (s.interpolation != "LINEAR" && !s.interpolation.empty())
     throw file_error(path, 0, "interpolation " + s.interpolation + " is not supported");
   const Eigen::MatrixXd in = read_accessor(m, s.input, path);
   c.times.assign(in.data(), in.data() + in.rows());
   Eigen::MatrixXd out = read_accessor(m, s.output, path);
-  if (c.path == GltfChannel::Path::Weights) {  // flat scalars: #times x #targets
+  const long elements = c.cubic ? 3 : 1;  // CUBICSPLINE: in-tangent, value, out-tangent per key
+  if (c.path == GltfChannel::Path::Weights) {  // flat scalars: #times * elements x #targets
     if (out.cols() != 1) throw file_error(path, 0, "animation output for 'weights' must be scalars");
-    const long per = c.times.empty() ? 0 : out.rows() / static_cast<long>(c.times.size());
-    Eigen::MatrixXd w(c.times.size(), per);
+    const long per = c.times.empty() ? 0 : out.rows() / (elements * static_cast<long>(c.times.size()));
+    Eigen::MatrixXd w(elements * static_cast<long>(c.times.size()), per);
     for (long i = 0; i < w.rows(); ++i)
       for (long j = 0; j < per; ++j) w(i, j) = out(i * per + j, 0);
     out = w;
   }
-  if (out.rows() != static_cast<long>(c.times.size()) || c.times.empty())
+  if (out.rows() != elements * static_cast<long>(c.times.size()) || c.times.empty())
     throw file_error(path, 0, "animation sampler input and output counts differ");
   const long width = c.path == GltfChannel::Path::Rotation ? 4 : 3;
   if (c.path != GltfChannel::Path::Weights && out.cols() != width)
@@ -234,7 +242,19 @@ GltfChannel read_channel(const tinygltf::Model& m, const tinygltf::Animation& a,
     if (!std::isfinite(c.times[i]) || (i > 0 && !(c.times[i] > c.times[i - 1])))
       throw file_error(path, 0, "animation input times must be finite and increasing");
   if (!out.allFinite()) throw file_error(path, 0, "animation output for '" + ch.target_path + "' is not finite");
-  c.values = out;
+  if (!c.cubic) {
+    c.values = out;
+    return c;
+  }
+  const long n = static_cast<long>(c.times.size());
+  c.in_tangents.resize(n, out.cols());
+  c.values.resize(n, out.cols());
+  c.out_tangents.resize(n, out.cols());
+  for (long k = 0; k < n; ++k) {
+    c.in_tangents.row(k) = out.row(3 * k);
+    c.values.row(k) = out.row(3 * k + 1);
+    c.out_tangents.row(k) = out.row(3 * k + 2);
+  }
   return c;
 }
 
@@ -258,7 +278,13 @@ GltfDocument read_gltf(const std::string& path) {
 
 std::vector<double> GltfDocument::key_times() const {
   std::vector<double> t;
-  for (const auto& c : channels) t.insert(t.end(), c.times.begin(), c.times.end());
+  for (const auto& c : channels) {
+    t.insert(t.end(), c.times.begin(), c.times.end());
+    if (c.cubic)
+      for (size_t k = 0; k + 1 < c.times.size(); ++k)
+        for (int j = 1; j < kCubicSamplesPerInterval; ++j)
+          t.push_back(c.times[k] + (c.times[k + 1] - c.times[k]) * j / kCubicSamplesPerInterval);
+  }
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end()), t.end());
   return t;

@@ -13,10 +13,16 @@ namespace dfm {
 struct GltfChannel {
   int node = -1;
   enum class Path { Translation, Rotation, Scale, Weights } path = Path::Translation;
-  bool step = false;            // STEP interpolation (else LINEAR; CUBICSPLINE is rejected)
+  bool step = false;            // STEP interpolation
+  bool cubic = false;           // CUBICSPLINE (else LINEAR): Hermite between keys with the tangents below
   std::vector<double> times;    // sampler input
   Eigen::MatrixXd values;       // one row per time (width 3, 4 (x,y,z,w) or #targets)
+  Eigen::MatrixXd in_tangents, out_tangents;  // CUBICSPLINE: a_k and b_k, as values (else empty)
 };
+
+// Samples a CUBICSPLINE channel adds between its keys to GltfDocument::key_times (a scene's pose keys
+// interpolate linearly between keys, so the curve is kept by sampling it).
+constexpr int kCubicSamplesPerInterval = 4;
 
 struct GltfNode {
   std::string name;
@@ -48,13 +54,16 @@ struct GltfDocument {
   int morph_node = -1;                   // first node whose mesh has morph targets
   GltfMeshData morph;
   std::vector<GltfChannel> channels;     // animation 0
-  std::vector<double> key_times() const; // sorted union of every channel's input times
+  // Sorted union of every channel's input times, and kCubicSamplesPerInterval - 1 evenly spaced times
+  // inside each interval of a CUBICSPLINE channel.
+  std::vector<double> key_times() const;
 };
 
 // Loads .glb or .gltf (external .bin beside it). Throws dfm::Error naming the file and problem.
 GltfDocument read_gltf(const std::string& path);
 
-// Node TRS after applying animation 0 at time t (glTF sampling: clamped, LINEAR lerp / slerp).
+// Node TRS after applying animation 0 at time t (glTF sampling: clamped; LINEAR lerp / slerp, STEP, or
+// CUBICSPLINE's Hermite curve, a rotation then normalized).
 std::vector<GltfNode> gltf_animated_nodes(const GltfDocument& doc, double t);
 // World matrices of every node.
 std::vector<Eigen::Matrix4d> gltf_global_transforms(const std::vector<GltfNode>& nodes);

@@ -13,7 +13,8 @@
 //   else its parent bone, else 5% of the mesh's diagonal. Names are the joint nodes' names (without the
 //   "N:" prefix this program's export gives joint N).
 // - Weights: every JOINTS_n / WEIGHTS_n set summed per joint, rows normalized.
-// - Animation: the first animation sampled at each of its key times (glTF sampling: LINEAR and STEP).
+// - Animation: the first animation sampled at each of its key times (glTF sampling: LINEAR, STEP and
+//   CUBICSPLINE; a cubic curve also at kCubicSamplesPerInterval - 1 times inside each interval).
 //   A key holds, per bone, the transform that reproduces the file's joint matrix G_j(t) IB_j exactly
 //   under the editor's forward kinematics (a rotation about the bone's first joint and a translation,
 //   relative to the parent bone). A joint whose animation scales is refused.

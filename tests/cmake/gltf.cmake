@@ -13,3 +13,5 @@ add_dependencies(test_gltf_data deform)
 dfm_test(test_gltf_scene_import SOURCES test_gltf_scene_import.cpp LIBS dfm_export dfm_scene)
 target_compile_definitions(test_gltf_scene_import PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
 add_dependencies(test_gltf_scene_import deform)
+# CUBICSPLINE curves: the reader's Hermite sampling and the import's keys along the curve.
+dfm_test(test_gltf_cubic SOURCES test_gltf_cubic.cpp LIBS dfm_export dfm_scene)
