@@ -9,6 +9,7 @@
 
 #include "core/export/export_document.h"
 #include "core/export/gltf_export.h"
+#include "core/export/gltf_rig_extras.h"
 #include "core/export/gltf_import.h"
 #include "core/export/gltf_verify.h"
 #include "core/export/prune.h"
@@ -412,4 +413,49 @@ TEST_CASE("export_document_gltf: a twisted, stretched STBS document plays its ke
   CHECK(plain.residual_targets == 0);
   CHECK(plain.max_prune_error > 0.05 * diag);
   fs::remove_all(dir);
+}
+
+TEST_CASE("rig extras: every kind of handle through the glTF rig node's JSON text and back", "[gltf]") {
+  Rig rig;
+  rig.points = {{Eigen::Vector3d(0.1, 0.2, 0.3), "l_ear"}, {Eigen::Vector3d(-0.1, 0.2, 0.3), "r_ear"}};
+  rig.pseudo_edges = {{0, 1}};
+  rig.skeleton.joints.resize(4, 3);
+  rig.skeleton.joints << 0, 0, 0, 0, 1, 0, 0, 2, 0, 1, 1, 0;
+  rig.skeleton.bones = {{0, 1, -1, "spine"}, {1, 2, -1, "neck"}, {1, 3, -1, "arm"}};
+  compute_bone_parents(rig.skeleton);
+  Cage cage;
+  cage.name = "box";
+  cage.mesh.V = Eigen::MatrixXd::Random(4, 3);
+  cage.mesh.F.resize(4, 3);
+  cage.mesh.F << 0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2;
+  cage.edges.resize(1, 2);
+  cage.edges << 0, 3;
+  rig.cages = {cage};
+  rig.regions = {{{4, 5, 9}, "belly"}};
+  const Rig back = rig_from_extras_json(rig_extras_json(rig), 10, "x.glb");
+  REQUIRE(back.points.size() == 2);
+  CHECK(back.points[1].name == "r_ear");
+  CHECK(back.points[1].position == rig.points[1].position);  // doubles printed round-trip exactly
+  CHECK(back.pseudo_edges == rig.pseudo_edges);
+  CHECK(back.skeleton.joints == rig.skeleton.joints);
+  REQUIRE(back.skeleton.num_bones() == 3);
+  for (int b = 0; b < 3; ++b) {
+    CHECK(back.skeleton.bones[b].name == rig.skeleton.bones[b].name);
+    CHECK(back.skeleton.bones[b].a == rig.skeleton.bones[b].a);
+    CHECK(back.skeleton.bones[b].b == rig.skeleton.bones[b].b);
+    CHECK(back.skeleton.bones[b].parent == rig.skeleton.bones[b].parent);
+  }
+  REQUIRE(back.cages.size() == 1);
+  CHECK(back.cages[0].mesh.V == cage.mesh.V);
+  CHECK(back.cages[0].mesh.F == cage.mesh.F);
+  CHECK(back.cages[0].edges == cage.edges);
+  REQUIRE(back.regions.size() == 1);
+  CHECK(back.regions[0].vertices == rig.regions[0].vertices);
+  CHECK(num_handles(back) == num_handles(rig));
+  // Text that is not such a rig is refused, naming the file.
+  CHECK_THROWS_WITH(rig_from_extras_json("{", 10, "x.glb"), Catch::Contains("x.glb") && Catch::Contains("not JSON"));
+  CHECK_THROWS_WITH(rig_from_extras_json(rig_extras_json(rig), 9, "x.glb"), Catch::Contains("region"));
+  std::string bad = rig_extras_json(rig);
+  bad.replace(bad.find("\"a\":1"), 5, "\"a\":7");
+  CHECK_THROWS_WITH(rig_from_extras_json(bad, 10, "x.glb"), Catch::Contains("out of range"));
 }

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include "core/export/gltf_buffer.h"
+#include "core/export/gltf_rig_extras.h"
 #include "core/export/prune.h"
 #include "core/export/trs.h"
 #include "core/skin/lbs.h"
@@ -312,6 +313,8 @@ std::vector<std::string> add_rig(tinygltf::Model& model, GltfBufferBuilder& bb, 
   model.nodes.push_back(mesh_node);
   tinygltf::Node rig_node;
   rig_node.name = "rig";
+  // The rig itself, so that an import of this file gets the same handles back (gltf_rig_extras.h).
+  rig_node.extras = tinygltf::Value(tinygltf::Value::Object{{"deform_rig", tinygltf::Value(rig_extras_json(in.rig))}});
   model.nodes.push_back(rig_node);
   const std::vector<TrsFit> cur = local_transforms(layout, current);
   std::vector<std::string> names(nh);

@@ -167,6 +167,8 @@ void read_nodes(const tinygltf::Model& m, const std::string& path, GltfDocument&
     if (s.rotation.size() == 4) n.rotation = Eigen::Quaterniond(s.rotation[3], s.rotation[0], s.rotation[1], s.rotation[2]);
     if (s.scale.size() == 3) n.scale = Eigen::Vector3d(s.scale[0], s.scale[1], s.scale[2]);
     n.weights = s.weights;
+    if (s.extras.IsObject() && s.extras.Has("deform_rig") && s.extras.Get("deform_rig").IsString())
+      n.deform_rig = s.extras.Get("deform_rig").Get<std::string>();
   }
   for (size_t i = 0; i < m.nodes.size(); ++i)
     for (int c : m.nodes[i].children) {

@@ -34,6 +34,7 @@ struct GltfNode {
   bool has_matrix = false;
   Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
   std::vector<double> weights;  // node.weights (morph weights overriding mesh.weights), or empty
+  std::string deform_rig;       // extras.deform_rig: this program's rig as JSON text (gltf_rig_extras.h), or ""
 };
 
 struct GltfMeshData {
