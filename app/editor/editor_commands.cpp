@@ -17,6 +17,7 @@
 #include "core/mesh/io.h"
 #include "core/scene/bind_document.h"
 #include "core/scene/script.h"
+#include "core/scene/scene_import.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
@@ -30,6 +31,7 @@ namespace {
 CommandWords open_command(const std::string& path, bool alt, bool has_surface) {
   const std::string ext = file_extension(path);
   if (ext == "tgf") return {"load-skeleton", path};
+  if (motion_importer_for(path)) return {"load-motion", path};  // BVH: motion onto the rig by bone name
   if (alt && has_surface && (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl")) return {"load-cage", path};
   return {"open", path};
 }
