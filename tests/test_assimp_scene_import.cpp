@@ -1,4 +1,4 @@
-// Rigged, animated FBX and Collada files as scenes, and BVH motion onto a rig, through Assimp
+// Rigged, animated FBX and Collada files as scenes, and BVH motion onto a rig or alone, through Assimp
 // (core/export/assimp_scene_import.h, bvh_motion.h; issue 32), checked against what Blender 3.4 itself
 // evaluated: ../shared/data/rigged/elephant.{fbx,dae,bvh} and elephant_frameNNN.obj (Blender's posed
 // meshes in elephant.obj's coordinates). Vertices are matched by their rest positions.
@@ -17,6 +17,8 @@
 #include "core/export/bvh_motion.h"
 #include "core/export/gltf_scene_import.h"
 #include "core/mesh/io.h"
+#include "core/rig/forward_kinematics.h"
+#include "core/rig/pose_params.h"
 #include "core/scene/scene_file.h"
 #include "core/scene/script.h"
 #include "core/util/error.h"
@@ -201,6 +203,51 @@ TEST_CASE("BVH motion onto the imported glb's rig reproduces Blender's frame 30"
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("A BVH opened alone: its skeleton and motion as bones and keys, posed as the glb's rig", "[assimp][bvh][data]") {
+  DFM_DATA_OR_SKIP(glb, "rigged/elephant.glb");
+  DFM_DATA_OR_SKIP(bvh, "rigged/elephant.bvh");
+  register_assimp_scene_importers();
+  Document d;
+  const std::string report = d.import_scene(bvh);
+  INFO(report);
+  CHECK(report.find("no mesh") != std::string::npos);
+  REQUIRE(d.rig().skeleton.num_bones() == 25);  // Blender's __0 above bone_00, bone_14 and bone_19
+  CHECK(d.surface().num_vertices() == 0);
+  CHECK_FALSE(d.has_weights());
+  REQUIRE(d.keys().size() == 60);
+  // Independent of the BVH: the glb's own rig at frame 30 (t = 30/24 there). The BVH is Blender's Z up:
+  // obj (x, y, z) = Blender (x, z, -y).
+  const SceneData g = import_gltf_scene(glb);
+  const Skeleton& gs = g.rig.skeleton;
+  REQUIRE(g.keys.size() == 60);
+  CHECK(g.keys[29].time == Approx(30 / 24.0));
+  const Eigen::MatrixXd gj = posed_joints(gs, evaluate_pose(g.rig, g.keys[29].params).transforms);
+  const Skeleton& bs = d.rig().skeleton;
+  const Eigen::MatrixXd bj = posed_joints(bs, evaluate_pose(d.rig(), d.keys()[29].params).transforms);
+  const double diag = diagonal(gs.joints);
+  double worst = 0;
+  int compared = 0;
+  for (int b = 0; b < bs.num_bones(); ++b)
+    for (int k = 0; k < gs.num_bones(); ++k)
+      if (gs.bones[k].name == bs.bones[b].name) {
+        const Eigen::RowVector3d p = bj.row(bs.bones[b].a);
+        worst = std::max(worst, (Eigen::RowVector3d(p.x(), p.z(), -p.y()) - gj.row(gs.bones[k].a)).norm());
+        ++compared;
+      }
+  WARN("BVH alone at frame 30: bone heads " << worst / diag << " of the rig's diagonal from the glb rig's");
+  CHECK(compared == 24);
+  CHECK(worst <= 1e-4 * diag);
+  // A scene file holds it.
+  const std::filesystem::path dir = temp_dir("bvh_alone");
+  const std::string scene = (dir / "skeleton.scene.json").string();
+  d.save_scene(scene);
+  Document back;
+  back.load_scene(scene);
+  CHECK(back.rig().skeleton.num_bones() == 25);
+  CHECK(back.keys().size() == 60);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("FBX, Collada and BVH import refuse broken files, naming them", "[assimp][import]") {
   const std::filesystem::path dir = temp_dir("bad");
   register_assimp_scene_importers();
@@ -223,7 +270,7 @@ TEST_CASE("FBX, Collada and BVH import refuse broken files, naming them", "[assi
   CHECK(r.exit_code == 1);
   CHECK(r.err.find("junk.fbx") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir / "x.scene.json"));
-  // BVH: junk motion names the file; a BVH without --onto is a usage error; opened alone it is refused.
+  // BVH: junk motion names the file, onto a rig, alone and through the CLI.
   const std::string bad_bvh = (dir / "bad.bvh").string();
   std::ofstream(bad_bvh) << "HIERARCHY\nROOT hips\n{\n OFFSET 0 0\n";
   Document d;
@@ -231,7 +278,10 @@ TEST_CASE("FBX, Collada and BVH import refuse broken files, naming them", "[assi
   CHECK_THROWS_WITH(d.load_motion(bad_bvh), Catch::Contains("bad.bvh"));
   CHECK_THROWS_WITH(d.import_scene(bad_bvh), Catch::Contains("bad.bvh"));
   const test::RunResult u = test::run_program(DFM_DEFORM_EXE, {"import", bad_bvh, "-o", (dir / "y.scene.json").string()}, dir);
-  CHECK(u.exit_code == 2);
+  CHECK(u.exit_code == 1);
+  CHECK(u.err.find("bad.bvh") != std::string::npos);
+  const test::RunResult o = test::run_program(DFM_DEFORM_EXE, {"import", junk, "--onto", (dir / "y.scene.json").string(), "-o", (dir / "z.scene.json").string()}, dir);
+  CHECK(o.exit_code == 2);  // --onto takes motion
   std::filesystem::remove_all(dir);
 }
 

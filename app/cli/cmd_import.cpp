@@ -1,5 +1,5 @@
 // `deform import`: a rigged, animated glTF, FBX or Collada file as a scene (core/export/gltf_scene_import.h,
-// assimp_scene_import.h), or BVH motion onto a scene's rig by bone name (bvh_motion.h).
+// assimp_scene_import.h), a BVH alone, or BVH motion onto a scene's rig by bone name (bvh_motion.h).
 #include <cstdio>
 #include <string>
 
@@ -13,11 +13,11 @@
 namespace {
 
 const char* kUsage =
-    "usage: deform import FILE.glb|.gltf|.fbx|.dae -o SCENE.scene.json\n"
+    "usage: deform import FILE.glb|.gltf|.fbx|.dae|.bvh -o SCENE.scene.json\n"
     "       deform import MOTION.bvh --onto SCENE.scene.json -o OUT.scene.json\n"
     "  FILE               a rigged file (glTF 2.0, FBX, Collada) with a skinned mesh: its mesh (vertices welded),\n"
     "                     one bone per joint, the file's weights (the scene is bound) and its first animation\n"
-    "                     as keys\n"
+    "                     as keys; a BVH alone: its skeleton as bones and its frames as keys, no mesh\n"
     "  MOTION.bvh --onto  the BVH's motion onto SCENE's bones by name (keys replaced; prints the names\n"
     "                     matched and not)\n"
     "  -o SCENE           the scene to write (JSON + .scene.bin sidecar); prints what was imported";
@@ -38,8 +38,7 @@ int run(const dfm::cli::Args& args) {
   if (in.empty()) throw dfm::cli::UsageError("FILE is required");
   if (!is_scene_json(out)) throw dfm::cli::UsageError("-o must name a .scene.json file");
   const std::string ext = dfm::file_extension(in);
-  if (ext == "bvh") {
-    if (onto.empty()) throw dfm::cli::UsageError("a BVH file is motion only: give the scene it drives with --onto SCENE.scene.json");
+  if (ext == "bvh" && !onto.empty()) {
     dfm::SceneData scene = dfm::read_scene(onto);
     dfm::BvhReport rep;
     dfm::apply_bvh_motion(scene, in, &rep);
@@ -49,7 +48,7 @@ int run(const dfm::cli::Args& args) {
   }
   if (!onto.empty()) throw dfm::cli::UsageError("--onto takes motion (.bvh), not " + in);
   const dfm::SceneImporter* import = dfm::scene_importer_for(in);
-  if (!import) throw dfm::Error(in + ": not a rigged file this reads (.glb .gltf .fbx .dae)");
+  if (!import) throw dfm::Error(in + ": not a rigged file this reads (.glb .gltf .fbx .dae .bvh)");
   std::string report;
   const dfm::SceneData scene = (*import)(in, report);
   dfm::write_scene(out, scene);
@@ -57,6 +56,6 @@ int run(const dfm::cli::Args& args) {
   return 0;
 }
 
-dfm::cli::Register reg{"import", "a rigged, animated glTF, FBX or Collada file as a scene; BVH motion onto one", kUsage, &run};
+dfm::cli::Register reg{"import", "a rigged, animated glTF, FBX, Collada or BVH file as a scene; BVH motion onto one", kUsage, &run};
 
 }  // namespace

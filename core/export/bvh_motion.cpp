@@ -136,6 +136,63 @@ void apply_bvh_motion(SceneData& scene, const std::string& path, BvhReport* repo
   scene.pose = rest_pose_params(scene.rig);
 }
 
+SceneData import_bvh_skeleton(const std::string& path, RigImportReport* report) {
+  const AssimpFile f = read_with_assimp(path, "BVH");
+  if (f.scene->mNumAnimations == 0) throw file_error(path, 0, "no motion");
+  const aiAnimation* anim = f.scene->mAnimations[0];
+  const AssimpNodes nodes = node_table(f.scene);
+  const std::vector<Eigen::Affine3d> rest = global_transforms(nodes, nullptr, 0);
+  // Joints: the nodes with a channel (End Sites have none), in the tree's order.
+  std::vector<int> joint_of(nodes.node.size(), -1), joint_node;
+  for (size_t i = 0; i < nodes.node.size(); ++i)
+    for (unsigned c = 0; c < anim->mNumChannels; ++c)
+      if (nodes.find(anim->mChannels[c]->mNodeName.C_Str()) == static_cast<int>(i) && joint_of[i] < 0) {
+        joint_of[i] = static_cast<int>(joint_node.size());
+        joint_node.push_back(static_cast<int>(i));
+      }
+  if (joint_node.empty()) throw file_error(path, 0, "no joint has motion");
+  const int n = static_cast<int>(joint_node.size());
+  std::vector<ImportJoint> joints(n);
+  Eigen::MatrixXd heads(n, 3);
+  for (int j = 0; j < n; ++j) {
+    const int node = joint_node[j];
+    joints[j].name = nodes.node[node]->mName.C_Str();
+    joints[j].bind = Eigen::Translation3d(rest[node].translation()) * Eigen::Affine3d::Identity();  // BVH axes: the file's
+    for (int a = nodes.parent[node]; a >= 0 && joints[j].parent < 0; a = nodes.parent[a]) joints[j].parent = joint_of[a];
+    heads.row(j) = rest[node].translation().transpose();
+  }
+  for (size_t i = 0; i < nodes.node.size(); ++i) {  // an End Site: its joint's bone's tail
+    const int p = nodes.parent[i];
+    if (p >= 0 && joint_of[i] < 0 && joint_of[p] >= 0 && nodes.node[i]->mNumChildren == 0 && !joints[joint_of[p]].end)
+      joints[joint_of[p]].end = rest[i].translation();
+  }
+  for (int j = 0; j < n; ++j)
+    if (joints[j].parent >= 0) joints[joints[j].parent].end.reset();
+  RigImportReport r;
+  r.meshes = 0;
+  r.joints = n;
+  double diagonal = (heads.colwise().maxCoeff() - heads.colwise().minCoeff()).norm();
+  if (!(diagonal > 0)) diagonal = 1;
+  SceneData s;
+  s.surface_path = path;
+  s.rig.skeleton = import_skeleton(joints, diagonal, &r);
+  s.pose = rest_pose_params(s.rig);
+  const double tps = ticks_per_second(anim);
+  for (double ticks : key_ticks(anim)) {
+    const std::vector<Eigen::Affine3d> G = global_transforms(nodes, anim, ticks);
+    std::vector<Eigen::Affine3d> T(n);
+    for (int j = 0; j < n; ++j) T[j] = G[joint_node[j]] * rest[joint_node[j]].inverse();
+    SceneKey k;
+    k.time = ticks / tps;
+    k.params = key_params(s.rig, T, path, k.time);
+    s.keys.push_back(std::move(k));
+  }
+  r.skipped.push_back("no mesh: a BVH file is a skeleton and its motion (bind a surface, or load-motion onto a rigged scene)");
+  finish_import(s, path, &r);
+  if (report) *report = r;
+  return s;
+}
+
 void register_bvh_importers() {
   register_motion_importer("bvh", [](const SceneData& scene, const std::string& path, std::string& report) {
     BvhReport r;
@@ -143,8 +200,11 @@ void register_bvh_importers() {
     report = r.text();
     return keys;
   });
-  register_scene_importer("bvh", [](const std::string& path, std::string&) -> SceneData {
-    throw Error(path + ": a BVH file is motion without a mesh; open a rigged scene and apply it with load-motion");
+  register_scene_importer("bvh", [](const std::string& path, std::string& report) {
+    RigImportReport r;
+    SceneData s = import_bvh_skeleton(path, &r);
+    report = r.text();
+    return s;
   });
 }
 

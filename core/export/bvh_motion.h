@@ -9,12 +9,14 @@
 //   S_k(t) = G_k(t) G_k(rest)^-1 the BVH joint's motion and A that similarity; a bone without a match
 //   follows its parent rigidly (rest relative to it). The keys, at the BVH's frames (frame i at
 //   i * Frame Time s: Blender's frame f at (f - 1) * Frame Time), replace the scene's.
-// - Alone: not yet. A scene here is a surface with handles, and a skeleton with no mesh has nothing to
-//   bind or skin; `open FILE.bvh` says so, naming the file (import or open a rigged mesh, then
-//   `load-motion FILE.bvh`).
+// - Alone (`open FILE.bvh`): a scene of bones and keys, no mesh. One bone per joint (a node with a
+//   channel), from its rest position (the OFFSETs summed) by import_skeleton's rule (rig_import.h): a
+//   leaf ends at its End Site; the file's axes and units as stored. Each frame a key reproducing
+//   G_k(t) G_k(rest)^-1. Bind a surface to it, or use load-motion onto a rigged scene.
 #include <string>
 #include <vector>
 
+#include "core/export/rig_import.h"
 #include "core/scene/document.h"
 
 namespace dfm {
@@ -38,8 +40,11 @@ std::vector<SceneKey> bvh_motion_keys(const SceneData& scene, const std::string&
 // bvh_motion_keys, then the scene's keys replaced by them (its pose back to rest).
 void apply_bvh_motion(SceneData& scene, const std::string& path, BvhReport* report = nullptr);
 
+// The BVH alone as a scene: bones and keys, no surface, no weights. Throws dfm::Error naming the file.
+SceneData import_bvh_skeleton(const std::string& path, RigImportReport* report = nullptr);
+
 // Registers BVH with core/scene/scene_import.h: motion onto the document's rig (Document::load_motion)
-// and, for `open FILE.bvh`, the refusal above naming the file.
+// and, for `open FILE.bvh`, import_bvh_skeleton.
 void register_bvh_importers();
 
 }  // namespace dfm

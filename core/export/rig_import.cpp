@@ -12,12 +12,15 @@ namespace dfm {
 
 std::string RigImportReport::text() const {
   std::ostringstream o;
-  o << "mesh: ";
-  if (meshes > 1) o << meshes << " skinned meshes, ";
-  o << file_vertices << " vertices in the file, " << vertices << " welded, " << triangles << " triangles; " << joints
+  if (meshes == 0) o << "no mesh; ";
+  else if (meshes > 1) o << "mesh: " << meshes << " skinned meshes, ";
+  else o << "mesh: ";
+  if (meshes > 0) o << file_vertices << " vertices in the file, " << vertices << " welded, " << triangles << " triangles; ";
+  o << joints
     << " joints as bones (" << bones_along_axis << " ending along their joint's axis";
   if (bones_to_end > 0) o << ", " << bones_to_end << " at the file's end node";
-  o << "); up to " << influences << " influences a vertex";
+  o << ")";
+  if (meshes > 0) o << "; up to " << influences << " influences a vertex";
   if (keys > 0) o << "; animation: " << keys << " keys over " << duration << " s";
   for (const std::string& s : skipped) o << "\nnot imported: " << s;
   return o.str();
