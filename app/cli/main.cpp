@@ -9,6 +9,7 @@
 #include "app/cli/command.h"
 #include "core/util/error.h"
 #include "core/bind/numeric_setup.h"
+#include "core/export/assimp_scene_import.h"
 #include "core/export/gltf_scene_import.h"
 
 namespace dfm::cli {
@@ -77,7 +78,8 @@ DFM_RUN_OPENMP_REGIONS_SERIALLY()
 
 int main(int argc, char** argv) {
   dfm::setup_numerics();  // before any bind (numeric_setup.h)
-  dfm::register_gltf_scene_importer();  // scripts' `open` reads rigged glTF as scenes
+  dfm::register_gltf_scene_importer();     // scripts' `open` reads rigged glTF as scenes
+  dfm::register_assimp_scene_importers();  // ... FBX and Collada; load-motion reads BVH
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     print_help();

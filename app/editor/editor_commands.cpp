@@ -17,6 +17,7 @@
 #include "core/mesh/io.h"
 #include "core/scene/bind_document.h"
 #include "core/scene/script.h"
+#include "core/scene/scene_import.h"
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
 
@@ -27,9 +28,11 @@ namespace {
 
 // The command that opening a file runs: a skeleton adds to the rig, a surface dropped with Alt onto a
 // document that has one adds a cage, anything else opens (a new document).
-CommandWords open_command(const std::string& path, bool alt, bool has_surface) {
+CommandWords open_command(const std::string& path, bool alt, bool has_surface, bool has_bones) {
   const std::string ext = file_extension(path);
   if (ext == "tgf") return {"load-skeleton", path};
+  // BVH: motion onto the rig by bone name; with no bones to drive, opened alone (its skeleton and keys).
+  if (has_bones && motion_importer_for(path)) return {"load-motion", path};
   if (alt && has_surface && (ext == "obj" || ext == "off" || ext == "ply" || ext == "stl")) return {"load-cage", path};
   return {"open", path};
 }
@@ -115,7 +118,7 @@ void Editor::open_any(const std::string& path) {
     return;
   }
   const bool alt = ImGui::GetCurrentContext() && ImGui::GetIO().KeyAlt;
-  const CommandWords words = open_command(path, alt, doc_.surface().num_vertices() > 0);
+  const CommandWords words = open_command(path, alt, doc_.surface().num_vertices() > 0, doc_.rig().skeleton.num_bones() > 0);
   if (words[0] == "open" && doc_.dirty() && pending_open_ != path) {
     pending_open_ = path;  // draw_open_prompt asks, then calls open_any again
     return;
@@ -149,7 +152,7 @@ void Editor::load_initial() {
     // A bad file on the command line is fatal for batch use (--quit), a message otherwise.
     if (!opts_.quit) return open_any(opts_.file);
     if (const std::string why = unopenable_reason(opts_.file); !why.empty()) throw Error(why);
-    return run_command(doc_, open_command(opts_.file, false, false), command_host());
+    return run_command(doc_, open_command(opts_.file, false, false, false), command_host());
   }
   const std::string def = find_default_scene();
   if (def.empty()) {

@@ -9,6 +9,7 @@
 #include "core/util/error.h"
 #include "render/gl_context.h"
 #include "core/bind/numeric_setup.h"
+#include "core/export/assimp_scene_import.h"
 #include "core/export/gltf_scene_import.h"
 
 namespace {
@@ -42,7 +43,8 @@ DFM_RUN_OPENMP_REGIONS_SERIALLY()
 
 int main(int argc, char** argv) {
   dfm::setup_numerics();  // before any bind (numeric_setup.h)
-  dfm::register_gltf_scene_importer();  // File > Open and `open` read rigged glTF as scenes
+  dfm::register_gltf_scene_importer();     // File > Open and `open` read rigged glTF as scenes
+  dfm::register_assimp_scene_importers();  // ... FBX and Collada; load-motion reads BVH
   dfm::editor::EditorOptions opts;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

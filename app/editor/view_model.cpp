@@ -49,11 +49,12 @@ std::string unopenable_reason(const std::string& path) {
   const std::string ext = file_extension(path);
   for (const char* e : {"json", "obj", "off", "ply", "stl", "mesh", "node", "ele", "tgf"})
     if (ext == e) return "";
-  if (scene_importer_for(path)) return "";  // rigged glTF (scene_import.h)
+  if (scene_importer_for(path) || motion_importer_for(path)) return "";  // rigged glTF, FBX, Collada; BVH motion
   std::string why = ext.empty() ? "'" + path + "' has no file extension"
                                 : "the editor cannot open '." + ext + "' files";
-  return why + ". It opens scenes (.scene.json), rigged glTF (.glb .gltf), surfaces (.obj .off .ply .stl), tet meshes "
-               "(.mesh, .node/.ele) and skeletons (.tgf); File > Load cage takes any surface file.";
+  return why + ". It opens scenes (.scene.json), rigged glTF, FBX and Collada (.glb .gltf .fbx .dae), surfaces (.obj .off "
+               ".ply .stl), tet meshes (.mesh, .node/.ele), skeletons (.tgf) and BVH motion onto the rig (.bvh); File > "
+               "Load cage takes any surface file.";
 }
 
 namespace {

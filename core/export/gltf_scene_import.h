@@ -6,12 +6,10 @@
 // - Mesh: the first node with a mesh and a skin; its vertices welded by position (glTF splits them at
 //   normal and UV seams) so the surface is closed where the source is. The skinned mesh node's own
 //   transform is ignored, as the specification says.
-// - Bones: one per joint, in the skin's joint order (so a joint's weights are its bone's handle). A
-//   bone runs from the joint's bind position (the inverse bind matrix's inverse applied to the origin)
-//   to its children's, when they all start at one point; otherwise (several children apart, or none)
-//   along the joint's own y axis (Blender's bone axis), as long as the mean distance to its children,
-//   else its parent bone, else 5% of the mesh's diagonal. Names are the joint nodes' names (without the
-//   "N:" prefix this program's export gives joint N).
+// - Bones: one per joint, in the skin's joint order (so a joint's weights are its bone's handle), from
+//   the joint's bind position (the inverse bind matrix's inverse applied to the origin) by
+//   import_skeleton's rule (rig_import.h; glTF has no end nodes). Names are the joint nodes' names
+//   (without the "N:" prefix this program's export gives joint N).
 // - Weights: every JOINTS_n / WEIGHTS_n set summed per joint, rows normalized.
 // - Animation: the first animation sampled at each of its key times (glTF sampling: LINEAR, STEP and
 //   CUBICSPLINE; a cubic curve also at kCubicSamplesPerInterval - 1 times inside each interval).
@@ -22,19 +20,12 @@
 #include <string>
 #include <vector>
 
+#include "core/export/rig_import.h"
 #include "core/scene/document.h"
 
 namespace dfm {
 
-struct GltfImportReport {
-  int file_vertices = 0, vertices = 0, triangles = 0;
-  int joints = 0, bones_along_axis = 0;  // bones whose end came from the joint's axis, not its children
-  int influences = 0;                    // most nonzero weights on one vertex
-  int keys = 0;
-  double duration = 0;                   // seconds
-  std::vector<std::string> skipped;
-  std::string text() const;              // a few lines for the CLI and the notes panel
-};
+using GltfImportReport = RigImportReport;
 
 // Throws dfm::Error naming the file and the problem (no skinned mesh, a singular inverse bind matrix,
 // joints or weights out of range, an animated scale, what read_gltf refuses).

@@ -16,7 +16,7 @@ void opened(const CommandContext& x, Opened what) {
 }
 
 void open(CommandContext& x, const CommandWords& w) {
-  const bool imported = scene_importer_for(w[1]) != nullptr;  // rigged glTF (scene_import.h)
+  const bool imported = scene_importer_for(w[1]) != nullptr;  // rigged glTF, FBX, Collada (scene_import.h)
   const bool scene = imported || ends_with(w[1], ".json");
   if (imported) x.print("open: " + x.doc.import_scene(w[1]));
   else if (scene) x.doc.load_scene(w[1]);
@@ -61,6 +61,9 @@ void bind_monotone(CommandContext& x, const CommandWords& w) {
 void add_rig_commands(std::vector<Command>& t) {
   Command* c = &add(t, "open", "open FILE", 1, 1, {file_arg()}, open);
   c->undoable = false;  // a new document: undo starts empty
+  c->remember_file = true;
+  c = &add(t, "load-motion", "load-motion FILE.bvh", 1, 1, {file_arg()},
+           [](CommandContext& x, const CommandWords& w) { x.print("load-motion: " + x.doc.load_motion(w[1])); });
   c->remember_file = true;
   c = &add(t, "replace-surface", "replace-surface FILE", 1, 1, {file_arg()}, [](CommandContext& x, const CommandWords& w) {
     x.doc.replace_surface(w[1]);

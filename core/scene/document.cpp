@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "core/scene/document_parts.h"
 #include "core/scene/scene_file.h"
@@ -270,6 +271,19 @@ std::string Document::import_scene(const std::string& path) {
   std::string report;
   SceneData d = (*import)(path, report);  // throws before anything changes
   start_document(std::move(d), "");
+  return report;
+}
+
+std::string Document::load_motion(const std::string& path) {
+  const MotionImporter* import = motion_importer_for(path);
+  if (!import) throw Error(path + ": no importer reads motion from this kind of file");
+  if (s_.rig.skeleton.num_bones() == 0) throw Error(path + ": motion needs bones to drive (the scene has none)");
+  std::string report;
+  std::vector<SceneKey> keys = (*import)(s_, path, report);  // throws before anything changes
+  execute("motion " + std::filesystem::path(path).filename().string(), kKeys | kPose, "", [&](SceneData& s) {
+    s.keys = std::move(keys);
+    s.pose = rest_pose_params(s.rig);
+  });
   return report;
 }
 

@@ -213,6 +213,10 @@ class Document {
   // A file a registered importer reads as a whole scene (scene_import.h: rigged glTF): a new, unsaved
   // document. Returns the importer's report. Throws dfm::Error when no importer reads the extension.
   std::string import_scene(const std::string& path);
+  // Motion a registered importer reads onto the rig (scene_import.h: BVH by bone name) replaces the
+  // keys, the pose back to rest; one undo step. Returns the importer's report (names matched and not).
+  // Throws dfm::Error (no importer for the extension, no bones, the file's problem); nothing changes then.
+  std::string load_motion(const std::string& path);
   // Atomic save (sidecar first, then JSON); sets path() and clears dirty.
   void save_scene(const std::string& path);
   // Writes autosave_path(path()) (or autosave_path("untitled.scene.json") in the working directory if
