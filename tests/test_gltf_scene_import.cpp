@@ -179,7 +179,7 @@ TEST_CASE("glTF round trip: a bones-only scene exported and imported again plays
   const double diag = (m.V.colwise().maxCoeff() - m.V.colwise().minCoeff()).norm();
   REQUIRE(s.rig.skeleton.num_bones() == 3);
   for (int b = 0; b < 3; ++b) {
-    CHECK(s.rig.skeleton.bones[b].name == handle_name(d.rig(), b));
+    CHECK(handle_name(s.rig, num_point_handles(s.rig) + b) == handle_name(d.rig(), b));
     CHECK(s.rig.skeleton.bones[b].parent == d.rig().skeleton.bones[b].parent);
     const Eigen::RowVector3d head = s.rig.skeleton.joints.row(s.rig.skeleton.bones[b].a);
     CHECK((head - d.rig().skeleton.joints.row(d.rig().skeleton.bones[b].a)).norm() < 1e-6 * diag);
@@ -236,4 +236,121 @@ TEST_CASE("Rebind on the imported elephant: bounded biharmonic weights on its bo
                                                                         << " of the diagonal");
   CHECK(mean < 0.01 * diag);
   CHECK(worst < 0.05 * diag);
+}
+
+namespace {
+
+// Weights for a round trip: per vertex the 4 nearest handles (points and cage vertices by position,
+// bones by their segment) by inverse fourth power of the distance, rows summing to 1. Four, so the
+// export keeps every one and the posed meshes can be compared exactly.
+Eigen::MatrixXd nearest_four_weights(const Eigen::MatrixXd& V, const Rig& rig) {
+  const int n = num_handles(rig);
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(V.rows(), n);
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const Eigen::Vector3d x = V.row(i).transpose();
+    std::vector<std::pair<double, int>> d;
+    int cage_vertex = 0;
+    for (int h = 0; h < n; ++h) {
+      const HandleRef r = handle_ref(rig, h);
+      double dist = 0;
+      if (r.kind == HandleKind::Point) {
+        dist = (x - rig.points[r.index].position).norm();
+      } else if (r.kind == HandleKind::Bone) {
+        const Eigen::Vector3d a = rig.skeleton.joints.row(rig.skeleton.bones[r.index].a).transpose();
+        const Eigen::Vector3d b = rig.skeleton.joints.row(rig.skeleton.bones[r.index].b).transpose();
+        const double u = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+        dist = (x - (a + u * (b - a))).norm();
+      } else {
+        dist = (x - rig.cages[r.cage].mesh.V.row(r.index).transpose()).norm();
+        ++cage_vertex;
+      }
+      d.emplace_back(dist, h);
+    }
+    std::partial_sort(d.begin(), d.begin() + std::min(4, n), d.end());
+    for (int k = 0; k < std::min(4, n); ++k) W(i, d[k].second) = 1.0 / (1e-4 + std::pow(d[k].first, 4));
+    W.row(i) /= W.row(i).sum();
+  }
+  return W;
+}
+
+// Export -> import: the same handles (kinds, names, positions, bones' joints, cages), the weights to
+// float precision and the mesh at every key within 1e-5 of the diagonal.
+void check_round_trip(Document& d, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("dfm_gltf_rt_" + name + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string glb = (dir / (name + ".glb")).string();
+  export_document_gltf(d, glb);
+  GltfImportReport report;
+  const SceneData s = import_gltf_scene(glb, &report);
+  INFO(name << ": " << report.text());
+  CHECK(report.rig_from_extras);
+  const Rig& a = d.rig();
+  const Rig& b = s.rig;
+  REQUIRE(num_handles(b) == num_handles(a));
+  REQUIRE(b.points.size() == a.points.size());
+  REQUIRE(b.skeleton.num_bones() == a.skeleton.num_bones());
+  REQUIRE(b.cages.size() == a.cages.size());
+  for (int h = 0; h < num_handles(a); ++h) CHECK(handle_name(b, h) == handle_name(a, h));
+  for (size_t p = 0; p < a.points.size(); ++p) CHECK(b.points[p].position == a.points[p].position);
+  CHECK(b.skeleton.joints == a.skeleton.joints);
+  for (int k = 0; k < a.skeleton.num_bones(); ++k) {
+    CHECK(b.skeleton.bones[k].a == a.skeleton.bones[k].a);
+    CHECK(b.skeleton.bones[k].b == a.skeleton.bones[k].b);
+    CHECK(b.skeleton.bones[k].parent == a.skeleton.bones[k].parent);
+  }
+  for (size_t c = 0; c < a.cages.size(); ++c) {
+    CHECK(b.cages[c].mesh.V == a.cages[c].mesh.V);
+    CHECK(b.cages[c].mesh.F == a.cages[c].mesh.F);
+  }
+  const Eigen::MatrixXd& V = d.surface().V;
+  const double diag = diagonal(V);
+  REQUIRE(s.surface.V.rows() == V.rows());
+  const std::vector<int> at = nearest(V, s.surface.V);
+  double moved = 0, weight = 0;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    moved = std::max(moved, (V.row(i) - s.surface.V.row(at[i])).norm());
+    weight = std::max(weight, (d.weights().row(i) - s.weights.row(at[i])).cwiseAbs().maxCoeff());
+  }
+  CHECK(moved < 1e-6 * diag);
+  CHECK(weight < 1e-6);
+  REQUIRE(s.keys.size() == d.keys().size());
+  register_gltf_scene_importer();
+  Document back;
+  back.import_scene(glb);
+  for (const SceneKey& k : d.keys()) {
+    d.set_time(k.time);
+    back.set_time(k.time);
+    const TriMesh p = posed_surface(d), q = posed_surface(back);
+    double worst = 0;
+    for (Eigen::Index i = 0; i < V.rows(); ++i) worst = std::max(worst, (p.V.row(i) - q.V.row(at[i])).norm());
+    INFO("key at " << k.time);
+    CHECK(worst < 1e-5 * diag);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+
+TEST_CASE("glTF round trip: the default scene (points, bones, a cage) and the hand come back as they were", "[gltf][import][data]") {
+  // The default scene: three points, ten bones and a cage; keyed with a turned bone, a moved point and a
+  // moved cage vertex.
+  Document teddy;
+  teddy.load_scene(std::string(DFM_SOURCE_DIR) + "/assets/default.scene.json");
+  REQUIRE(!teddy.rig().points.empty());
+  REQUIRE(!teddy.rig().cages.empty());
+  teddy.set_weights(nearest_four_weights(teddy.surface().V, teddy.rig()), {});
+  const int cage0 = num_point_handles(teddy.rig()) + teddy.rig().skeleton.num_bones();
+  run_script(teddy, parse_script("set-key 0\nselect l_ear\ntranslate 0 0.04 0.01\nselect 3\nrotate 35 0 0 1\nselect " +
+                                     std::to_string(cage0) + "\ntranslate 0.02 0 0\nset-key 1\n", "k.txt"), "k.txt");
+  check_round_trip(teddy, "teddy");
+
+  // The hand (a tet mesh's boundary and hand.tgf's bones), two keys.
+  DFM_DATA_OR_SKIP(mesh, "hand.mesh");
+  DFM_DATA_OR_SKIP(tgf, "hand.tgf");
+  Document hand;
+  hand.replace_surface(mesh);
+  hand.load_skeleton(tgf);
+  hand.set_weights(nearest_four_weights(hand.surface().V, hand.rig()), {});
+  run_script(hand, parse_script("set-key 0\nselect 5\nrotate 30 1 0 0\nselect 12\nrotate -25 0 0 1\nset-key 1\n", "k.txt"), "k.txt");
+  check_round_trip(hand, "hand");
 }

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
 #include "core/export/gltf_import.h"
+#include "core/export/gltf_rig_extras.h"
 #include "core/export/rig_import.h"
 #include "core/rig/pose_params.h"
 #include "core/scene/scene_import.h"
@@ -56,6 +58,52 @@ std::vector<Eigen::Affine3d> joint_matrices(const GltfDocument& g, double t) {
   return T;
 }
 
+// This program's rig, from the extras its export writes on the skin's root joints' parent
+// (gltf_rig_extras.h), when it has one handle per joint; else none (bones are made from the joints).
+std::optional<Rig> extras_rig(const GltfDocument& g, int surface_vertices, const std::string& path) {
+  for (int j : g.joints) {
+    const int p = g.nodes[j].parent;
+    if (p < 0 || g.nodes[p].deform_rig.empty()) continue;
+    Rig rig = rig_from_extras_json(g.nodes[p].deform_rig, surface_vertices, path);
+    if (num_handles(rig) != static_cast<int>(g.joints.size())) return std::nullopt;
+    return rig;
+  }
+  return std::nullopt;
+}
+
+bool is_rotation(const Eigen::Matrix3d& L) {
+  return (L.transpose() * L - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6 && L.determinant() > 0;
+}
+
+// The key's parameters for every kind of handle of an extras rig, from the joint matrices A (one per
+// handle, rig.h order): bones by forward kinematics (key_params), points by a translation and turn about
+// the point, cage vertices by a translation, regions by their affine; a transform those fields cannot
+// hold (a point that scales, a cage vertex that turns) as the handle's solved transform, which replaces
+// them.
+PoseParams extras_key_params(const Rig& rig, const std::vector<Eigen::Affine3d>& A, const std::string& path, double t) {
+  const int np = num_point_handles(rig), nb = rig.skeleton.num_bones();
+  PoseParams p = key_params(rig, std::vector<Eigen::Affine3d>(A.begin() + np, A.begin() + np + nb), path, t);
+  for (int h = 0; h < static_cast<int>(A.size()); ++h) {
+    const HandleRef r = handle_ref(rig, h);
+    if (r.kind == HandleKind::Bone) continue;
+    const Eigen::Matrix3d L = A[h].linear();
+    if (r.kind == HandleKind::Region) {
+      p.region_transform[r.index] = A[h];
+    } else if (r.kind == HandleKind::Point && is_rotation(L)) {
+      const Eigen::Vector3d x = rig.points[r.index].position;
+      p.point_translation[r.index] = A[h] * x - x;
+      p.point_rotation[r.index] = Eigen::Quaterniond(L).normalized();
+    } else if (r.kind == HandleKind::CageVertex && (L - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() < 1e-6) {
+      int first = 0;
+      for (int c = 0; c < r.cage; ++c) first += static_cast<int>(rig.cages[c].mesh.V.rows());
+      p.cage_translation[first + r.index] = A[h].translation();
+    } else {
+      p.solved[h] = A[h];
+    }
+  }
+  return p;
+}
+
 }  // namespace
 
 SceneData import_gltf_scene(const std::string& path, GltfImportReport* report) {
@@ -84,10 +132,16 @@ SceneData import_gltf_scene(const std::string& path, GltfImportReport* report) {
     for (Eigen::Index c = 0; c < g.skinned.joints.cols(); ++c)
       influences.push_back({static_cast<int>(v), g.skinned.joints(v, c), g.skinned.weights(v, c)});
   SceneData s = imported_scene(w, joints, welded_weights(influences, w, n, path, &r.influences), path, &r);
+  const std::optional<Rig> ours = extras_rig(g, static_cast<int>(s.surface.V.rows()), path);
+  if (ours) {  // this program's export: its own handles back, in the joints' (= handles') order
+    s.rig = *ours;
+    s.pose = rest_pose_params(s.rig);
+    r.rig_from_extras = true;
+  }
   for (double t : g.key_times()) {
     SceneKey k;
     k.time = t;
-    k.params = key_params(s.rig, joint_matrices(g, t), path, t);
+    k.params = ours ? extras_key_params(s.rig, joint_matrices(g, t), path, t) : key_params(s.rig, joint_matrices(g, t), path, t);
     s.keys.push_back(std::move(k));
   }
   finish_import(s, path, &r);

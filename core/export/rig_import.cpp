@@ -16,10 +16,13 @@ std::string RigImportReport::text() const {
   else if (meshes > 1) o << "mesh: " << meshes << " skinned meshes, ";
   else o << "mesh: ";
   if (meshes > 0) o << file_vertices << " vertices in the file, " << vertices << " welded, " << triangles << " triangles; ";
-  o << joints
-    << " joints as bones (" << bones_along_axis << " ending along their joint's axis";
-  if (bones_to_end > 0) o << ", " << bones_to_end << " at the file's end node";
-  o << ")";
+  if (rig_from_extras) {
+    o << joints << " joints as this program's own handles (the rig its export stored)";
+  } else {
+    o << joints << " joints as bones (" << bones_along_axis << " ending along their joint's axis";
+    if (bones_to_end > 0) o << ", " << bones_to_end << " at the file's end node";
+    o << ")";
+  }
   if (meshes > 0) o << "; up to " << influences << " influences a vertex";
   if (keys > 0) o << "; animation: " << keys << " keys over " << duration << " s";
   for (const std::string& s : skipped) o << "\nnot imported: " << s;

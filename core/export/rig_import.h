@@ -23,6 +23,7 @@ struct RigImportReport {
   int influences = 0;                    // most nonzero weights on one vertex
   int keys = 0;
   double duration = 0;                   // seconds
+  bool rig_from_extras = false;          // this program's own rig, from its glTF export's extras
   std::vector<std::string> skipped;
   std::string text() const;              // a few lines
 };

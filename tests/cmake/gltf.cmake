@@ -11,7 +11,7 @@ target_compile_definitions(test_gltf_data PRIVATE DFM_GLTF_VALIDATOR_DIR="${CMAK
 add_dependencies(test_gltf_data deform)
 # Import: a rigged, animated glTF file as a scene, against Blender's own posed meshes (../shared/data/rigged).
 dfm_test(test_gltf_scene_import SOURCES test_gltf_scene_import.cpp LIBS dfm_export dfm_scene)
-target_compile_definitions(test_gltf_scene_import PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>")
+target_compile_definitions(test_gltf_scene_import PRIVATE DFM_DEFORM_EXE="$<TARGET_FILE:deform>" DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 add_dependencies(test_gltf_scene_import deform)
 # CUBICSPLINE curves: the reader's Hermite sampling and the import's keys along the curve.
 dfm_test(test_gltf_cubic SOURCES test_gltf_cubic.cpp LIBS dfm_export dfm_scene)
