@@ -74,7 +74,7 @@ FastDynamics::FastDynamics(const FastModel& model, const FastMass& mass, std::ve
   S0_ = Eigen::MatrixXd::Zero(T0_.rows(), 3);
 }
 
-double FastDynamics::step(Pose& pose, const std::vector<Eigen::Vector3d>& targets) {
+void FastDynamics::step(Pose& pose, const std::vector<Eigen::Vector3d>& targets) {
   const double h = opts_.dt;
   // The inertial guess Y (damped velocity) is the warm start and, through a Mt Y, the right-hand side.
   const Eigen::MatrixXd Y = T0_ + (h / (1 + opts_.damping * h)) * S0_;
@@ -85,12 +85,10 @@ double FastDynamics::step(Pose& pose, const std::vector<Eigen::Vector3d>& target
   const Pose guess = pose_from_matrix(Y);
   for (size_t q = 0; q < solver_.constraints().size(); ++q)
     if (solver_.constraints()[q].state != HandleConstraint::Fixed) pose.transforms[q] = guess.transforms[q];
-  if (opts_.iterations > 1) solver_.iterate(pose, opts_.iterations - 1);
-  const double energy = solver_.iterate(pose, true);
+  solver_.iterate(pose, opts_.iterations);
   const Eigen::MatrixXd T = pose_matrix(pose);
   S0_ = (T - T0_) / h;
   T0_ = T;
-  return energy;
 }
 
 double FastDynamics::kinetic_energy() const { return 0.5 * (S0_.transpose() * mass_->Mt * S0_).trace(); }

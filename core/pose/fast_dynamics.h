@@ -47,9 +47,9 @@ class FastDynamics {
                std::vector<FastJoint> joints, const FastDynamicsOptions& opts, const Pose& start);
 
   // One time step: `pose` supplies the Fixed handles' transforms and receives every handle's
-  // transforms at the new time; targets as FastSolver::set_targets. Returns the step's energy
-  // (Eq. 7.36's objective) after the last iteration.
-  double step(Pose& pose, const std::vector<Eigen::Vector3d>& targets);
+  // transforms at the new time; targets as FastSolver::set_targets. solver().iterate(pose) gives
+  // Eq. 7.36's objective for the step just taken, if wanted (it costs as much as an iteration).
+  void step(Pose& pose, const std::vector<Eigen::Vector3d>& targets);
 
   const Eigen::MatrixXd& transforms() const { return T0_; }  // 4m x 3, pose_matrix layout
   const Eigen::MatrixXd& velocity() const { return S0_; }    // 4m x 3, dT/dt
