@@ -41,8 +41,8 @@ struct FastDynamicsOptions {
 // The state a simulation carries from step to step (T0, S0) and the solver built for it.
 class FastDynamics {
  public:
-  // `start`: the transforms at rest at t = 0 (velocity zero). Throws dfm::Error for h <= 0, c < 0,
-  // fewer than one iteration or mismatched sizes.
+  // `model` and `mass` must outlive it. `start`: the transforms at rest at t = 0 (velocity zero).
+  // Throws dfm::Error for h <= 0, c < 0, fewer than one iteration or mismatched sizes.
   FastDynamics(const FastModel& model, const FastMass& mass, std::vector<FastConstraint> constraints,
                std::vector<FastJoint> joints, const FastDynamicsOptions& opts, const Pose& start);
 
