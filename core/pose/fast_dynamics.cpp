@@ -77,18 +77,20 @@ FastDynamics::FastDynamics(const FastModel& model, const FastMass& mass, std::ve
 void FastDynamics::step(Pose& pose, const std::vector<Eigen::Vector3d>& targets) {
   const double h = opts_.dt;
   // The inertial guess Y (damped velocity) is the warm start and, through a Mt Y, the right-hand side.
-  const Eigen::MatrixXd Y = T0_ + (h / (1 + opts_.damping * h)) * S0_;
-  B_.noalias() = a_ * (mass_->Mt * Y);
+  Y_ = T0_ + (h / (1 + opts_.damping * h)) * S0_;
+  B_.noalias() = a_ * (mass_->Mt * Y_);
   B_.noalias() += mass_->moments * opts_.gravity.transpose();
-  solver_.set_targets(pose, targets);
-  solver_.set_linear_term(B_);
-  const Pose guess = pose_from_matrix(Y);
-  for (size_t q = 0; q < solver_.constraints().size(); ++q)
-    if (solver_.constraints()[q].state != HandleConstraint::Fixed) pose.transforms[q] = guess.transforms[q];
+  solver_.set_targets(pose, targets, B_);
+  const std::vector<FastConstraint>& cons = solver_.constraints();
+  for (size_t q = 0; q < cons.size(); ++q)
+    if (cons[q].state != HandleConstraint::Fixed) pose.transforms[q].matrix().topRows<3>() = Y_.block<4, 3>(4 * q, 0).transpose();
   solver_.iterate(pose, opts_.iterations);
-  const Eigen::MatrixXd T = pose_matrix(pose);
-  S0_ = (T - T0_) / h;
-  T0_ = T;
+  // S0 = (T - T0) / h and T0 = T, block by block (no temporaries).
+  for (size_t q = 0; q < cons.size(); ++q) {
+    const Eigen::Matrix<double, 4, 3> T = pose.transforms[q].matrix().topRows<3>().transpose();
+    S0_.block<4, 3>(4 * q, 0) = (T - T0_.block<4, 3>(4 * q, 0)) / h;
+    T0_.block<4, 3>(4 * q, 0) = T;
+  }
 }
 
 double FastDynamics::kinetic_energy() const { return 0.5 * (S0_.transpose() * mass_->Mt * S0_).trace(); }

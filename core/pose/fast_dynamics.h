@@ -62,7 +62,7 @@ class FastDynamics {
   FastDynamicsOptions opts_;
   double a_ = 0;  // (1 + c h) / h^2
   FastSolver solver_;
-  Eigen::MatrixXd T0_, S0_, B_;
+  Eigen::MatrixXd T0_, S0_, Y_, B_;
 };
 
 }  // namespace dfm

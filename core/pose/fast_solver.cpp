@@ -64,7 +64,9 @@ FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> const
   joints.erase(std::remove_if(joints.begin(), joints.end(),
                               [&](const FastJoint& jt) { return constraints_[jt.child].state == HandleConstraint::Fixed; }),
                joints.end());
-  const std::vector<int> u = block_indices(unknown_), f = block_indices(fixed_);
+  unknown_rows_ = block_indices(unknown_);
+  const std::vector<int>& u = unknown_rows_;
+  const std::vector<int> f = block_indices(fixed_);
   const int nu = static_cast<int>(u.size()), c = static_cast<int>(position_.size());
   const int k = c + static_cast<int>(joints.size());  // constraint rows: positions, then joints
   Kt_u_ = model.Kt(Eigen::all, u);
@@ -112,6 +114,18 @@ FastSolver::FastSolver(const FastModel& model, std::vector<FastConstraint> const
 }
 
 void FastSolver::set_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets) {
+  read_targets(pose, targets);
+  update_phi();
+}
+
+void FastSolver::set_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets, const Eigen::MatrixXd& B) {
+  check_linear_term(B);
+  read_targets(pose, targets);
+  B_ = B;
+  update_phi();
+}
+
+void FastSolver::read_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets) {
   if (pose.size() != model_->handles) throw Error("FAST: the pose has the wrong number of handles");
   for (size_t q = 0; q < fixed_.size(); ++q) {
     T_fixed_.block<3, 3>(4 * q, 0) = pose.transforms[fixed_[q]].linear().transpose();
@@ -122,15 +136,18 @@ void FastSolver::set_targets(const Pose& pose, const std::vector<Eigen::Vector3d
       throw Error("FAST: no target for position-constrained handle " + std::to_string(position_[p]));
     P_.row(p) = targets[position_[p]].transpose();
   }
-  s_fixed_ = Kt_f_ * T_fixed_;
-  update_phi();
+  s_fixed_.noalias() = Kt_f_ * T_fixed_;
 }
 
-void FastSolver::set_linear_term(const Eigen::MatrixXd& B) {
+void FastSolver::check_linear_term(const Eigen::MatrixXd& B) const {
   if (!inertia_.size()) throw Error("FAST: a linear term needs a solver built with an inertia term");
   if (B.rows() != 4 * model_->handles || B.cols() != 3)
     throw Error("FAST: the linear term is " + std::to_string(B.rows()) + " x " + std::to_string(B.cols()) + " for " +
                 std::to_string(model_->handles) + " handles");
+}
+
+void FastSolver::set_linear_term(const Eigen::MatrixXd& B) {
+  check_linear_term(B);
   B_ = B;
   update_phi();
 }
@@ -138,7 +155,7 @@ void FastSolver::set_linear_term(const Eigen::MatrixXd& B) {
 void FastSolver::update_phi() {
   if (!unknown_.empty()) {
     phi_ = pi_fixed_ * T_fixed_ + pi_targets_ * P_;
-    if (inertia_.size()) phi_.noalias() += pi_linear_ * B_(block_indices(unknown_), Eigen::all);
+    if (inertia_.size()) phi_.noalias() += pi_linear_ * B_(unknown_rows_, Eigen::all);
   }
   if (rotation_space_) s_const_ = Kt_u_ * phi_ + s_fixed_;
 }

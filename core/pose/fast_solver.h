@@ -45,6 +45,8 @@ class FastSolver {
   // (T0 + h S0)^T Mt, plus external forces. Only a solver built with `inertia` takes one (else
   // dfm::Error); it moves Phi, never the local step (7.7.1).
   void set_linear_term(const Eigen::MatrixXd& B);
+  // Both at once (Phi formed once): what a dynamics step sets.
+  void set_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets, const Eigen::MatrixXd& B);
 
   // One iteration: local step from the current transforms of `pose` (warm start), global step written
   // back into its non-fixed handles. Returns E(T, R) after the global step (Eq. 7.15 plus the rest
@@ -66,11 +68,14 @@ class FastSolver {
   void global_step(Pose& pose) const;     // T_u = Gamma R^T + Phi into pose
   void write_unknown_blocks(Pose& pose) const;
   void update_phi();  // Phi and s_const from T_fixed_, P_ and B_
+  void read_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets);  // T_fixed_, P_, s_fixed_
+  void check_linear_term(const Eigen::MatrixXd& B) const;
   double dynamic_terms(const Eigen::MatrixXd& T) const;  // 1/2 tr(T^T inertia T) - tr(B^T T)
 
   const FastModel* model_;
   std::vector<FastConstraint> constraints_;
   std::vector<int> unknown_, fixed_, position_;  // handle indices by state
+  std::vector<int> unknown_rows_;                 // rows of T in the unknown blocks
   Eigen::MatrixXd Kt_u_, Kt_f_;     // Kt's columns of unknown / fixed blocks
   Eigen::MatrixXd gamma_;           // 4u x 3r
   Eigen::MatrixXd pi_fixed_;        // 4u x 4f: -Pi11 Lt_uf - Pi12 C_f (joint rows on fixed blocks)
