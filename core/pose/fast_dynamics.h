@@ -34,7 +34,7 @@ FastMass fast_mass(const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements, co
 struct FastDynamicsOptions {
   double dt = 1.0 / 60;   // h, seconds
   double damping = 4.0;   // c, 1/s: mass-proportional; the arm's step settles within 2% in 1.6 s
-  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // off by default
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // model units / s^2; off by default
   int iterations = 4;     // local-global iterations per step, warm-started at the inertial guess Y
 };
 
