@@ -126,6 +126,12 @@ TEST_CASE("dynamics, 7.7: the lumped mass in the subspace is W^T M W (7.7.2)", "
   const MatrixXd S = MatrixXd::Random(12, 3), M = lbs_matrix(t.mesh.V, t.W);
   CHECK(0.5 * (S.transpose() * mass.Mt * S).trace() ==
         Approx(0.5 * (m.asDiagonal() * (M * S).rowwise().squaredNorm()).sum()).epsilon(1e-10));
+  // Tets: a quarter of each volume per vertex; the unit tet has volume 1/6 and diagonal sqrt(3).
+  MatrixXd Vt(4, 3);
+  Vt << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  const FastMass tet = fast_mass(Vt, Eigen::RowVector4i(0, 1, 2, 3), MatrixXd::Ones(4, 1));
+  CHECK(tet.total == Approx(1.0 / 6 / 3).epsilon(1e-12));
+  CHECK(tet.moments(3) == Approx(1.0 / 6 / 3).epsilon(1e-12));  // W^T M 1: the translation row
   CHECK_THROWS_WITH(fast_mass(t.mesh.V, t.mesh.F, t.W, 1.0, Eigen::VectorXd::Ones(3)),
                     Catch::Contains("mass mask of 3 values"));
   FastDynamicsOptions bad;
