@@ -2,6 +2,8 @@
 //  * armadillo.obj with 10 point handles (farthest-point surface vertices, BBW bind), the spokes-and-rims
 //    energy on the surface and the tet energy on the bind's volume;
 //  * hand.mesh with its 20 bones (BBW bind on the tet mesh), the tet energy.
+// Next to the static iteration, the same drag with dynamics (7.7): one time step per call, its
+// right-hand side (a Mt Y) set per step, 1 or 4 iterations per step.
 // Per iteration the figure is the mean over a simulated drag (the target moves every iteration); the
 // baseline in the same process is one CPU LBS of the display mesh with every weight (what posing costs).
 #include <algorithm>
@@ -12,6 +14,7 @@
 
 #include "core/bind/bind.h"
 #include "core/mesh/io.h"
+#include "core/pose/fast_dynamics.h"
 #include "core/pose/fast_model.h"
 #include "core/pose/fast_rig.h"
 #include "core/pose/fast_solver.h"
@@ -75,6 +78,17 @@ static void run_case(const Case& c) {
   };
   const int iterations = 5000, frames = iterations / 8;
   const double per_iteration_us = 1e6 * drag(iterations, 1);
+  // The same with set_targets in the timed part, as a dynamics step has its right-hand side in it.
+  double with_targets_s = 0;
+  for (int k = 0; k < iterations; ++k) {
+    pose.transforms[c.dragged] = Eigen::Translation3d(Eigen::Vector3d(0.1 * diag * k / iterations, 0, 0));
+    const std::vector<Eigen::Vector3d> targets = dfm::fast_targets(ca, pose);
+    t0 = Clock::now();
+    solver.set_targets(pose, targets);
+    solver.iterate(pose, false);
+    with_targets_s += seconds_since(t0);
+  }
+  const double with_targets_us = 1e6 * with_targets_s / iterations;
   const double batched_us = 1e6 * drag(frames, 8);
   const dfm::SkinBinding binding = dfm::make_skin_binding(c.display_V, Eigen::MatrixXd(), c.display_W, c.rig, 0);
   double lbs_s = 1e300;
@@ -87,6 +101,32 @@ static void run_case(const Case& c) {
               iterations);
   std::printf("  one iteration %.2f us in frames of 8 (mean of %d frames); ratio to single calls %.2f\n",
               batched_us, frames, batched_us / per_iteration_us);
+  // Dynamics on the same constraints (7.7.2): the switch with the momentum term, then steps of the drag.
+  t0 = Clock::now();
+  const dfm::FastMass mass = dfm::fast_mass(c.V, c.elements, c.W);
+  const double mass_s = seconds_since(t0);
+  for (const int per_step : {1, 4}) {
+    dfm::FastDynamicsOptions opts;
+    opts.iterations = per_step;
+    dfm::FastDynamics dyn(model, mass, ca, {}, opts, dfm::identity_pose(model.handles));
+    dfm::Pose p = dfm::identity_pose(model.handles);
+    const int steps = 5000 / per_step;
+    double s = 0;
+    for (int k = 0; k < steps; ++k) {
+      p.transforms[c.dragged] = Eigen::Translation3d(Eigen::Vector3d(0.1 * diag * k / steps, 0, 0));
+      const std::vector<Eigen::Vector3d> targets = dfm::fast_targets(ca, p);
+      t0 = Clock::now();
+      dyn.step(p, targets);
+      s += seconds_since(t0);
+    }
+    if (per_step == 1)
+      std::printf("  dynamics: mass W^T M W %.3f s, switch with momentum %.2f ms\n", mass_s,
+                  1e3 * dyn.solver().switch_seconds());
+    std::printf("  dynamics: one step of %d iteration%s %.2f us, %.2f us per iteration (mean of %d steps); "
+                "static: set_targets + 1 iteration %.2f us\n",
+                per_step, per_step > 1 ? "s" : "", 1e6 * s / steps, 1e6 * s / (steps * per_step), steps,
+                with_targets_us);
+  }
   std::printf("  CPU LBS of the %d display vertices (baseline): %.3f ms; iteration / LBS = %.4f\n",
               static_cast<int>(c.display_V.rows()), 1e3 * lbs_s, 1e-6 * per_iteration_us / lbs_s);
 }

@@ -1,7 +1,9 @@
 // `deform pose --fast` end to end on hand.mesh with its 20 bones (Jacobson 2013, 7.3.1): with no free
 // handle the output is exactly the plain LBS pose; with free bones the printed energy never increases
 // and ends below the energy of the plain pose.
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -67,5 +69,79 @@ TEST_CASE("deform pose --fast on the hand: no free handle is plain LBS; free bon
   const test::RunResult bad = test::run_program(exe, with({"--fast", "--free", "no such bone", "-o", (dir / "x.obj").string()}), dir);
   CHECK(bad.exit_code != 0);
   CHECK(bad.err.find("no handle named 'no such bone'") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+namespace {
+
+std::vector<double> printed_kinetic(const std::string& out) {
+  std::vector<double> e;
+  const std::regex line("dynamics: frame ([0-9]+) kinetic ([-+0-9.eE]+)");
+  for (std::sregex_iterator it(out.begin(), out.end(), line), end; it != end; ++it) e.push_back(std::stod((*it)[2]));
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("deform pose --fast --dynamics on the arm: a frame per step, settling on the static solve (7.7)",
+          "[fast][cli][dynamics][data]") {
+  DFM_DATA_OR_SKIP(mesh, "arm.obj");
+  const fs::path dir = fs::temp_directory_path() / ("dfm_test_fast_dyn_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "seq");
+  const std::string exe = DFM_DEFORM_EXE, W = (dir / "W.dmat").string(), P = (dir / "P.txt").string(),
+                    PP = (dir / "PP.txt").string();
+  {  // two handles at the shoulder, the elbow (solved entirely), the hand moved sideways
+    std::ofstream(P) << "-0.7296 0.0117 -0.1328\n-0.7832 0.2166 -0.0075\n0.0814 0.1852 -0.0425\n0.7357 -0.1752 0.0902\n";
+    std::ofstream(PP) << "0 0 0\n0 0 0\n0 0 0\n0 0 0.5\n";
+  }
+  auto run = [&](const std::vector<std::string>& args) {
+    const test::RunResult r = test::run_program(exe, args, dir);
+    INFO(r.command << "\n" << r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    return r.out;
+  };
+  run({"bind", mesh, "--points", P, "-o", W});
+  const std::vector<std::string> common{"pose", mesh, "--weights", W, "--points", P, "--points-pose", PP,
+                                        "--fast", "--free", "2", "--cpu"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = common;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  run(with({"--iterations", "300", "-o", (dir / "static.obj").string()}));
+  const std::string out = run(with({"--dynamics", "--frames", "24", "--dt", "0.25", "--iterations", "10", "--sequence",
+                                    (dir / "seq" / "arm").string(), "-o", (dir / "last.obj").string()}));
+  const std::vector<double> ke = printed_kinetic(out);
+  REQUIRE(ke.size() == 24);
+  for (int i = 0; i < 24; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "arm%04d.obj", i);
+    CHECK(fs::exists(dir / "seq" / name));
+  }
+  CHECK(ke.back() < 1e-6 * ke.front());
+  const TriMesh stat = read_surface((dir / "static.obj").string()), last = read_surface((dir / "last.obj").string()),
+                first = read_surface((dir / "seq" / "arm0000.obj").string());
+  const double diag = (stat.V.colwise().maxCoeff() - stat.V.colwise().minCoeff()).norm();
+  CHECK((last.V - stat.V).rowwise().norm().maxCoeff() < 1e-3 * diag);
+  CHECK((first.V - stat.V).rowwise().norm().maxCoeff() > 1e-2 * diag);  // the first frame lags
+  // Bad input: the problem named, a usage error (exit 2, as every usage error of deform).
+  for (const auto& [extra, message] :
+       std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--dynamics", "--frames", "3", "--sequence", "x"}, "--dynamics needs --dt H"},
+           {{"--dynamics", "--frames", "3", "--dt", "-1", "--sequence", "x"}, "--dynamics needs --dt H"},
+           {{"--dynamics", "--frames", "0", "--dt", "0.1", "--sequence", "x"}, "--frames N with N >= 1"},
+           {{"--dynamics", "--frames", "3", "--dt", "0.1"}, "--dynamics needs --sequence PREFIX"},
+           {{"--dynamics", "--frames", "3", "--dt", "0.1", "--damping", "-2", "--sequence", "x"}, "--damping must be >= 0"},
+           {{"--sequence", "x", "-o", "y.obj"}, "go with --dynamics"}}) {
+    const test::RunResult bad = test::run_program(exe, with(extra), dir);
+    INFO(bad.command << "\n" << bad.err);
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find(message) != std::string::npos);
+  }
+  const test::RunResult no_fast =
+      test::run_program(exe, {"pose", mesh, "--weights", W, "--points", P, "--dynamics", "--frames", "2", "--dt", "0.1",
+                              "--sequence", "x"}, dir);
+  CHECK(no_fast.exit_code == 2);
+  CHECK(no_fast.err.find("--dynamics needs --fast") != std::string::npos);
   fs::remove_all(dir);
 }

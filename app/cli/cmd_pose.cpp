@@ -6,8 +6,10 @@
 #include <memory>
 
 #include "app/cli/command.h"
+#include "core/anim/frame_sequence.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
+#include "core/pose/fast_dynamics.h"
 #include "core/pose/fast_model.h"
 #include "core/pose/fast_rig.h"
 #include "core/pose/fast_solver.h"
@@ -29,6 +31,8 @@ const char* kUsage =
     "       deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]\n"
     "                   [--endpoints E.dmat]] [--points P.txt] [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
     "                   [--method lbs|dqs|stbs|stbs-dqs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
+    "       deform pose INPUT --weights W.dmat ... --fast --dynamics --frames N --dt H [--damping D] [--density R]\n"
+    "                   --sequence PREFIX [-o LAST.obj]\n"
     "  SCENE --at T       a bound scene (deform import's, the editor's) at time T of its animation in seconds,\n"
     "                     as the editor shows it (its method unless --method)\n"
     "  INPUT              surface (.obj .off .ply .stl) or tet mesh (.mesh .node/.ele: all its vertices\n"
@@ -48,7 +52,15 @@ const char* kUsage =
     "                     bones keep their --pose; energy: spokes and rims on a surface INPUT, tets on a\n"
     "                     tet-mesh INPUT. Prints 'fast: iteration I energy E' per iteration\n"
     "  --free H,H,...     handles solved entirely: 0-based indices or names ('point 2', 'bone 3')\n"
-    "  --iterations N     local-global iterations (default 20)\n"
+    "  --iterations N     local-global iterations (default 20; with --dynamics per time step, default 4)\n"
+    "  --dynamics         FAST with dynamics (Jacobson 2013, 7.7): from rest, the constraints jump to their\n"
+    "                     --pose / --points-pose at step 0 (a step input) and the solved handles follow with\n"
+    "                     mass and damping; N steps of H seconds, frame i (the state after step i + 1) saved\n"
+    "                     as PREFIX0000.obj, ... (PREFIX ending in .ply, .off or .stl picks that format).\n"
+    "                     Prints 'dynamics: frame I kinetic K' per frame\n"
+    "  --damping D        mass-proportional damping in 1/s (default 4: a step settles in about 2 s)\n"
+    "  --density R        mass per unit area (tets: volume) with the bounding box diagonal as the unit\n"
+    "                     (default 1; heavier is slower)\n"
     "  --method M         lbs (default), dqs, stbs (stretchable, twistable bones over LBS) or stbs-dqs (over DQS)\n"
     "  -k K               keep only the K = 4 or 8 largest weights per vertex (renormalized), as glTF\n"
     "                     does; default: every nonzero weight (exact, on the GPU too)\n"
@@ -110,7 +122,13 @@ struct Options {
   dfm::SkinMethod method = dfm::SkinMethod::LBS;
   int k = 0;  // 0: every weight
   int iterations = 20;
+  bool iterations_given = false;
   bool force_cpu = false, fast = false;
+  bool dynamics = false;
+  int frames = 0;
+  double dt = 0, damping = dfm::FastDynamicsOptions().damping, density = 1;
+  bool dt_given = false, damping_given = false, density_given = false;
+  std::string sequence;
   bool method_given = false;
   double at = 0;  // a scene's time
   bool scene = false, at_given = false;
@@ -134,7 +152,13 @@ Options parse_options(const dfm::cli::Args& args) {
     else if (f == "--points") o.points = a.value(f);
     else if (f == "--fast") o.fast = true;
     else if (f == "--free") o.free_list = a.value(f);
-    else if (f == "--iterations") o.iterations = a.integer(f);
+    else if (f == "--iterations") o.iterations = a.integer(f), o.iterations_given = true;
+    else if (f == "--dynamics") o.dynamics = true;
+    else if (f == "--frames") o.frames = a.integer(f);
+    else if (f == "--dt") o.dt = a.number(f), o.dt_given = true;
+    else if (f == "--damping") o.damping = a.number(f), o.damping_given = true;
+    else if (f == "--density") o.density = a.number(f), o.density_given = true;
+    else if (f == "--sequence") o.sequence = a.value(f);
     else if (f == "--method") method_name = a.value(f), o.method_given = true;
     else if (f == "--at") o.at = a.number(f), o.at_given = true;
     else if (f == "-k") o.k = a.integer(f), k_given = true;
@@ -144,7 +168,18 @@ Options parse_options(const dfm::cli::Args& args) {
     else throw UsageError("more than one INPUT: " + o.input + ", " + f);
   }
   if (o.input.empty()) throw UsageError("INPUT is required");
-  if (o.out.empty()) throw UsageError("-o OUT is required");
+  if (o.dynamics) {
+    if (!o.fast) throw UsageError("--dynamics needs --fast");
+    if (o.frames < 1) throw UsageError("--dynamics needs --frames N with N >= 1");
+    if (!o.dt_given || !(o.dt > 0)) throw UsageError("--dynamics needs --dt H with H > 0 seconds");
+    if (!(o.damping >= 0)) throw UsageError("--damping must be >= 0");
+    if (!(o.density > 0)) throw UsageError("--density must be > 0");
+    if (o.sequence.empty()) throw UsageError("--dynamics needs --sequence PREFIX");
+    if (!o.iterations_given) o.iterations = dfm::FastDynamicsOptions().iterations;
+  } else if (o.frames || o.dt_given || o.damping_given || o.density_given || !o.sequence.empty()) {
+    throw UsageError("--frames, --dt, --damping, --density and --sequence go with --dynamics");
+  }
+  if (o.out.empty() && !o.dynamics) throw UsageError("-o OUT is required");
   o.scene = o.input.size() > 11 && o.input.compare(o.input.size() - 11, 11, ".scene.json") == 0;
   if (o.scene != o.at_given) throw UsageError(o.scene ? "a scene needs --at T" : "--at T takes a SCENE.scene.json");
   if (o.scene && (!o.weights.empty() || !o.skeleton.empty() || !o.points.empty() || o.fast))
@@ -161,7 +196,7 @@ Options parse_options(const dfm::cli::Args& args) {
     throw UsageError(e.what());
   }
   const std::string ext = dfm::file_extension(o.out);
-  if (ext != "obj" && ext != "ply" && ext != "off" && ext != "stl")
+  if (!o.out.empty() && ext != "obj" && ext != "ply" && ext != "off" && ext != "stl")
     throw UsageError("OUT must end in .obj, .ply, .off or .stl, got '" + o.out + "'");
   return o;
 }
@@ -200,6 +235,55 @@ dfm::Pose posed_handles(const Options& o, const Input& in, const Eigen::MatrixXd
   for (int h = 0; h < dfm::num_handles(rig); ++h)
     if (states[h].state != dfm::HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
   return dfm::evaluate_pose(rig, params);
+}
+
+// --dynamics: from rest, the files' pose as a step input at step 0; each step's solved transforms
+// through evaluate_pose (a pinned bone below a solved one follows it) and skinned on the CPU.
+int simulate(const Options& o, const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig) {
+  if (o.method != dfm::SkinMethod::LBS) throw dfm::cli::UsageError("--fast solves for linear blend skinning: use --method lbs");
+  dfm::PoseParams params;
+  Options statics = o;
+  statics.fast = false;
+  const dfm::Pose target_pose = posed_handles(statics, in, W, rig, params);
+  const std::vector<int> free = dfm::parse_handle_list(rig, o.free_list);
+  const std::vector<dfm::FastConstraint> constraints = dfm::default_fast_constraints(rig, free);
+  const std::vector<Eigen::Vector3d> targets = dfm::fast_targets(constraints, target_pose);
+  const Eigen::MatrixXi& elements = in.T.rows() ? in.T : in.F;
+  const dfm::FastModel model = dfm::fast_model(in.V, elements, W);
+  const dfm::FastMass mass = dfm::fast_mass(in.V, elements, W, o.density);
+  dfm::FastDynamicsOptions opts;
+  opts.dt = o.dt;
+  opts.damping = o.damping;
+  opts.iterations = o.iterations;
+  const int nh = dfm::num_handles(rig);
+  dfm::FastDynamics dyn(model, mass, constraints, dfm::fast_joints(rig), opts, dfm::identity_pose(nh));
+  std::printf("dynamics: %d steps of %g s, damping %g/s, density %g, %d iterations per step, %d handles (%d free), "
+              "mass %.6g\n",
+              o.frames, o.dt, o.damping, o.density, o.iterations, nh, static_cast<int>(free.size()), mass.total);
+  const dfm::SkinBinding binding = dfm::make_skin_binding(in.V, dfm::vertex_normals(in.V, in.F), W, rig, 0);
+  const dfm::FrameNaming naming = dfm::frame_naming(o.sequence);
+  dfm::TriMesh frame;
+  frame.F = in.F;
+  double stepping = 0;
+  for (int i = 0; i < o.frames; ++i) {
+    dfm::Pose pose = target_pose;  // its Fixed handles are the boundary condition
+    const auto t0 = std::chrono::steady_clock::now();
+    dyn.step(pose, targets);
+    stepping += seconds_since(t0);
+    for (int h = 0; h < nh; ++h)
+      if (constraints[h].state != dfm::HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
+    const dfm::SkinResult posed = dfm::skin(o.method, binding, dfm::evaluate_pose(rig, params), {});
+    frame.V = posed.V;
+    frame.N = posed.N;
+    const std::string path = dfm::frame_path(naming, i);
+    dfm::write_surface(path, frame);
+    std::printf("dynamics: frame %d kinetic %.9g -> %s\n", i, dyn.kinetic_energy(), path.c_str());
+  }
+  if (!o.out.empty()) dfm::write_surface(o.out, frame);
+  std::printf("dynamics: %d frames, %.2f us per step (%.2f us per iteration)%s%s\n", o.frames, 1e6 * stepping / o.frames,
+              1e6 * stepping / (o.frames * o.iterations), o.out.empty() ? "" : "; last frame -> ",
+              o.out.empty() ? "" : o.out.c_str());
+  return 0;
 }
 
 // Skins on the GPU when there is a display (and not --cpu), else on the CPU; `where` says which.
@@ -247,6 +331,7 @@ int run(const dfm::cli::Args& args) {
   const Input in = read_input(o.input);
   Eigen::MatrixXd W;
   const dfm::Rig rig = read_rig(o, in, W);
+  if (o.dynamics) return simulate(o, in, W, rig);
   dfm::PoseParams params;
   const dfm::Pose pose = posed_handles(o, in, W, rig, params);
   const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);

@@ -32,17 +32,26 @@ struct FastJoint {
 
 class FastSolver {
  public:
-  // One constraint per handle of the model; joints as above. Throws dfm::Error on a size mismatch.
-  FastSolver(const FastModel& model, std::vector<FastConstraint> constraints, std::vector<FastJoint> joints = {});
+  // One constraint per handle of the model; joints as above. `inertia` (4m x 4m, symmetric positive
+  // semi-definite, or empty) is added to Lt: the momentum term (1/h^2) W^T M W of Eq. 7.36
+  // (fast_dynamics.h); it changes only this precomputation. Throws dfm::Error on a size mismatch.
+  FastSolver(const FastModel& model, std::vector<FastConstraint> constraints, std::vector<FastJoint> joints = {},
+             Eigen::MatrixXd inertia = {});
 
   // Per-frame inputs: `pose` supplies the transforms of the Fixed handles; targets[j] is where the
   // anchor of Position handle j must go (entries for other handles are ignored).
   void set_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets);
+  // A linear term -tr(B^T T) of the energy (B: 4m x 3), kept until set again: Eq. 7.36's
+  // (T0 + h S0)^T Mt, plus external forces. Only a solver built with `inertia` takes one (else
+  // dfm::Error); it moves Phi, never the local step (7.7.1).
+  void set_linear_term(const Eigen::MatrixXd& B);
+  // Both at once (Phi formed once): what a dynamics step sets.
+  void set_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets, const Eigen::MatrixXd& B);
 
   // One iteration: local step from the current transforms of `pose` (warm start), global step written
   // back into its non-fixed handles. Returns E(T, R) after the global step (Eq. 7.15 plus the rest
-  // term), which never increases from one iteration to the next for fixed targets; NaN when
-  // with_energy is false (the energy costs as much as the iteration).
+  // term; with inertia, Eq. 7.36's terms too), which never increases from one iteration to the next
+  // for fixed targets; NaN when with_energy is false (the energy costs as much as the iteration).
   double iterate(Pose& pose, bool with_energy = true) const;
   // `count` iterations as one call, for the same result as `count` calls of iterate (to rounding):
   // where it is cheaper, the iterations in between stay in rotation space,
@@ -58,10 +67,15 @@ class FastSolver {
   void local_step() const;                // Rt_ from S_
   void global_step(Pose& pose) const;     // T_u = Gamma R^T + Phi into pose
   void write_unknown_blocks(Pose& pose) const;
+  void update_phi();  // Phi and s_const from T_fixed_, P_ and B_
+  void read_targets(const Pose& pose, const std::vector<Eigen::Vector3d>& targets);  // T_fixed_, P_, s_fixed_
+  void check_linear_term(const Eigen::MatrixXd& B) const;
+  double dynamic_terms(const Eigen::MatrixXd& T) const;  // 1/2 tr(T^T inertia T) - tr(B^T T)
 
   const FastModel* model_;
   std::vector<FastConstraint> constraints_;
   std::vector<int> unknown_, fixed_, position_;  // handle indices by state
+  std::vector<int> unknown_rows_;                 // rows of T in the unknown blocks
   Eigen::MatrixXd Kt_u_, Kt_f_;     // Kt's columns of unknown / fixed blocks
   Eigen::MatrixXd gamma_;           // 4u x 3r
   Eigen::MatrixXd pi_fixed_;        // 4u x 4f: -Pi11 Lt_uf - Pi12 C_f (joint rows on fixed blocks)
@@ -69,6 +83,10 @@ class FastSolver {
   Eigen::MatrixXd phi_;             // 4u x 3 for the current targets
   Eigen::MatrixXd s_fixed_;         // 3r x 3: Kt_f T_f for the current fixed transforms
   Eigen::MatrixXd T_fixed_;         // 4f x 3
+  Eigen::MatrixXd P_;               // c x 3: the position targets
+  Eigen::MatrixXd inertia_;         // 4m x 4m or empty
+  Eigen::MatrixXd B_;               // 4m x 3 linear term (with inertia_)
+  Eigen::MatrixXd pi_linear_;       // 4u x 4u: Pi11, maps B's unknown rows into Phi (with inertia_)
   bool rotation_space_ = false;     // whether iterate(pose, count) stays in rotation space
   Eigen::MatrixXd kt_gamma_;        // 3r x 3r: Kt_u Gamma (when rotation_space_)
   Eigen::MatrixXd s_const_;         // 3r x 3: Kt_u Phi + s_fixed for the current targets
