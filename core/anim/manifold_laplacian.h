@@ -1,0 +1,35 @@
+#pragma once
+// The differential coordinates of an animation manifold's vertices (Southern 2008, 4.2, Eq. 4.1):
+//   delta_i = v_i - sum_j w_ij v_j,   sum_j w_ij = 1,  w_ij > 0,
+// over the 1-ring N_i (vertices sharing a tetrahedron edge with i), in 4D (x, y, z, t).
+//
+// Weights: reciprocal 4D edge lengths, normalised, w_ij ~ 1 / |v_i - v_j| -- the closed-form solution of
+// Eq. 4.2 without its quadratic term (4.2.2: "quickly solved by setting w_j = 1/||v_i - v_j||"). 4.6.1:
+// cotangent weights do not exist for tetrahedra in R^4, and 4.3: equal weights distort on irregular
+// tetrahedral grids (Fig. 4.6) because a prism manifold's time edges and space edges differ in length.
+// These weights need no one-ring on both sides of an edge, so they hold across the manifold's open
+// boundary at its first and last layer unchanged (the primal boundary condition of 4.4.1 asks only for
+// positive weights summing to 1 there; 4.4.1's quadratic program minimises |delta| further, which the
+// reciprocal weights approximate without a QP per vertex).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/anim/manifold.h"
+
+namespace dfm {
+
+struct LaplacianRow {
+  std::vector<int> neighbours;   // sorted manifold vertex indices
+  std::vector<double> weights;   // w_ij, summing to 1
+};
+
+// One row per vertex in `rows` (any order; the rows' order). Throws dfm::Error for a vertex without
+// neighbours or a zero-length edge.
+std::vector<LaplacianRow> manifold_laplacian_rows(const AnimationManifold& m, const std::vector<int>& rows);
+
+// delta_i of Eq. 4.1 for each row (#rows x 4).
+Eigen::MatrixXd differential_coordinates(const AnimationManifold& m, const std::vector<int>& rows,
+                                         const std::vector<LaplacianRow>& L);
+
+}  // namespace dfm
