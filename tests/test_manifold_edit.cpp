@@ -122,7 +122,9 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
   EditHandleSpec hs;
   hs.point = S.wrist_mid;
   hs.time = 1.0;
-  const EditRegion sel = select_edit_region(M, rs, hs);
+  static const EditRegion sel = select_edit_region(M, rs, hs);
+  // One factorisation for the sections (each drag is a back substitution; 4.6.1).
+  static const ManifoldEditor ed(M, sel, hs.point);
   INFO("region " << sel.region.size() << " anchors " << sel.anchors.size() << " handle " << sel.handle.size());
   REQUIRE(sel.handle.size() > 10);
   // The handle is on the key layer at t = 1 only (layer 9), within radius / 4.
@@ -133,13 +135,11 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
   const Eigen::Vector3d move(0.05, 0.12, -0.04);
 
   SECTION("a move of zero changes nothing, bit for bit") {
-    const ManifoldEditor ed(M, sel, hs.point);
     const MatrixX4dRow V = ed.drag(ManifoldDrag{});
     REQUIRE((V.array() == M.V.array()).all());
   }
 
   SECTION("the handle lands exactly where dragged; slices outside [t0, t1] unchanged; t kept") {
-    const ManifoldEditor ed(M, sel, hs.point);
     ManifoldDrag d;
     d.translation = move;
     const MatrixX4dRow V = ed.drag(d);
@@ -174,7 +174,6 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
   }
 
   SECTION("smooth in time: the handle point's displacement over 41 times against a smoothstep") {
-    const ManifoldEditor ed(M, sel, hs.point);
     ManifoldDrag d;
     d.translation = move;
     const MatrixX4dRow V = ed.drag(d);
@@ -214,11 +213,11 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
   SECTION("--volume: every frame's enclosed volume in the window within 1% of the original") {
     ManifoldEditOptions opt;
     opt.preserve_volume = true;
-    const ManifoldEditor ed(M, sel, hs.point, opt);
-    const ManifoldEditor plain(M, sel, hs.point);
+    const ManifoldEditor& plain_editor = ed;
+    const ManifoldEditor edv(M, sel, hs.point, opt);
     ManifoldDrag d;
     d.translation = Eigen::Vector3d(0.0, 0.2, 0.0);
-    const MatrixX4dRow V = ed.drag(d), P = plain.drag(d);
+    const MatrixX4dRow V = edv.drag(d), P = plain_editor.drag(d);
     double worst = 0, worst_plain = 0;
     for (int k = 0; k <= 40; ++k) {
       const double t = rs.t0 + (rs.t1 - rs.t0) * k / 40.0;
