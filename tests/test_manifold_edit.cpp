@@ -110,7 +110,7 @@ TEST_CASE("manifold Laplacian: reciprocal edge-length weights, Eq. 4.1 by hand",
 
 TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, volume", "[manifold_edit]") {
   DFM_DATA_OR_SKIP(path, "arm.obj");
-  static const ArmScene S = arm_scene(path, 8);  // built once for every section
+  const ArmScene S = arm_scene(path, 8);
   const AnimationManifold& M = S.M;
   const int n = S.arm.num_vertices();
   // 4.3: edit at the middle key's time (t = 1) over half the animation.
@@ -122,9 +122,9 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
   EditHandleSpec hs;
   hs.point = S.wrist_mid;
   hs.time = 1.0;
-  static const EditRegion sel = select_edit_region(M, rs, hs);
-  // One factorisation for the sections (each drag is a back substitution; 4.6.1).
-  static const ManifoldEditor ed(M, sel, hs.point);
+  const EditRegion sel = select_edit_region(M, rs, hs);
+  // One factorisation for every check below (each drag is a back substitution; 4.6.1).
+  const ManifoldEditor ed(M, sel, hs.point);
   INFO("region " << sel.region.size() << " anchors " << sel.anchors.size() << " handle " << sel.handle.size());
   REQUIRE(sel.handle.size() > 10);
   // The handle is on the key layer at t = 1 only (layer 9), within radius / 4.
@@ -134,12 +134,12 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
   }
   const Eigen::Vector3d move(0.05, 0.12, -0.04);
 
-  SECTION("a move of zero changes nothing, bit for bit") {
+  {  // a move of zero changes nothing, bit for bit
     const MatrixX4dRow V = ed.drag(ManifoldDrag{});
     REQUIRE((V.array() == M.V.array()).all());
   }
 
-  SECTION("the handle lands exactly where dragged; slices outside [t0, t1] unchanged; t kept") {
+  {  // the handle lands exactly where dragged; slices outside [t0, t1] unchanged; t kept
     ManifoldDrag d;
     d.translation = move;
     const MatrixX4dRow V = ed.drag(d);
@@ -160,20 +160,20 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
     REQUIRE((V - M.V).rowwise().norm().maxCoeff() > 0.1);
   }
 
-  SECTION("translating every region vertex with the handle gives exactly that translation") {
+  {  // translating every region vertex with the handle gives exactly that translation
     EditRegion all = sel;
     all.handle = all.region;
-    const ManifoldEditor ed(M, all, hs.point);
+    const ManifoldEditor whole(M, all, hs.point);
     ManifoldDrag d;
     d.translation = move;
-    const MatrixX4dRow V = ed.drag(d);
+    const MatrixX4dRow V = whole.drag(d);
     std::vector<char> in(M.num_vertices(), 0);
     for (int v : all.region) in[v] = 1;
     for (int v = 0; v < M.num_vertices(); ++v)
       for (int c = 0; c < 4; ++c) REQUIRE(V(v, c) == (in[v] && c < 3 ? M.V(v, c) + move[c] : M.V(v, c)));
   }
 
-  SECTION("smooth in time: the handle point's displacement over 41 times against a smoothstep") {
+  {  // smooth in time: the handle point's displacement over 41 times against a smoothstep
     ManifoldDrag d;
     d.translation = move;
     const MatrixX4dRow V = ed.drag(d);
@@ -210,7 +210,7 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
     REQUIRE(max_second(curve) <= 10 * max_second(ref));
   }
 
-  SECTION("--volume: every frame's enclosed volume in the window within 1% of the original") {
+  {  // --volume: every frame's enclosed volume in the window within 1% of the original
     ManifoldEditOptions opt;
     opt.preserve_volume = true;
     const ManifoldEditor& plain_editor = ed;
@@ -232,7 +232,7 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
       for (int c = 0; c < 3; ++c) REQUIRE(V(v, c) == M.V(v, c) + d.translation[c]);
   }
 
-  SECTION("hostile input: a clear error, nothing selected") {
+  {  // hostile input: a clear error, nothing selected
     EditRegionSpec far = rs;
     far.center = Eigen::Vector3d(10, 10, 10);
     CHECK_THROWS_WITH(select_edit_region(M, far, hs), Catch::Contains("no manifold vertex"));
