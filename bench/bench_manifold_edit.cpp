@@ -6,6 +6,8 @@
 // top cap the handle turned by 90 degrees, the bottom rings the anchors (the 4.7 stress test); (2) the
 // arm keyed at three poses with 8 linear in-betweens per gap (test_manifold_edit's scene), the wrist
 // dragged at the middle key over half the animation.
+// Weighting schemes (4.6.1): reciprocal edge lengths (default), equal, and primal boundary (Eq. 4.3's QP
+// at the manifold's first and last layers).
 // Times are process CPU seconds (the build machine is shared), wall beside; drags: median of 21.
 #include <algorithm>
 #include <chrono>
@@ -33,12 +35,13 @@ struct Timer {
 };
 
 void run(const char* name, const AnimationManifold& M, const EditRegionSpec& rs, const EditHandleSpec& hs,
-         const ManifoldDrag& drag, bool volume) {
+         const ManifoldDrag& drag, bool volume, LaplacianWeights weights = LaplacianWeights::Reciprocal) {
   Timer init;
   EditRegion sel = select_edit_region(M, rs, hs);
   const size_t nr = sel.region.size(), na = sel.anchors.size(), nh = sel.handle.size();
   ManifoldEditOptions opt;
   opt.preserve_volume = volume;
+  opt.weights = weights;
   const ManifoldEditor ed(M, std::move(sel), hs.point, opt);
   const double init_cpu = init.cpu_s(), init_wall = init.wall_s();
   std::vector<double> cpu, wall;
@@ -100,6 +103,8 @@ int main(int argc, char** argv) {
     d.rotation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     d.translation = Eigen::Vector3d(0.3, 0, 0);
     run("block tube, top turned 90 deg", M, rs, hs, d, false);
+    run("  the same, equal weights", M, rs, hs, d, false, LaplacianWeights::Equal);
+    run("  the same, primal boundary (4.4.1)", M, rs, hs, d, false, LaplacianWeights::PrimalBoundary);
   }
   const TriMesh arm = read_surface(arm_path);
   const Eigen::Vector3d elbow(0.081400687, 0.18519857, -0.042544638), wrist(0.5987815, -0.077609889, 0.065252126);
@@ -138,7 +143,12 @@ int main(int argc, char** argv) {
     d.translation = Eigen::Vector3d(0.05, 0.12, -0.04);
     const std::string name = "arm, wrist ball r = " + std::to_string(radius).substr(0, 4);
     run(name.c_str(), M, rs, hs, d, false);
-    if (radius == 0.35) run((name + " --volume").c_str(), M, rs, hs, d, true);
+    if (radius == 0.35) {
+      run((name + " --volume").c_str(), M, rs, hs, d, true);
+      EditRegionSpec first = rs;  // from the start: the first layer is the manifold's open boundary
+      first.t0 = 0;
+      run((name + ", t0 = 0, primal-boundary").c_str(), M, first, hs, d, false, LaplacianWeights::PrimalBoundary);
+    }
   }
   return 0;
 }

@@ -11,6 +11,7 @@
 #include "core/anim/manifold_edit.h"
 #include "core/anim/manifold_edit_region.h"
 #include "core/anim/manifold_laplacian.h"
+#include "core/anim/primal_boundary_weights.h"
 #include "core/anim/slice.h"
 #include "core/mesh/io.h"
 #include "core/util/error.h"
@@ -323,5 +324,100 @@ TEST_CASE("details turn with the drag (4.2.1): a bump follows a 90 degree handle
   for (int v : sel.handle) {
     const Eigen::Vector3d p = M.V.row(v).head<3>().transpose();
     REQUIRE((V.row(v).head<3>().transpose() - (d.rotation * (p - hs.point) + hs.point)).norm() == 0.0);
+  }
+}
+
+TEST_CASE("primal boundary weights (4.4.1, Eq. 4.3): the simplex projection's KKT conditions and a closed form",
+          "[manifold_edit]") {
+  // Projection onto {sum w = 1, w >= xi}: w_i > xi share one y_i - w_i = tau, w_i = xi have y_i - xi <= tau.
+  Eigen::VectorXd y(6);
+  y << 0.9, -0.3, 0.4, 0.05, 1.7, -2.0;
+  const double xi = 0.01;
+  const Eigen::VectorXd w = project_shifted_simplex(y, xi);
+  REQUIRE(w.sum() == Approx(1).margin(1e-14));
+  double tau = NAN;
+  for (int i = 0; i < 6; ++i) {
+    REQUIRE(w[i] >= xi - 1e-15);
+    if (w[i] > xi + 1e-12) {
+      if (std::isnan(tau)) tau = y[i] - w[i];
+      REQUIRE(y[i] - w[i] == Approx(tau).margin(1e-12));
+    }
+  }
+  for (int i = 0; i < 6; ++i)
+    if (w[i] <= xi + 1e-12) REQUIRE(y[i] - xi <= tau + 1e-12);
+
+  // A boundary vertex at the origin with neighbours +-x, +y and +t (its ring one-sided in y and t):
+  // delta = -(w1 - w2, w3, 0, w4), so the minimum puts w3 = w4 = xi and w1 = w2 = (1 - 2 xi) / 2,
+  // |delta|^2 = 2 xi^2; the reciprocal (here equal) weights leave |delta|^2 = 1 / 8.
+  Eigen::MatrixXd N(4, 4);
+  N << 1, 0, 0, 0, -1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1;
+  PrimalWeightOptions o;
+  o.xi = 0.02;
+  const Eigen::VectorXd w0 = Eigen::VectorXd::Constant(4, 0.25);
+  const Eigen::VectorXd pw = primal_boundary_weights(Eigen::Vector4d::Zero(), N, w0, o);
+  INFO("weights " << pw.transpose());
+  CHECK(pw[0] == Approx(0.48).margin(1e-3));
+  CHECK(pw[1] == Approx(0.48).margin(1e-3));
+  CHECK(pw[2] == Approx(0.02).margin(1e-6));
+  CHECK(pw[3] == Approx(0.02).margin(1e-6));
+  CHECK((N.transpose() * pw).squaredNorm() == Approx(2 * 0.02 * 0.02).epsilon(0.05));
+  CHECK_THROWS_AS(primal_boundary_weights(Eigen::Vector4d::Zero(), N, w0, PrimalWeightOptions{0.3}), Error);
+}
+
+TEST_CASE("weighting schemes (4.6.1) on the arm's first layer: boundary rows, smaller deltas, exact handle",
+          "[manifold_edit]") {
+  DFM_DATA_OR_SKIP(path, "arm.obj");
+  const ArmScene S = arm_scene(path, 2);
+  const AnimationManifold& M = S.M;
+  // A window from the start of the animation: the first layer (t = 0) is the manifold's open boundary.
+  EditRegionSpec rs;
+  rs.center = S.arm.V.row(0).transpose();
+  rs.radius = 0.2;
+  rs.t0 = 0;
+  rs.t1 = 1;
+  EditHandleSpec hs;
+  hs.point = rs.center;
+  hs.time = 0;
+  const EditRegion sel = select_edit_region(M, rs, hs);
+  const std::vector<char> boundary = manifold_boundary_rows(M, sel.region);
+  int nb = 0;
+  for (size_t r = 0; r < sel.region.size(); ++r) {
+    nb += boundary[r];
+    REQUIRE(bool(boundary[r]) == (M.V(sel.region[r], 3) == 0.0));  // the prism manifold's boundary: t = 0
+  }
+  REQUIRE(nb > 0);
+  const auto rec = manifold_laplacian_rows(M, sel.region, LaplacianWeights::Reciprocal);
+  const auto pri = manifold_laplacian_rows(M, sel.region, LaplacianWeights::PrimalBoundary);
+  const auto eq = manifold_laplacian_rows(M, sel.region, LaplacianWeights::Equal);
+  const Eigen::MatrixXd dr = differential_coordinates(M, sel.region, rec), dp = differential_coordinates(M, sel.region, pri),
+                        de = differential_coordinates(M, sel.region, eq);
+  double sr = 0, sp = 0, se = 0;
+  for (size_t r = 0; r < sel.region.size(); ++r) {
+    REQUIRE(eq[r].weights.front() == 1.0 / eq[r].neighbours.size());
+    if (!boundary[r]) {
+      REQUIRE(pri[r].weights == rec[r].weights);
+      continue;
+    }
+    double sum = 0;
+    for (double x : pri[r].weights) {
+      sum += x;
+      REQUIRE(x > 0);
+    }
+    REQUIRE(sum == Approx(1).margin(1e-12));
+    sr += dr.row(r).norm(), sp += dp.row(r).norm(), se += de.row(r).norm();
+  }
+  std::printf("boundary rows %d: mean |delta| equal %.4g, reciprocal %.4g, primal boundary (Eq. 4.3) %.4g\n", nb, se / nb,
+              sr / nb, sp / nb);
+  REQUIRE(sp < 0.5 * sr);
+  for (LaplacianWeights w : {LaplacianWeights::Equal, LaplacianWeights::PrimalBoundary}) {
+    ManifoldEditOptions opt;
+    opt.weights = w;
+    const ManifoldEditor ed(M, sel, hs.point, opt);
+    REQUIRE((ed.drag(ManifoldDrag{}).array() == M.V.array()).all());
+    ManifoldDrag d;
+    d.translation = Eigen::Vector3d(0, 0.05, 0);
+    const MatrixX4dRow V = ed.drag(d);
+    for (int v : sel.handle)
+      for (int c = 0; c < 3; ++c) REQUIRE(V(v, c) == M.V(v, c) + d.translation[c]);
   }
 }

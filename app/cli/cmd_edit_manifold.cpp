@@ -9,20 +9,23 @@
 #include "core/anim/manifold_edit.h"
 #include "core/anim/manifold_edit_region.h"
 #include "core/anim/manifold_io.h"
+#include "core/anim/manifold_laplacian.h"
 #include "core/util/error.h"
 
 namespace {
 
 const char* kUsage =
     "usage: deform edit-manifold IN.tet4 --region CX CY CZ RADIUS T0 T1 --handle HX HY HZ T --move DX DY DZ\n"
-    "                            [--rotate AX AY AZ DEGREES] [--volume] -o OUT.tet4\n"
+    "                            [--rotate AX AY AZ DEGREES] [--weights W] [--volume] -o OUT.tet4\n"
     "  Laplacian editing of the animation manifold (Southern 2008, 4.3): the region is every vertex within\n"
     "  RADIUS of (CX, CY, CZ) whose neighbourhood lies in the time window [T0, T1] (so frames outside the\n"
     "  window are unchanged); its boundary ring stays put. The handle is the region's vertices within\n"
     "  RADIUS / 4 of (HX, HY, HZ) on the layers at (or either side of) time T, moved by (DX, DY, DZ) after\n"
     "  turning DEGREES about the axis (AX, AY, AZ) through the handle point. The rest of the region follows\n"
     "  smoothly in space and time, its details turned with the handle (4.2.1). Vertices keep their times.\n"
-      "  --volume      each edited time layer keeps its enclosed volume (4.2.2; keyframe-built manifolds)\n"
+    "  --weights W   equal, reciprocal (1 / edge length; default) or primal-boundary (reciprocal, and at the\n"
+    "                manifold's first and last layers the least-|delta| weights of 4.4.1, Eq. 4.3)\n"
+    "  --volume      each edited time layer keeps its enclosed volume (4.2.2; keyframe-built manifolds)\n"
     "  Prints the region's sizes and the initialise and deform times in seconds.";
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
@@ -59,6 +62,12 @@ int run(const dfm::cli::Args& args) {
       const double degrees = a.number(f);
       if (!(axis.norm() > 0)) throw UsageError("--rotate needs a nonzero axis");
       drag.rotation = Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized()).toRotationMatrix();
+    } else if (f == "--weights") {
+      try {
+        options.weights = dfm::parse_laplacian_weights(a.value(f));
+      } catch (const dfm::Error& e) {
+        throw UsageError(e.what());
+      }
     } else if (f == "--volume") {
       volume = true;
     } else if (f == "-o") {

@@ -29,10 +29,12 @@
 
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_edit_region.h"
+#include "core/anim/manifold_laplacian.h"
 
 namespace dfm {
 
 struct ManifoldEditOptions {
+  LaplacianWeights weights = LaplacianWeights::Reciprocal;  // 4.6.1's schemes (manifold_laplacian.h)
   bool turn_details = true;     // 4.2.1: rotate the differential coordinates with the handle (false:
                                 // translation-only Laplacian editing, which shears details; for comparison)
   bool preserve_volume = false;  // 4.2.2: keep each region layer's enclosed volume

@@ -11,6 +11,7 @@
 // boundary at its first and last layer unchanged (the primal boundary condition of 4.4.1 asks only for
 // positive weights summing to 1 there; 4.4.1's quadratic program minimises |delta| further, which the
 // reciprocal weights approximate without a QP per vertex).
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,6 +20,17 @@
 
 namespace dfm {
 
+// 4.6.1's weighting schemes for R^4 (cotangent weights do not exist there):
+//   Equal           w_ij = 1 / |N_i| (Taubin 1995; distorts on irregular tetrahedra, 4.3 / Fig. 4.6),
+//   Reciprocal      w_ij ~ 1 / |v_i - v_j| (the default, above),
+//   PrimalBoundary  Reciprocal inside, and at vertices on the manifold's open boundary (a face of their
+//                   star lies in one tetrahedron only) the least-|delta| weights of Eq. 4.3 (4.4.1;
+//                   core/anim/primal_boundary_weights.h).
+enum class LaplacianWeights { Equal, Reciprocal, PrimalBoundary };
+
+// "equal", "reciprocal", "primal-boundary"; dfm::Error otherwise.
+LaplacianWeights parse_laplacian_weights(const std::string& name);
+
 struct LaplacianRow {
   std::vector<int> neighbours;   // sorted manifold vertex indices
   std::vector<double> weights;   // w_ij, summing to 1
@@ -26,7 +38,12 @@ struct LaplacianRow {
 
 // One row per vertex in `rows` (any order; the rows' order). Throws dfm::Error for a vertex without
 // neighbours or a zero-length edge.
-std::vector<LaplacianRow> manifold_laplacian_rows(const AnimationManifold& m, const std::vector<int>& rows);
+std::vector<LaplacianRow> manifold_laplacian_rows(const AnimationManifold& m, const std::vector<int>& rows,
+                                                  LaplacianWeights weights = LaplacianWeights::Reciprocal);
+
+// Per row: whether the vertex lies on the manifold's boundary (a triangle of its star belongs to exactly
+// one tetrahedron).
+std::vector<char> manifold_boundary_rows(const AnimationManifold& m, const std::vector<int>& rows);
 
 // delta_i of Eq. 4.1 for each row (#rows x 4).
 Eigen::MatrixXd differential_coordinates(const AnimationManifold& m, const std::vector<int>& rows,
