@@ -21,6 +21,7 @@
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_edit.h"
 #include "core/anim/manifold_edit_region.h"
+#include "core/anim/manifold_frame.h"
 #include "core/mesh/io.h"
 
 using namespace dfm;
@@ -53,11 +54,15 @@ void run(const char* name, const AnimationManifold& M, const EditRegionSpec& rs,
     cpu.push_back(t.cpu_s());
     wall.push_back(t.wall_s());
   }
+  // What a redraw after the drag costs on top: the frame at the handle's time (manifold_frame).
+  Timer frame;
+  const ManifoldSlice f = manifold_frame(M, hs.time);
+  const double frame_cpu = frame.cpu_s();
   std::nth_element(cpu.begin(), cpu.begin() + 10, cpu.end());
   std::nth_element(wall.begin(), wall.begin() + 10, wall.end());
   std::printf("%-34s manifold %7d vertices | region %6zu, anchors %5zu, handle %4zu | initialise %.3f s (wall %.3f) | "
-              "drag %.4f s (wall %.4f)\n",
-              name, M.num_vertices(), nr, na, nh, init_cpu, init_wall, cpu[10], wall[10]);
+              "drag %.4f s (wall %.4f) | frame at T %.4f s (%d vertices)\n",
+              name, M.num_vertices(), nr, na, nh, init_cpu, init_wall, cpu[10], wall[10], frame_cpu, f.mesh.num_vertices());
 }
 
 // A square tube (block without caps) of side 1 and height 2.5: `around` x `along` vertices.

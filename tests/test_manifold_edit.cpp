@@ -252,6 +252,12 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
     EditRegionSpec bad = rs;
     bad.radius = -1;
     CHECK_THROWS_WITH(select_edit_region(M, bad, hs), Catch::Contains("radius"));
+    ManifoldDrag nan_drag;
+    nan_drag.translation.x() = NAN;
+    CHECK_THROWS_WITH(ed.drag(nan_drag), Catch::Contains("not finite"));
+    ManifoldDrag shear;
+    shear.rotation(0, 1) = 0.5;
+    CHECK_THROWS_WITH(ed.drag(shear), Catch::Contains("not a rotation"));
   }
 }
 

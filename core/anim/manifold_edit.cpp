@@ -127,6 +127,10 @@ MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
   const Impl& s = *impl_;
   const std::vector<int>& region = s.sel.region;
   const int nr = static_cast<int>(region.size());
+  if (!d.translation.allFinite() || !d.rotation.allFinite())
+    throw Error("space-time edit: the drag's translation or rotation is not finite");
+  if (!(d.rotation.transpose() * d.rotation).isApprox(Eigen::Matrix3d::Identity(), 1e-9) || d.rotation.determinant() < 0)
+    throw Error("space-time edit: the drag's rotation is not a rotation matrix");
   const bool turns = d.rotation != Eigen::Matrix3d::Identity();
   MatrixX4dRow out = s.V;
 

@@ -58,7 +58,8 @@ class ManifoldEditor {
 
   // The manifold's vertices after the drag (#V x 4; rows outside the region are the original rows,
   // t is never changed). A handle vertex v lands at v + translation (exactly) when rotation is the
-  // identity, else at rotation (v - pivot) + pivot + translation.
+  // identity, else at rotation (v - pivot) + pivot + translation. Throws dfm::Error (nothing changed) for
+  // a non-finite drag or a rotation that is not orthonormal with determinant 1.
   MatrixX4dRow drag(const ManifoldDrag& drag) const;
 
   const EditRegion& selection() const;
