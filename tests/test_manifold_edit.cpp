@@ -235,6 +235,46 @@ TEST_CASE("space-time edit of the keyed arm: exactness, window, smooth in time, 
       for (int c = 0; c < 3; ++c) REQUIRE(V(v, c) == M.V(v, c) + d.translation[c]);
   }
 
+  {  // --time-scale: a turned wrist handle carries the fingers when the time edges weigh less
+    ManifoldDrag d;
+    d.rotation = Eigen::AngleAxisd(-M_PI / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    d.translation = Eigen::Vector3d(0.05, -0.3, 0);
+    // The mean turn (about z, in degrees) of the layer at t = 1's vertices past the wrist, 0.2-0.3 from the
+    // handle point, measured from the moved handle point.
+    auto finger_turn = [&](const MatrixX4dRow& V) {
+      double sum = 0;
+      int count = 0;
+      for (int v = 9 * n; v < 10 * n; ++v) {
+        const Eigen::Vector3d p = M.V.row(v).head<3>().transpose(), q = V.row(v).head<3>().transpose();
+        const double dist = (p - hs.point).norm();
+        if (p.x() < hs.point.x() || dist < 0.2 || dist >= 0.3) continue;
+        const Eigen::Vector3d a = p - hs.point, b = q - hs.point - d.translation;
+        sum += std::remainder(std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x()), 2 * M_PI);
+        ++count;
+      }
+      REQUIRE(count > 100);
+      return sum / count * 180 / M_PI;
+    };
+    // A wider region than above, so the fingers are well inside it (its anchors 0.45 from the wrist).
+    EditRegionSpec wide = rs;
+    wide.radius = 0.45;
+    const EditRegion wsel = select_edit_region(M, wide, hs);
+    ManifoldEditOptions opt;
+    opt.time_scale = 10;
+    const ManifoldEditor scaled(M, wsel, hs.point, opt);
+    const MatrixX4dRow V = scaled.drag(d);
+    const double t10 = finger_turn(V);
+    // (With time scale 1 the same fingers lag behind the moved wrist: +31 to +35 degrees; README.)
+    std::printf("time scale: fingers 0.2-0.3 past a wrist handle turned by -45 degrees turn %.1f degrees with time "
+                "scale 10\n", t10);
+    CHECK(std::abs(t10 + 45) < 10);
+    for (int v : wsel.handle) {
+      const Eigen::Vector3d p = M.V.row(v).head<3>().transpose();
+      REQUIRE((V.row(v).head<3>().transpose() - (d.rotation * (p - hs.point) + hs.point + d.translation)).norm() == 0.0);
+    }
+    CHECK_THROWS_WITH(manifold_laplacian_rows(M, sel.region, LaplacianWeights::Reciprocal, 0.0), Catch::Contains("time scale"));
+  }
+
   {  // hostile input: a clear error, nothing selected
     EditRegionSpec far = rs;
     far.center = Eigen::Vector3d(10, 10, 10);

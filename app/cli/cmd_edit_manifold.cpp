@@ -16,7 +16,7 @@ namespace {
 
 const char* kUsage =
     "usage: deform edit-manifold IN.tet4 --region CX CY CZ RADIUS T0 T1 --handle HX HY HZ T --move DX DY DZ\n"
-    "                            [--rotate AX AY AZ DEGREES] [--weights W] [--volume] -o OUT.tet4\n"
+    "                            [--rotate AX AY AZ DEGREES] [--weights W] [--time-scale S] [--volume] -o OUT.tet4\n"
     "  Laplacian editing of the animation manifold (Southern 2008, 4.3): the region is every vertex within\n"
     "  RADIUS of (CX, CY, CZ) whose neighbourhood lies in the time window [T0, T1] (so frames outside the\n"
     "  window are unchanged); its boundary ring stays put. The handle is the region's vertices within\n"
@@ -25,6 +25,8 @@ const char* kUsage =
     "  smoothly in space and time, its details turned with the handle (4.2.1). Vertices keep their times.\n"
     "  --weights W   equal, reciprocal (1 / edge length; default) or primal-boundary (reciprocal, and at the\n"
     "                manifold's first and last layers the least-|delta| weights of 4.4.1, Eq. 4.3)\n"
+    "  --time-scale S  t's factor in the weights' edge lengths (default 1): larger keeps each frame's shape\n"
+    "                stiffer against the time edges, so parts past the handle follow it (10 on the keyed arm)\n"
     "  --volume      each edited time layer keeps its enclosed volume (4.2.2; keyframe-built manifolds)\n"
     "  Prints the region's sizes and the initialise and deform times in seconds.";
 
@@ -68,6 +70,9 @@ int run(const dfm::cli::Args& args) {
       } catch (const dfm::Error& e) {
         throw UsageError(e.what());
       }
+    } else if (f == "--time-scale") {
+      options.time_scale = a.number(f);
+      if (!(options.time_scale > 0)) throw UsageError("--time-scale needs a positive number");
     } else if (f == "--volume") {
       volume = true;
     } else if (f == "-o") {

@@ -70,7 +70,7 @@ ManifoldEditor::ManifoldEditor(const AnimationManifold& m, EditRegion selection,
   }
   const int nf = static_cast<int>(s.free_vertex.size());
 
-  s.rows = manifold_laplacian_rows(m, region, s.options.weights);
+  s.rows = manifold_laplacian_rows(m, region, s.options.weights, s.options.time_scale);
   s.delta = differential_coordinates(m, region, s.rows).leftCols<3>();
 
   std::vector<Eigen::Triplet<double>> tf, th;

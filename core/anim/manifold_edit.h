@@ -35,6 +35,9 @@ namespace dfm {
 
 struct ManifoldEditOptions {
   LaplacianWeights weights = LaplacianWeights::Reciprocal;  // 4.6.1's schemes (manifold_laplacian.h)
+  // t's factor in the weights' edge lengths (manifold_laplacian.h). On the keyed arm (times 0..2, 1.5
+  // units long) 10 lets a turned wrist handle carry the fingers, 1 leaves them behind.
+  double time_scale = 1.0;
   bool turn_details = true;     // 4.2.1: rotate the differential coordinates with the handle (false:
                                 // translation-only Laplacian editing, which shears details; for comparison)
   bool preserve_volume = false;  // 4.2.2: keep each region layer's enclosed volume

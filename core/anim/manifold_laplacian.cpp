@@ -52,7 +52,9 @@ std::vector<char> manifold_boundary_rows(const AnimationManifold& m, const std::
 }
 
 std::vector<LaplacianRow> manifold_laplacian_rows(const AnimationManifold& m, const std::vector<int>& rows,
-                                                  LaplacianWeights scheme) {
+                                                  LaplacianWeights scheme, double time_scale) {
+  if (!(time_scale > 0) || !std::isfinite(time_scale))
+    throw Error("manifold Laplacian: the time scale must be positive and finite");
   std::unordered_map<int, int> slot;
   slot.reserve(rows.size() * 2);
   for (size_t r = 0; r < rows.size(); ++r) slot.emplace(rows[r], static_cast<int>(r));
@@ -71,7 +73,9 @@ std::vector<LaplacianRow> manifold_laplacian_rows(const AnimationManifold& m, co
     if (nb.empty()) throw Error("manifold Laplacian: vertex " + std::to_string(rows[r]) + " is in no tetrahedron");
     double sum = 0;
     for (int j : nb) {
-      const double len = (m.V.row(rows[r]) - m.V.row(j)).norm();
+      Eigen::RowVector4d e = m.V.row(rows[r]) - m.V.row(j);
+      e[3] *= time_scale;
+      const double len = e.norm();
       if (!(len > 0)) throw Error("manifold Laplacian: vertices " + std::to_string(rows[r]) + " and " + std::to_string(j) +
                                   " coincide (a zero-length edge)");
       L[r].weights.push_back(1 / len);

@@ -36,10 +36,13 @@ struct LaplacianRow {
   std::vector<double> weights;   // w_ij, summing to 1
 };
 
-// One row per vertex in `rows` (any order; the rows' order). Throws dfm::Error for a vertex without
-// neighbours or a zero-length edge.
+// One row per vertex in `rows` (any order; the rows' order). Edge lengths are measured with t multiplied
+// by time_scale (t is in seconds, x, y, z in model units; larger values weaken the time edges, so each
+// frame keeps its shape more and the time edges mostly carry the motion). Throws dfm::Error for a vertex
+// without neighbours, a zero-length edge or a time_scale that is not positive and finite.
 std::vector<LaplacianRow> manifold_laplacian_rows(const AnimationManifold& m, const std::vector<int>& rows,
-                                                  LaplacianWeights weights = LaplacianWeights::Reciprocal);
+                                                  LaplacianWeights weights = LaplacianWeights::Reciprocal,
+                                                  double time_scale = 1.0);
 
 // Per row: whether the vertex lies on the manifold's boundary (a triangle of its star belongs to exactly
 // one tetrahedron).
