@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/export/bvh_motion.h"
 #include "core/export/gltf_scene_import.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
@@ -46,6 +47,16 @@ void read_as(const std::string& reader, const std::string& bytes, const fs::path
     const SceneData s = import_gltf_scene((tmp / "in.glb").string());
     write_scene((tmp / "g.scene.json").string(), s);
     REQUIRE(read_scene((tmp / "g.scene.json").string()).keys.size() == s.keys.size());
+    return;
+  }
+  if (reader == "bvh") {  // opened alone, then its motion onto its own bones, saved and loaded back
+    spill(tmp / "in.bvh", bytes);
+    SceneData s = import_bvh_skeleton((tmp / "in.bvh").string());
+    const size_t keys = s.keys.size();
+    apply_bvh_motion(s, (tmp / "in.bvh").string());
+    REQUIRE(s.keys.size() == keys);
+    write_scene((tmp / "b.scene.json").string(), s);
+    REQUIRE(read_scene((tmp / "b.scene.json").string()).rig.skeleton.num_bones() == s.rig.skeleton.num_bones());
     return;
   }
   if (reader == "tetgen") {
@@ -110,7 +121,7 @@ TEST_CASE("fuzz corpus and crash reproducers load or fail cleanly", "[io][fuzz]"
   fs::remove_all(tmp);
   REQUIRE(inputs >= 10);
   REQUIRE(seeds_ok >= 10);  // the seeds are meant to be valid files: at least one per reader
-  for (const char* r : {"obj", "off", "ply", "stl", "mesh", "tetgen", "dmat", "tgf", "points", "scene", "glb"}) {
+  for (const char* r : {"obj", "off", "ply", "stl", "mesh", "tetgen", "dmat", "tgf", "points", "scene", "glb", "bvh"}) {
     INFO(r);
     CHECK(seeds_per_reader[r] >= 1);
   }

@@ -57,6 +57,16 @@ Eigen::Affine3d to_affine(const aiMatrix4x4& m) {
   return a;
 }
 
+std::vector<int> end_nodes(const AssimpNodes& nodes, const std::vector<int>& joint_of) {
+  std::vector<int> end(nodes.node.size(), -1);
+  for (size_t i = 0; i < nodes.node.size(); ++i) {
+    const int p = nodes.parent[i];
+    if (p < 0 || joint_of[i] >= 0 || joint_of[p] < 0 || end[p] >= 0) continue;
+    if (nodes.node[i]->mNumMeshes == 0 && nodes.node[i]->mNumChildren == 0) end[p] = static_cast<int>(i);
+  }
+  return end;
+}
+
 namespace {
 
 // The bracketing keys of `ticks` and the fraction between them (held outside the keys).

@@ -35,6 +35,11 @@ AssimpNodes node_table(const aiScene* scene);
 
 Eigen::Affine3d to_affine(const aiMatrix4x4& m);
 
+// Per node, its first child that is a bare leaf (no mesh, no children) and no joint, or -1: where a
+// leaf joint's bone ends (FBX's added *_end nodes, BVH's End Sites; import_skeleton uses it only for
+// joints without joint children). `joint_of`: per node its joint, or -1.
+std::vector<int> end_nodes(const AssimpNodes& nodes, const std::vector<int>& joint_of);
+
 // Per node its global transform at `ticks` of `anim` (nullptr: the file's own node transforms).
 std::vector<Eigen::Affine3d> global_transforms(const AssimpNodes& nodes, const aiAnimation* anim, double ticks);
 

@@ -56,29 +56,21 @@ std::vector<SkinnedMesh> skinned_meshes(const aiScene* sc, const AssimpNodes& no
   return out;
 }
 
-}  // namespace
+// The file's joints: the nodes the bones name, in the tree's order, each one's bind frame from its
+// first bone. A mesh's frame: Assimp skins G_j(t) offset_j v, without the mesh node's transform (which
+// its Collada import sets to the up-axis turn the vertices already have), so the rest pose, G_j
+// offset_j v at the nodes' own transforms, puts the mesh at M = C G_b offset_b for its first bone b.
+struct FileJoints {
+  std::vector<ImportJoint> joints;
+  std::vector<int> node;              // per joint
+  std::map<int, int> of_node;         // node -> joint
+  std::vector<Eigen::Affine3d> mesh;  // per skinned mesh, M
+};
 
-SceneData import_assimp_scene(const std::string& path, RigImportReport* report) {
-  const std::string ext = file_extension(path);
-  if (ext != "fbx" && ext != "dae") throw Error(path + ": not an FBX (.fbx) or Collada (.dae) file");
-  const AssimpFile f = read_with_assimp(path, ext == "fbx" ? "Autodesk FBX" : "Collada");
-  const aiScene* sc = f.scene;
-  const AssimpNodes nodes = node_table(sc);
-  const Eigen::Affine3d C = ext == "fbx" ? fbx_frame(sc, path) : Eigen::Affine3d::Identity();
-  const std::vector<Eigen::Affine3d> rest = global_transforms(nodes, nullptr, 0);
-  RigImportReport r;
-  int unskinned = 0;
-  const std::vector<SkinnedMesh> meshes = skinned_meshes(sc, nodes, &unskinned);
-  if (meshes.empty()) throw file_error(path, 0, "no skinned mesh (a mesh with bones)");
-  if (unskinned > 0) r.skipped.push_back(std::to_string(unskinned) + " mesh(es) without bones");
-  r.meshes = static_cast<int>(meshes.size());
-
-  // Joints: the nodes the bones name, in the tree's order; each one's bind frame from its first bone.
-  // A mesh's frame: Assimp skins G_j(t) offset_j v, without the mesh node's transform (which its
-  // Collada import sets to the up-axis turn the vertices already have), so the rest pose, G_j offset_j v
-  // at the nodes' own transforms, puts the mesh at M = C G_b offset_b for its first bone b.
+FileJoints file_joints(const std::vector<SkinnedMesh>& meshes, const AssimpNodes& nodes, const std::vector<Eigen::Affine3d>& rest,
+                       const Eigen::Affine3d& C, const std::string& path) {
+  FileJoints fj;
   std::map<int, Eigen::Affine3d> bind_of;
-  std::vector<Eigen::Affine3d> mesh_frame;
   for (const SkinnedMesh& m : meshes)
     for (unsigned b = 0; b < m.mesh->mNumBones; ++b) {
       const aiBone* bone = m.mesh->mBones[b];
@@ -87,95 +79,128 @@ SceneData import_assimp_scene(const std::string& path, RigImportReport* report) 
       const Eigen::Affine3d offset = to_affine(bone->mOffsetMatrix);
       if (!offset.matrix().allFinite() || !(std::abs(offset.linear().determinant()) > 1e-12))
         throw file_error(path, 0, std::string("bone '") + bone->mName.C_Str() + "'s offset matrix is singular");
-      if (b == 0) mesh_frame.push_back(C * rest[node] * offset);
-      bind_of.emplace(node, mesh_frame.back() * offset.inverse());
+      if (b == 0) fj.mesh.push_back(C * rest[node] * offset);
+      bind_of.emplace(node, fj.mesh.back() * offset.inverse());
     }
-  std::map<int, int> joint_of;  // node -> joint
-  std::vector<int> joint_node;
   for (const auto& [node, bind] : bind_of) {  // map order = the tree's depth-first order
-    joint_of[node] = static_cast<int>(joint_node.size());
-    joint_node.push_back(node);
+    fj.of_node[node] = static_cast<int>(fj.node.size());
+    fj.node.push_back(node);
+    ImportJoint J;
+    J.name = nodes.node[node]->mName.C_Str();
+    J.bind = bind;
+    fj.joints.push_back(J);
   }
-  const int n = static_cast<int>(joint_node.size());
-  std::vector<ImportJoint> joints(n);
-  for (int j = 0; j < n; ++j) {
-    const int node = joint_node[j];
-    joints[j].name = nodes.node[node]->mName.C_Str();
-    joints[j].bind = bind_of[node];
-    for (int a = nodes.parent[node]; a >= 0 && joints[j].parent < 0; a = nodes.parent[a])
-      if (joint_of.count(a)) joints[j].parent = joint_of[a];
+  for (size_t j = 0; j < fj.joints.size(); ++j)
+    for (int a = nodes.parent[fj.node[j]]; a >= 0 && fj.joints[j].parent < 0; a = nodes.parent[a])
+      if (fj.of_node.count(a)) fj.joints[j].parent = fj.of_node[a];
+  // A leaf joint's end node, carried into the bind.
+  std::vector<int> joint_of(nodes.node.size(), -1);
+  for (const auto& [node, j] : fj.of_node) joint_of[node] = j;
+  const std::vector<int> end = end_nodes(nodes, joint_of);
+  for (size_t j = 0; j < fj.joints.size(); ++j) {
+    const int p = fj.node[j];
+    if (end[p] < 0) continue;
+    const Eigen::Vector3d e = fj.joints[j].bind * ((rest[p].inverse() * rest[end[p]]).translation());
+    if (e.allFinite()) fj.joints[j].end = e;
   }
-  // A leaf joint's first child node that is no joint: where its bone ends (FBX's *_end), in the bind.
-  for (size_t i = 0; i < nodes.node.size(); ++i) {
-    const int p = nodes.parent[i];
-    if (p < 0 || joint_of.count(static_cast<int>(i)) || !joint_of.count(p)) continue;
-    if (nodes.node[i]->mNumMeshes > 0 || nodes.node[i]->mNumChildren > 0) continue;  // an end node is a bare leaf
-    ImportJoint& J = joints[joint_of[p]];
-    if (!J.end) J.end = J.bind * ((rest[p].inverse() * rest[i]).translation());
-  }
-  for (int j = 0; j < n; ++j)  // a joint with joint children ends at them (import_skeleton), never at an end node
-    if (joints[j].parent >= 0) joints[joints[j].parent].end.reset();
+  return fj;
+}
 
-  // The meshes at their nodes in the output frame, one vertex list, and every bone's weights.
+// The skinned meshes in the output frame as one vertex list, and every bone's weights on it.
+struct FileMesh {
+  Eigen::MatrixXd V;
+  Eigen::MatrixXi F;
+  std::vector<Influence> influences;
+  bool morphs = false;
+};
+
+FileMesh file_mesh(const std::vector<SkinnedMesh>& meshes, const FileJoints& fj, const AssimpNodes& nodes, const Eigen::Affine3d& C) {
+  FileMesh out;
   Eigen::Index nv = 0, nf = 0;
   for (const SkinnedMesh& m : meshes) nv += m.mesh->mNumVertices, nf += m.mesh->mNumFaces;
-  Eigen::MatrixXd V(nv, 3);
-  Eigen::MatrixXi F(nf, 3);
-  std::vector<Influence> influences;
+  out.V.resize(nv, 3);
+  out.F.resize(nf, 3);
   const bool mirrored = C.linear().determinant() < 0;  // a left-handed file: faces turn to stay outward
   Eigen::Index v0 = 0, f_count = 0;
   for (size_t mi = 0; mi < meshes.size(); ++mi) {
-    const SkinnedMesh& m = meshes[mi];
-    const Eigen::Affine3d& X = mesh_frame[mi];
-    for (unsigned v = 0; v < m.mesh->mNumVertices; ++v) {
-      const aiVector3D& p = m.mesh->mVertices[v];
-      V.row(v0 + v) = (X * Eigen::Vector3d(p.x, p.y, p.z)).transpose();
+    const aiMesh* m = meshes[mi].mesh;
+    for (unsigned v = 0; v < m->mNumVertices; ++v) {
+      const aiVector3D& p = m->mVertices[v];
+      out.V.row(v0 + v) = (fj.mesh[mi] * Eigen::Vector3d(p.x, p.y, p.z)).transpose();
     }
-    for (unsigned k = 0; k < m.mesh->mNumFaces; ++k) {
-      const aiFace& face = m.mesh->mFaces[k];
+    for (unsigned k = 0; k < m->mNumFaces; ++k) {
+      const aiFace& face = m->mFaces[k];
       if (face.mNumIndices != 3) continue;  // points and lines
-      for (int c = 0; c < 3; ++c) F(f_count, mirrored ? 2 - c : c) = static_cast<int>(v0 + face.mIndices[c]);
+      for (int c = 0; c < 3; ++c) out.F(f_count, mirrored ? 2 - c : c) = static_cast<int>(v0 + face.mIndices[c]);
       ++f_count;
     }
-    for (unsigned b = 0; b < m.mesh->mNumBones; ++b) {
-      const aiBone* bone = m.mesh->mBones[b];
-      const int j = joint_of[nodes.find(bone->mName.C_Str())];
+    for (unsigned b = 0; b < m->mNumBones; ++b) {
+      const aiBone* bone = m->mBones[b];
+      const int j = fj.of_node.at(nodes.find(bone->mName.C_Str()));
       for (unsigned k = 0; k < bone->mNumWeights; ++k) {
         const aiVertexWeight& w = bone->mWeights[k];
-        const int vertex = w.mVertexId < m.mesh->mNumVertices ? static_cast<int>(v0 + w.mVertexId) : -1;
-        influences.push_back({vertex, j, w.mWeight});
+        const int vertex = w.mVertexId < m->mNumVertices ? static_cast<int>(v0 + w.mVertexId) : -1;  // -1: refused by name
+        out.influences.push_back({vertex, j, w.mWeight});
       }
     }
-    if (m.mesh->mNumAnimMeshes > 0 && std::find(r.skipped.begin(), r.skipped.end(), "morph targets (shape keys)") == r.skipped.end())
-      r.skipped.push_back("morph targets (shape keys)");
-    v0 += m.mesh->mNumVertices;
+    out.morphs = out.morphs || m->mNumAnimMeshes > 0;
+    v0 += m->mNumVertices;
   }
-  F.conservativeResize(f_count, 3);
-  if (!V.allFinite()) throw file_error(path, 0, "a vertex position is not finite");
-  const WeldedMesh w = weld_by_position(V, F);
-  r.file_vertices = static_cast<int>(nv);
-  SceneData s = imported_scene(w, joints, welded_weights(influences, w, n, path, &r.influences), path, &r);
+  out.F.conservativeResize(f_count, 3);
+  return out;
+}
 
-  if (sc->mNumAnimations > 0) {
-    const aiAnimation* anim = sc->mAnimations[0];
-    if (sc->mNumAnimations > 1) r.skipped.push_back(std::to_string(sc->mNumAnimations - 1) + " more animation(s)");
-    int unnamed = 0;
-    for (unsigned c = 0; c < anim->mNumChannels; ++c) unnamed += nodes.find(anim->mChannels[c]->mNodeName.C_Str()) < 0;
-    if (unnamed > 0) r.skipped.push_back(std::to_string(unnamed) + " animation channel(s) naming no node");
-    const double tps = ticks_per_second(anim);
-    std::vector<Eigen::Affine3d> bind_inverse(n);
-    for (int j = 0; j < n; ++j) bind_inverse[j] = joints[j].bind.inverse();
-    for (double ticks : key_ticks(anim)) {
-      const std::vector<Eigen::Affine3d> G = global_transforms(nodes, anim, ticks);
-      std::vector<Eigen::Affine3d> T(n);
-      for (int j = 0; j < n; ++j) T[j] = C * G[joint_node[j]] * bind_inverse[j];
-      SceneKey k;
-      k.time = ticks / tps;
-      if (!std::isfinite(k.time)) throw file_error(path, 0, "an animation key's time is not finite");
-      k.params = key_params(s.rig, T, path, k.time);
-      s.keys.push_back(std::move(k));
-    }
+// The first animation as keys: at each key time, the joint matrices C G_j(t) bind_j^-1.
+std::vector<SceneKey> animation_keys(const aiScene* sc, const AssimpNodes& nodes, const FileJoints& fj, const Eigen::Affine3d& C,
+                                     const Rig& rig, const std::string& path, RigImportReport* r) {
+  std::vector<SceneKey> keys;
+  if (sc->mNumAnimations == 0) return keys;
+  const aiAnimation* anim = sc->mAnimations[0];
+  if (sc->mNumAnimations > 1) r->skipped.push_back(std::to_string(sc->mNumAnimations - 1) + " more animation(s)");
+  int unnamed = 0;
+  for (unsigned c = 0; c < anim->mNumChannels; ++c) unnamed += nodes.find(anim->mChannels[c]->mNodeName.C_Str()) < 0;
+  if (unnamed > 0) r->skipped.push_back(std::to_string(unnamed) + " animation channel(s) naming no node");
+  const size_t n = fj.joints.size();
+  std::vector<Eigen::Affine3d> bind_inverse(n);
+  for (size_t j = 0; j < n; ++j) bind_inverse[j] = fj.joints[j].bind.inverse();
+  const double tps = ticks_per_second(anim);
+  for (double ticks : key_ticks(anim)) {
+    const std::vector<Eigen::Affine3d> G = global_transforms(nodes, anim, ticks);
+    std::vector<Eigen::Affine3d> T(n);
+    for (size_t j = 0; j < n; ++j) T[j] = C * G[fj.node[j]] * bind_inverse[j];
+    SceneKey k;
+    k.time = ticks / tps;
+    if (!std::isfinite(k.time)) throw file_error(path, 0, "an animation key's time is not finite");
+    k.params = key_params(rig, T, path, k.time);
+    keys.push_back(std::move(k));
   }
+  return keys;
+}
+
+}  // namespace
+
+SceneData import_assimp_scene(const std::string& path, RigImportReport* report) {
+  const std::string ext = file_extension(path);
+  if (ext != "fbx" && ext != "dae") throw Error(path + ": not an FBX (.fbx) or Collada (.dae) file");
+  const AssimpFile f = read_with_assimp(path, ext == "fbx" ? "Autodesk FBX" : "Collada");
+  const AssimpNodes nodes = node_table(f.scene);
+  const Eigen::Affine3d C = ext == "fbx" ? fbx_frame(f.scene, path) : Eigen::Affine3d::Identity();
+  const std::vector<Eigen::Affine3d> rest = global_transforms(nodes, nullptr, 0);
+  RigImportReport r;
+  int unskinned = 0;
+  const std::vector<SkinnedMesh> meshes = skinned_meshes(f.scene, nodes, &unskinned);
+  if (meshes.empty()) throw file_error(path, 0, "no skinned mesh (a mesh with bones)");
+  if (unskinned > 0) r.skipped.push_back(std::to_string(unskinned) + " mesh(es) without bones");
+  r.meshes = static_cast<int>(meshes.size());
+  const FileJoints fj = file_joints(meshes, nodes, rest, C, path);
+  const FileMesh fm = file_mesh(meshes, fj, nodes, C);
+  if (fm.morphs) r.skipped.push_back("morph targets (shape keys)");
+  if (!fm.V.allFinite()) throw file_error(path, 0, "a vertex position is not finite");
+  const WeldedMesh w = weld_by_position(fm.V, fm.F);
+  r.file_vertices = static_cast<int>(fm.V.rows());
+  const int n = static_cast<int>(fj.joints.size());
+  SceneData s = imported_scene(w, fj.joints, welded_weights(fm.influences, w, n, path, &r.influences), path, &r);
+  s.keys = animation_keys(f.scene, nodes, fj, C, s.rig, path, &r);
   finish_import(s, path, &r);
   if (report) *report = r;
   return s;

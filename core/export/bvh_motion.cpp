@@ -161,13 +161,9 @@ SceneData import_bvh_skeleton(const std::string& path, RigImportReport* report) 
     for (int a = nodes.parent[node]; a >= 0 && joints[j].parent < 0; a = nodes.parent[a]) joints[j].parent = joint_of[a];
     heads.row(j) = rest[node].translation().transpose();
   }
-  for (size_t i = 0; i < nodes.node.size(); ++i) {  // an End Site: its joint's bone's tail
-    const int p = nodes.parent[i];
-    if (p >= 0 && joint_of[i] < 0 && joint_of[p] >= 0 && nodes.node[i]->mNumChildren == 0 && !joints[joint_of[p]].end)
-      joints[joint_of[p]].end = rest[i].translation();
-  }
+  const std::vector<int> end = end_nodes(nodes, joint_of);  // End Sites
   for (int j = 0; j < n; ++j)
-    if (joints[j].parent >= 0) joints[joints[j].parent].end.reset();
+    if (end[joint_node[j]] >= 0) joints[j].end = rest[end[joint_node[j]]].translation();
   RigImportReport r;
   r.meshes = 0;
   r.joints = n;

@@ -75,6 +75,34 @@ Eigen::MatrixXd welded_weights(const std::vector<Influence>& influences, const W
   return W;
 }
 
+namespace {
+
+// Scene files are JSON, which holds UTF-8 only: a byte that starts no valid UTF-8 sequence (a Latin-1
+// name in an old file, junk) becomes '?'.
+std::string utf8_name(const std::string& s) {
+  std::string out;
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    const size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool ok = len > 0 && i + len <= s.size();
+    for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(s[i + k]) >> 6) == 0x2;
+    if (ok && len == 2) ok = c >= 0xC2;  // no overlong forms
+    if (ok && len == 3) {
+      const unsigned char d = static_cast<unsigned char>(s[i + 1]);
+      ok = !(c == 0xE0 && d < 0xA0) && !(c == 0xED && d >= 0xA0);  // overlong, surrogates
+    }
+    if (ok && len == 4) {
+      const unsigned char d = static_cast<unsigned char>(s[i + 1]);
+      ok = !(c == 0xF0 && d < 0x90) && !(c == 0xF4 && d >= 0x90) && c <= 0xF4;
+    }
+    if (ok) out.append(s, i, len), i += len;
+    else out += '?', ++i;
+  }
+  return out;
+}
+
+}  // namespace
+
 Skeleton import_skeleton(const std::vector<ImportJoint>& joints, double diagonal, RigImportReport* report) {
   const int n = static_cast<int>(joints.size());
   // Heads from a file's float matrices: one joint's children start within its rounding of one point.
@@ -97,7 +125,7 @@ Skeleton import_skeleton(const std::vector<ImportJoint>& joints, double diagonal
     Bone b;
     b.a = point(head[j]);
     b.parent = joints[j].parent;
-    b.name = joints[j].name.empty() ? "joint_" + std::to_string(j) : joints[j].name;
+    b.name = joints[j].name.empty() ? "joint_" + std::to_string(j) : utf8_name(joints[j].name);
     s.bones.push_back(b);
   }
   auto tail_of = [&](int j) -> Eigen::Vector3d {

@@ -59,7 +59,8 @@ struct ImportJoint {
 // One bone per joint, from its head to its children's common head; a leaf with an end node to it;
 // otherwise (several children apart, or a leaf without one) along the joint's own y axis (Blender's
 // bone axis), as long as the mean distance to its children, else its parent bone, else 5% of
-// `diagonal`. Points within 1e-6 of `diagonal` (float rounding) are one joint. The counts of axis and end tails go to the report.
+// `diagonal`. Points within 1e-6 of `diagonal` (float rounding) are one joint. A name's bytes that are
+// not UTF-8 become '?' (scene files are JSON); an empty name is joint_N. The counts of axis and end tails go to the report.
 Skeleton import_skeleton(const std::vector<ImportJoint>& joints, double diagonal, RigImportReport* report);
 
 // The editor's parameters that give exactly the joint matrices T (posed = T_j rest, one per bone)

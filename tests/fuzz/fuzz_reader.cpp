@@ -1,5 +1,6 @@
 // libFuzzer target for one reader, chosen by the program's name fuzz_<reader> (one binary, linked
-// under each name): obj off ply stl mesh tetgen dmat tgf points scene glb (a rigged glTF imported as a scene). The input is written to a temp file and read back
+// under each name): obj off ply stl mesh tetgen dmat tgf points scene glb (a rigged glTF imported as a scene)
+// bvh (a BVH opened alone, then its motion onto the skeleton it made). The input is written to a temp file and read back
 // through the public API. A dfm::Error is the expected outcome for bad input; any other exception,
 // a sanitizer report, or a failed round trip (read -> write -> read must give the same data) is a bug.
 #include <sys/stat.h>
@@ -13,6 +14,7 @@
 #include <iterator>
 #include <string>
 
+#include "core/export/bvh_motion.h"
 #include "core/export/gltf_scene_import.h"
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
@@ -144,6 +146,17 @@ void one_input(const uint8_t* data, size_t size) {
     check(back.surface.V.rows() == sc.surface.V.rows() && back.rig.skeleton.num_bones() == sc.rig.skeleton.num_bones() &&
               back.keys.size() == sc.keys.size(),
           "glb scene");
+  } else if (reader == "bvh") {
+    // Whatever opens alone is a valid scene, and its motion applies back onto its own bones by name.
+    const std::string path = base + ".bvh";
+    put(path, data, size);
+    dfm::SceneData sc = dfm::import_bvh_skeleton(path);
+    const size_t keys = sc.keys.size();
+    dfm::apply_bvh_motion(sc, path);
+    check(sc.keys.size() == keys, "bvh motion onto its own skeleton");
+    const std::string dir = scene_dir();
+    dfm::write_scene(dir + "/out1/b.scene.json", sc);
+    check(dfm::read_scene(dir + "/out1/b.scene.json").rig.skeleton.num_bones() == sc.rig.skeleton.num_bones(), "bvh scene");
   } else if (reader == "scene") {
     const std::string dir = scene_dir();
     put(dir + "/in.scene.json", data, size);

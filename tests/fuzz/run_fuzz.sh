@@ -9,7 +9,7 @@
 set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
-READERS="obj off ply stl mesh tetgen dmat tgf points scene glb"
+READERS="obj off ply stl mesh tetgen dmat tgf points scene glb bvh"
 CXX=${FUZZ_CXX:-$(command -v clang++-14 || command -v clang++ || true)}
 
 build() {
@@ -19,10 +19,12 @@ build() {
   flags="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT -isystem /usr/include/eigen3"
   objs=""
   # The scene reader needs rig/ and skin/ (handle counts, skin method names) and the in-between method
-  # names, but not bind/ or the GL; the glTF import its reader (tinygltf, linked) and the importers' table.
+  # names, but not bind/ or the GL; the glTF import its reader (tinygltf, linked) and the importers' table;
+  # the BVH import Assimp (linked: Debian's, not instrumented, so only our side of it is fuzzed).
   for src in "$ROOT"/core/util/*.cpp "$ROOT"/core/mesh/*.cpp "$ROOT"/core/rig/*.cpp "$ROOT"/core/skin/*.cpp \
              "$ROOT"/core/anim/inbetween_method.cpp "$ROOT"/core/scene/scene_file.cpp "$ROOT"/core/scene/scene_reader.cpp \
-             "$ROOT"/core/scene/scene_import.cpp "$ROOT"/core/export/gltf_import.cpp "$ROOT"/core/export/gltf_scene_import.cpp; do
+             "$ROOT"/core/scene/scene_import.cpp "$ROOT"/core/export/gltf_import.cpp "$ROOT"/core/export/gltf_scene_import.cpp \
+             "$ROOT"/core/export/rig_import.cpp "$ROOT"/core/export/assimp_read.cpp "$ROOT"/core/export/bvh_motion.cpp; do
     o="$out/obj/$(basename "$src" .cpp).o"
     # Rebuilt when the source or any header it includes (its -MM dependency list) is newer.
     if [ ! -f "$o.d" ]; then "$CXX" $flags -MM -MT "$o" "$src" > "$o.d"; fi
@@ -38,7 +40,7 @@ build() {
     objs="$objs $o"
   done
   # One program; its name (fuzz_<reader>) picks the reader.
-  "$CXX" $flags -fsanitize=fuzzer,address,undefined "$HERE/fuzz_reader.cpp" $objs -ltinygltf -o "$out/dfm_fuzz"
+  "$CXX" $flags -fsanitize=fuzzer,address,undefined "$HERE/fuzz_reader.cpp" $objs -ltinygltf -lassimp -o "$out/dfm_fuzz"
   for r in $READERS; do ln -sf dfm_fuzz "$out/fuzz_$r"; done
 }
 
@@ -48,6 +50,8 @@ run() {
   mkdir -p "$work" "$out/crashes"
   # A scratch copy of the seeds: libFuzzer adds what it finds to the first corpus folder.
   cp "$HERE/corpus/$r"/* "$work"/ 2>/dev/null || true
+  # Third-party leaks (Assimp's BVH loader) are suppressed as in the test suite.
+  LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$ROOT/tests/sanitizer/lsan.supp:print_suppressions=0} \
   ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
     "$out/fuzz_$r" -seed=1 -max_total_time="$secs" -rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=10 \
     -max_len=65536 -print_final_stats=1 -artifact_prefix="$out/crashes/$r-" "$work"
