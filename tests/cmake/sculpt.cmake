@@ -1,0 +1,4 @@
+# Shape keys made here (issue 37): variational region deformation (Jacobson 2013 ch. 3), local
+# transitions in Laplacian coordinates (Alexa 2002, 4.3), and the CLI commands that run them.
+dfm_test(test_variational_deform SOURCES test_variational_deform.cpp LIBS dfm_sculpt)
+dfm_test(test_differential_blend SOURCES test_differential_blend.cpp LIBS dfm_sculpt)
