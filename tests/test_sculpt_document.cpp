@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
 #include "core/scene/document.h"
 #include "core/scene/key_surfaces.h"
@@ -223,4 +225,27 @@ TEST_CASE("transition-state: bad lines say why and change nothing") {
   CHECK_THROWS_WITH(run(d, "transition-state 1.5 0.5 0 0 1 0.6\n"), Catch::Contains("one connectivity"));
   CHECK(d.undo_depth() == depth + 1);  // the key-mesh only
   CHECK(d.keys()[0].transition_to_next.size() == 0);
+}
+
+TEST_CASE("scene files: a transition of the wrong size or on the last key is refused, naming the field") {
+  Document d;
+  two_key_document(d, 1);
+  run(d, "transition-state 0.5 0.5 0 0 1 0.6\n");
+  ScratchDir dir("sculpt_hostile");
+  const std::string path = dir / "t.scene.json";
+  d.save_scene(path);
+  std::stringstream ss;
+  ss << std::ifstream(path).rdbuf();
+  const std::string text = ss.str();
+  const size_t at = text.find("\"transition\"");
+  REQUIRE(at != std::string::npos);
+  const std::string rows = "\"rows\": " + std::to_string(sphere().V.rows());
+  const size_t r = text.find(rows, at);
+  REQUIRE(r != std::string::npos);
+  std::string shorter = text;
+  shorter.replace(r, rows.size(), "\"rows\": 10");
+  std::ofstream(path) << shorter;
+  Document e;
+  CHECK_THROWS_WITH(e.load_scene(path), Catch::Contains("keys[0].transition' must have one offset per vertex"));
+  CHECK(e.keys().empty());
 }
