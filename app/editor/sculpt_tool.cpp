@@ -33,7 +33,6 @@ CommandWords SculptTool::transition_line(const Document& doc, const Eigen::Matri
 
 void SculptTool::update(Document& doc, SceneView& view, const view::Camera& cam, const Input& in, const Run& run) {
   const double diag = std::max(1e-9, view.surface_bounds().diagonal().norm());
-  const SculptSession* session = doc.sculpt();
 
   // The handle drag: the point under the cursor on the view plane through where it started.
   if (drag_) {
@@ -65,9 +64,8 @@ void SculptTool::update(Document& doc, SceneView& view, const view::Camera& cam,
   }
 
   if (mode_ == SculptMode::Handle) {
-    // A click on the region picks the handle there and starts its drag.
-    if (in.clicked && hit.hit() && session &&
-        run(command_words("sculpt-handle", {hit.point.x(), hit.point.y(), hit.point.z(), radius})))
+    // A click on the region picks the handle there and starts its drag (off the region: the error says so).
+    if (in.clicked && hit.hit() && run(command_words("sculpt-handle", {hit.point.x(), hit.point.y(), hit.point.z(), radius})))
       drag_ = hit.point;
     return;
   }
