@@ -16,6 +16,7 @@
 #include "core/scene/key_surfaces.h"
 #include "app/editor/paint_tool.h"
 #include "app/editor/pose_tool.h"
+#include "app/editor/sculpt_tool.h"
 #include "core/scene/command.h"
 #include "core/scene/script.h"
 #include "tests/mock_render_backend.h"
@@ -940,4 +941,121 @@ TEST_CASE("paint tool on weights: a stroke is paint-weights lines, one undo step
   const size_t n = lines.size();
   tool.update(doc, scene, cam, in, run);
   CHECK(lines.size() == n);
+}
+
+// Issue 37: the Sculpt tool's strokes and drags are script lines that repeat it; the view shows the
+// session's result (with the tool's heat map) until it is keyed or discarded.
+TEST_CASE("sculpt tool: region stroke, handle drag and key are lines a script repeats; the view shows the result",
+          "[editor][scene_view][sculpt]") {
+  const TriMesh sphere = test::icosphere(Vector3d::Zero(), 1.0, 2);  // 162 vertices
+  Document doc;
+  doc.set_surface(sphere, "sphere");
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  ViewSettings vs;
+  vs.sculpt_colors = true;
+  scene.sync(doc, vs);
+  view::Camera cam;
+  cam.width = 800, cam.height = 600;
+  view::frame_box(cam, Vector3d(-1, -1, -1), Vector3d(1, 1, 1));
+  REQUIRE(camera_forward(cam).z() < -0.9);  // looking at the +z side
+
+  editor::SculptTool tool;
+  tool.set_brush(0.15, 0.06, 0.5, 0.5);  // fractions of the diagonal (3.46): region 0.52, handle 0.21
+  std::vector<CommandWords> lines;
+  const editor::SculptTool::Run run = [&](const CommandWords& w) {
+    lines.push_back(w);
+    run_command(doc, w);
+    return true;
+  };
+  const int depth = doc.undo_depth();
+  editor::SculptTool::Input in;
+  in.hovered = true;
+  for (int k = 0; k <= 2; ++k) {  // a short stroke across the front
+    in.mouse = view::project_to_pixel(cam, Vector3d(-0.2 + 0.2 * k, 0, 0.98)).head<2>();
+    in.clicked = k == 0, in.down = true, in.released = k == 2;
+    tool.update(doc, scene, cam, in, run);
+    scene.sync(doc, vs);
+  }
+  REQUIRE(doc.sculpt());
+  CHECK(lines.size() == 3);
+  CHECK(lines[0][0] == "sculpt-region");
+  tool.set_mode(editor::SculptMode::Handle);
+  const Eigen::Vector2d at = view::project_to_pixel(cam, Vector3d(0, 0, 1)).head<2>();
+  for (int k = 0; k <= 3; ++k) {  // click the handle, drag it up 30 pixels
+    in.mouse = at - Eigen::Vector2d(0, 10.0 * k);
+    in.clicked = k == 0, in.down = k < 3, in.released = k == 3;
+    tool.update(doc, scene, cam, in, run);
+    scene.sync(doc, vs);
+  }
+  CHECK_FALSE(tool.busy());
+  REQUIRE(lines.size() == 6);
+  CHECK(lines[3][0] == "sculpt-handle");
+  CHECK(lines[4][0] == "sculpt-move");
+  const SculptSession& s = *doc.sculpt();
+  CHECK(s.move.y() > 0.05);  // up on screen is +y
+  CHECK(doc.undo_depth() == depth);  // the session is tool state
+
+  // The view shows the result, with fixed 0, free 0.55 and handle 1 as the heat map.
+  CHECK(scene.showing_preview());
+  CHECK(scene.display_vertices() == s.result);
+  REQUIRE(gpu.data.size() == static_cast<size_t>(sphere.V.rows()));
+  for (int v = 0; v < sphere.V.rows(); ++v) {
+    const bool handle = std::count(s.handle.begin(), s.handle.end(), v) > 0;
+    CHECK(gpu.data[v].x() == (handle ? 1.0f : s.region[v] ? 0.55f : 0.0f));
+  }
+  scene.clear_preview();  // another panel's clear keeps the session's result
+  scene.sync(doc, vs);
+  CHECK(scene.display_vertices() == s.result);
+
+  // The lines on a fresh document: the same surface, bit for bit.
+  Document replay;
+  replay.set_surface(sphere, "sphere");
+  std::string text;
+  for (const CommandWords& w : lines) {
+    for (size_t i = 0; i < w.size(); ++i) text += (i ? " " : "") + w[i];
+    text += "\n";
+  }
+  run_script(replay, parse_script(text, "sculpt.txt"), "sculpt.txt");
+  REQUIRE(replay.sculpt());
+  CHECK(replay.sculpt()->result == s.result);
+
+  // Key this shape: one undo step; the view goes back to the document's surface.
+  const Eigen::MatrixXd result = s.result;
+  CHECK(run(command_words("sculpt-key", {1.0})));
+  CHECK(doc.undo_depth() == depth + 1);
+  REQUIRE(doc.keys().size() == 1);
+  CHECK(doc.keys()[0].mesh.V == result);
+  scene.sync(doc, vs);
+  CHECK_FALSE(scene.showing_preview());
+  CHECK(scene.display_vertices() == sphere.V);
+}
+
+TEST_CASE("sculpt tool: a transition dab on an in-between is measured on the interval's first key", "[editor][sculpt]") {
+  const TriMesh a = test::icosphere(Vector3d::Zero(), 1.0, 1);
+  TriMesh b = a;
+  b.V *= 1.5;
+  Document doc;
+  doc.set_surface(a, "a");
+  doc.key_mesh(a, "a.obj", 0);
+  doc.key_mesh(b, "b.obj", 1);
+  doc.set_time(0.5);
+  const Vector3d bary(0.2, 0.3, 0.5);
+  Vector3d on_b = Vector3d::Zero(), on_a = Vector3d::Zero();
+  for (int j = 0; j < 3; ++j) on_b += bary[j] * b.V.row(b.F(4, j)).transpose(), on_a += bary[j] * a.V.row(a.F(4, j)).transpose();
+  const CommandWords w = editor::SculptTool::transition_line(doc, a.F, 4, bary, on_b, 0.3, 0.5, 0.25);
+  REQUIRE(w.size() == 8);
+  CHECK(w[0] == "transition-state");
+  CHECK(std::strtod(w[1].c_str(), nullptr) == 0.5);
+  CHECK((Vector3d(std::strtod(w[3].c_str(), nullptr), std::strtod(w[4].c_str(), nullptr), std::strtod(w[5].c_str(), nullptr)) -
+         on_a).norm() < 1e-15);
+  run_command(doc, w);
+  CHECK((doc.keys()[0].transition_to_next.array() > 0).count() > 0);
+  // No interval for a local transition (a single key): no line, and why.
+  Document one;
+  one.set_surface(a, "a");
+  one.key_mesh(a, "a.obj", 0);
+  std::string why;
+  CHECK(editor::SculptTool::transition_line(one, a.F, 4, bary, on_a, 0.3, 0.5, 0, &why).empty());
+  CHECK(why.find("two keys") != std::string::npos);
 }

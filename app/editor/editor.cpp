@@ -128,6 +128,7 @@ void Editor::show_opened(ScriptHost::Opened what) {
     weight_rows_.clear();
     bone_tool_.cancel();
     pair_tool_.cancel();
+    sculpt_tool_.cancel(doc_);
     paint_tool_.new_document();
     weight_tools_ = WeightToolsUi{};
   }
@@ -271,6 +272,7 @@ void Editor::render_frame() {
   vs.weight_view = weight_view_;
   vs.slice_axis = slice_axis_;
   vs.sweep_value = sweep_value_;
+  vs.sculpt_colors = tool_ == Tool::Sculpt;
   view_->sync(doc_, vs);
   stage_end(t, stages_.sync);
   ImGui::Render();

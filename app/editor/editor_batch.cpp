@@ -148,7 +148,7 @@ void Editor::wait_for_shape_space() {
   std::fflush(stdout);
 }
 
-// "tool=rotate,weights=selected,wireframe=1,ortho=0,preset=iso,sweep=x,grid=0": the state a user
+// "tool=rotate,weights=selected,wireframe=1,ortho=0,preset=iso,sweep=x,grid=0,frame=X:Y:Z:R": the state a user
 // would click to, so a screenshot can show any tool. Unknown keys or values are errors.
 void Editor::apply_ui_options(const std::string& spec) {
   size_t pos = 0;
@@ -171,6 +171,8 @@ void Editor::apply_ui_options(const std::string& spec) {
       else if (v == "move") tool_ = Tool::Pose, gizmo_rotate_ = false;
       else if (v == "rotate") tool_ = Tool::Pose, gizmo_rotate_ = true;
       else if (v == "pair") tool_ = Tool::Pair;
+      else if (v == "sculpt") tool_ = Tool::Sculpt, sculpt_tool_.set_mode(SculptMode::Region);
+      else if (v == "sculpt-transition") tool_ = Tool::Sculpt, sculpt_tool_.set_mode(SculptMode::Transition);
       else throw bad();
     } else if (k == "weights") {
       if (v == "off") weight_view_ = WeightView::Off;
@@ -199,7 +201,15 @@ void Editor::apply_ui_options(const std::string& spec) {
     } else if (k == "frame") {
       if (v == "all") frame_all();
       else if (v == "selection") frame_selection_after_script_ = true;  // the script may select
-      else throw bad();
+      else if (double x = 0, y = 0, z = 0, r = 0; std::sscanf(v.c_str(), "%lf:%lf:%lf:%lf", &x, &y, &z, &r) == 4 && r > 0) {
+        // frame=X:Y:Z:R: the sphere at X Y Z of radius R fills the viewport (a close-up for a screenshot).
+        const Rect vp = panel_layout().viewport;
+        cam_.width = vp.w, cam_.height = vp.h;
+        view::frame_sphere(cam_, Eigen::Vector3d(x, y, z), r);
+        sync_camera_to_doc();
+      } else {
+        throw bad();
+      }
     } else if (k == "cursor") {
       double x = 0, y = 0;
       if (std::sscanf(v.c_str(), "%lfx%lf", &x, &y) != 2) throw bad();

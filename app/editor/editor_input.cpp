@@ -78,6 +78,7 @@ void Editor::handle_shortcuts() {
     if (pressed(GLFW_KEY_P)) tool_ = Tool::PlacePoint;
     if (pressed(GLFW_KEY_B)) tool_ = Tool::DrawBone;
     if (pressed(GLFW_KEY_V)) tool_ = Tool::Paint;
+    if (pressed(GLFW_KEY_U)) tool_ = Tool::Sculpt;
     if (pressed(GLFW_KEY_G)) tool_ = Tool::Pose, gizmo_rotate_ = false;
     if (pressed(GLFW_KEY_R)) tool_ = Tool::Pose, gizmo_rotate_ = true;
     if (pressed(GLFW_KEY_K)) run_ui_command({"set-key"});
@@ -100,7 +101,7 @@ void Editor::handle_camera_input() {
     view::zoom_to_cursor(cam_, std::pow(0.85, io.MouseWheel), m);
     sync_camera_to_doc();
   }
-  if (drag_ == Drag::None && !rig_drag_.dragging() && !pose_tool_.dragging() && !paint_tool_.painting() && over) {
+  if (drag_ == Drag::None && !rig_drag_.dragging() && !pose_tool_.dragging() && !paint_tool_.painting() && !sculpt_tool_.busy() && over) {
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Middle) || (io.KeyAlt && ImGui::IsMouseClicked(ImGuiMouseButton_Left)))
       drag_ = (io.KeyShift ? Drag::Pan : Drag::Orbit), drag_last_ = m;
     else if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) && !(tool_ == Tool::DrawBone && bone_tool_.active()))
@@ -136,12 +137,14 @@ void Editor::handle_viewport_input() {
       case Tool::Paint: tool_paint(down, clicked, released); break;
       case Tool::Pose: tool_pose(clicked, released); break;
       case Tool::Pair: tool_pair(clicked); break;
+      case Tool::Sculpt: tool_sculpt(down, clicked, released); break;
     }
   } catch (const std::exception& e) {
     drag_ = Drag::None;
     rig_drag_.cancel(doc_);
     pose_tool_.cancel(doc_);
     paint_tool_.cancel(doc_);
+    sculpt_tool_.cancel(doc_);
     error_popup_ = e.what();
   }
 }
@@ -240,6 +243,15 @@ void Editor::tool_paint(bool down, bool clicked, bool released) {
   in.erase = ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift;
   in.locked = weight_tools_.locked;
   paint_tool_.update(doc_, *view_, cam_, in, [this](const CommandWords& w) { return run_ui_command(w); });
+}
+
+void Editor::tool_sculpt(bool down, bool clicked, bool released) {
+  SculptTool::Input in;
+  in.mouse = mouse_in_viewport();
+  in.hovered = viewport_hovered_;
+  in.down = down, in.clicked = clicked, in.released = released;
+  in.erase = ImGui::GetIO().KeyCtrl || ImGui::GetIO().KeyShift;
+  sculpt_tool_.update(doc_, *view_, cam_, in, [this](const CommandWords& w) { return run_ui_command(w); });
 }
 
 void Editor::tool_pose(bool clicked, bool released) {

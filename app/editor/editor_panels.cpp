@@ -229,6 +229,9 @@ void Editor::draw_tools_panel() {
     tool_ = Tool::Pair;
     pair_tool_.cancel();
   }
+  ImGui::SameLine();
+  if (tool_button("Sculpt  U", tool_ == Tool::Sculpt, "Shape keys: brush a free region, drag a handle inside it (C1 or C2), key the shape; or paint a local transition between two mesh keys", w))
+    tool_ = Tool::Sculpt;
 
   ImGui::Separator();
   switch (tool_) {
@@ -251,6 +254,9 @@ void Editor::draw_tools_panel() {
     case Tool::Pair:
       ImGui::TextWrapped("%s", pair_tool_.hint(doc_).c_str());
       if (ImGui::Button("Clear pairs")) run_ui_command({"clear-pairs"});
+      break;
+    case Tool::Sculpt:
+      sculpt_tool_.draw_options(doc_, [this](const CommandWords& w) { return run_ui_command(w); });  // sculpt_tool.h
       break;
     case Tool::Select:
       ImGui::TextWrapped("Click to select (Shift: add). Drag handles before binding. Click the surface to list a vertex's weights.");
@@ -494,7 +500,7 @@ std::string Editor::hud_text() const {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%.0f fps  %.1f ms   %d verts  %d faces   %s%s", frame_stats_.fps(), frame_stats_.ms(),
                 view_->display_vertex_count(), view_->display_face_count(),
-                cam_.orthographic ? "ortho" : "persp", view_->showing_preview() ? "   shape space" : view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
+                cam_.orthographic ? "ortho" : "persp", view_->showing_preview() ? (doc_.sculpt() ? "   sculpt" : "   shape space") : view_->display_is_rest() ? "   rest" : (view_->showing_slice() ? "   manifold slice" : "   posed"));
   return buf;
 }
 

@@ -38,6 +38,7 @@ std::uint64_t manifold_signature(const Document& doc) {
     h = fnv1a(h, &keys[i].time, sizeof(double));
     h = fnv1a(h, &keys[i].inbetween, sizeof(InbetweenMethod));
     h = mix_matrix(h, keys[i].pairs_to_next);
+    h = mix_matrix(h, keys[i].transition_to_next);  // a local transition's in-betweens (key_surfaces)
     if (keys[i].is_mesh()) {
       h = fnv1a(h, "mesh", 4);
       h = mix_matrix(h, keys[i].mesh.V);

@@ -97,7 +97,24 @@ void SceneView::sync(const Document& doc, const ViewSettings& s) {
   if (content || time_changed || settings_changed || surface_requested_ || deformer_->builder.busy())
     update_surface(doc, s);
   surface_requested_ = false;
-  if (content || time_changed || settings_changed || sel_changed || !colors_valid_) update_colors(doc, s);
+  // A sculpt session shows its result over the document's frame, re-uploaded when the session changes.
+  const SculptSession* sculpt = doc.sculpt();
+  bool sculpt_changed = false;
+  if (sculpt && (sculpt->revision != shown_sculpt_ || !showing_preview_)) {
+    show_preview(TriMesh{sculpt->result, sculpt->base.F, {}});
+    shown_sculpt_ = sculpt->revision;
+    sculpt_changed = true;
+  } else if (!sculpt && shown_sculpt_ != 0) {
+    shown_sculpt_ = 0;
+    sculpt_changed = true;
+    if (showing_preview_) {
+      showing_preview_ = false;
+      update_surface(doc, s);
+    }
+  }
+  if (content || time_changed || settings_changed || sel_changed || sculpt_changed || !colors_valid_ ||
+      s.sculpt_colors != synced_settings_.sculpt_colors)
+    update_colors(doc, s);
   update_handles(doc, s);
   overlay_opacity_ = showing_slice_ && s.slice_axis == SliceAxis::T ? rig_overlay_opacity(doc, doc.time()) : 1.0f;
   synced_revision_ = doc.revision();
@@ -383,9 +400,15 @@ Pose SceneView::pose_on_screen(const Document& doc, SliceAxis axis) const {
 void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
   colors_valid_ = true;
   const int nv = doc.surface().num_vertices();
-  const bool same_vertices = !showing_slice_;
+  const SculptSession* sculpt = doc.sculpt();
+  const bool same_vertices = !showing_slice_ && (!sculpt || static_cast<int>(sculpt->region.size()) == nv);
   std::vector<Eigen::Vector4f> data;
-  if (same_vertices && s.weight_view == WeightView::Selected && doc.has_weights() && !doc.selection().handles.empty()) {
+  if (s.sculpt_colors && sculpt && showing_preview_) {
+    data.assign(sculpt->region.size(), Eigen::Vector4f(0, 0, 0, 1));
+    for (size_t v = 0; v < data.size(); ++v)
+      if (sculpt->region[v]) data[v].x() = 0.55f;
+    for (int v : sculpt->handle) data[v].x() = 1.0f;
+  } else if (same_vertices && s.weight_view == WeightView::Selected && doc.has_weights() && !doc.selection().handles.empty()) {
     const int h = doc.selection().handles.front();
     if (h >= 0 && h < doc.weights().cols()) {
       data.resize(nv);
@@ -415,7 +438,8 @@ void SceneView::update_colors(const Document& doc, const ViewSettings& s) {
 void SceneView::draw(const Document& doc, const view::Camera& cam, const ViewSettings& s) {
   gl::SurfaceStyle style;
   style.wireframe = s.wireframe;
-  style.mode = s.weight_view == WeightView::AllHandles ? gl::SurfaceColorMode::VertexColor
+  style.mode = s.sculpt_colors && doc.sculpt() ? gl::SurfaceColorMode::Scalar
+               : s.weight_view == WeightView::AllHandles ? gl::SurfaceColorMode::VertexColor
                : s.weight_view == WeightView::Off ? gl::SurfaceColorMode::Shaded
                                     : gl::SurfaceColorMode::Scalar;
   style.isolines = s.weight_view == WeightView::Selected ? 10.0f : 0.0f;
@@ -451,7 +475,7 @@ void SceneView::show_preview(const TriMesh& mesh) {
 }
 
 void SceneView::clear_preview() {
-  if (!showing_preview_) return;
+  if (!showing_preview_ || shown_sculpt_ != 0) return;  // a sculpt session's result stays until it ends (sync)
   showing_preview_ = false;
   surface_requested_ = true;  // the next sync shows the document's frame again
 }

@@ -31,6 +31,8 @@ struct ViewSettings {
   WeightView weight_view = WeightView::Off;
   SliceAxis slice_axis = SliceAxis::T;  // T: time slices; X, Y, Z: the sweep view along that axis
   double sweep_value = 0.5;   // fraction of the extent along the sweep axis
+  // The Sculpt tool's heat map over a sculpt session's result: fixed 0, free region 0.55, handle 1.
+  bool sculpt_colors = false;
 };
 
 // Per-handle display colour (distinct hues, golden-ratio spaced), linear RGB.
@@ -69,7 +71,8 @@ class SceneView {
   // edit after a scrub does.
   void show_pose();
   // Shows `mesh` instead of the document's frame (the Shape space panel's shape) until the next change
-  // of the document, time or view settings, or clear_preview().
+  // of the document, time or view settings, or clear_preview(). A sculpt session (Document::sculpt)
+  // shows its result this way while it lasts.
   void show_preview(const TriMesh& mesh);
   void clear_preview();
   bool showing_preview() const { return showing_preview_; }
@@ -131,6 +134,7 @@ class SceneView {
   std::vector<float> extra_line_widths_;
   float extra_point_size_ = 12.f;
   std::uint64_t synced_revision_ = ~0ull;
+  std::uint64_t shown_sculpt_ = 0;  // the sculpt session's revision on display (0: none)
   double synced_time_ = -1e300;
   ViewSettings synced_settings_;
   std::vector<int> synced_selection_;

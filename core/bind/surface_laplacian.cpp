@@ -17,8 +17,10 @@ void check_faces(int nv, const Eigen::MatrixXi& F) {
 }
 
 // Off-diagonal couplings c_ij (i != j, both directions; an edge's triangles summed) -> K with
-// K_ij = -max(c_ij, 0), K_ii = -sum_j K_ij. unit: every positive coupling counts as 1.
-Eigen::SparseMatrix<double> from_couplings(int nv, const std::vector<Eigen::Triplet<double>>& c, bool unit) {
+// K_ij = -max(c_ij, 0), K_ii = -sum_j K_ij. unit: every positive coupling counts as 1. clamp = false
+// keeps negative couplings as they are.
+Eigen::SparseMatrix<double> from_couplings(int nv, const std::vector<Eigen::Triplet<double>>& c, bool unit,
+                                           bool clamp = true) {
   Eigen::SparseMatrix<double> C(nv, nv);
   C.setFromTriplets(c.begin(), c.end());  // sums the two triangles of an edge
   std::vector<Eigen::Triplet<double>> t;
@@ -26,7 +28,7 @@ Eigen::SparseMatrix<double> from_couplings(int nv, const std::vector<Eigen::Trip
   Eigen::VectorXd diag = Eigen::VectorXd::Zero(nv);
   for (int k = 0; k < C.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(C, k); it; ++it) {
-      const double w = it.value() > 0 ? (unit ? 1.0 : it.value()) : 0.0;
+      const double w = !clamp ? it.value() : it.value() > 0 ? (unit ? 1.0 : it.value()) : 0.0;
       t.emplace_back(it.row(), it.col(), -w);
       diag(it.row()) += w;
     }
@@ -38,7 +40,8 @@ Eigen::SparseMatrix<double> from_couplings(int nv, const std::vector<Eigen::Trip
 
 }  // namespace
 
-Eigen::SparseMatrix<double> surface_cotangent_stiffness(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) {
+Eigen::SparseMatrix<double> surface_cotangent_stiffness(const Eigen::MatrixXd& V, const Eigen::MatrixXi& F,
+                                                        bool clamp_negative) {
   const int nv = static_cast<int>(V.rows());
   check_faces(nv, F);
   std::vector<Eigen::Triplet<double>> c;
@@ -56,7 +59,7 @@ Eigen::SparseMatrix<double> surface_cotangent_stiffness(const Eigen::MatrixXd& V
       c.emplace_back(F(f, j), F(f, i), 0.5 * cot);
     }
   }
-  return from_couplings(nv, c, false);
+  return from_couplings(nv, c, false, clamp_negative);
 }
 
 Eigen::SparseMatrix<double> uniform_stiffness(int nv, const Eigen::MatrixXi& F) {

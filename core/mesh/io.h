@@ -27,6 +27,11 @@ bool is_tet_mesh_path(const std::string& path);
 Eigen::MatrixXd read_dmat(const std::string& path);
 void write_dmat(const std::string& path, const Eigen::MatrixXd& M, bool binary = false);
 
+// Vertex index list: one 0-based index per line ('#' comments and blank lines allowed), e.g. a region
+// for `deform sculpt`. Throws dfm::Error naming the file and line for junk or an index outside
+// [0, num_vertices).
+std::vector<int> read_vertex_indices(const std::string& path, int num_vertices);
+
 // .tgf skeleton file, as written (see ../shared/data/README.md). 0-based here.
 struct TgfData {
   Eigen::MatrixXd joints;   // #J x 3

@@ -167,6 +167,7 @@ void Document::after_change(unsigned parts) {
   if (parts & (kSurface | kWeights)) ++surface_weights_revision_;
   if (parts & (kSurface | kRig)) ++surface_rig_revision_;
   if (parts & (kSurface | kRig | kWeights | kSettings)) ++skin_inputs_revision_;
+  if (parts & kSurface) sculpt_clear();  // the session's vertices belong to the old surface
   // Selection is view state: keep it valid whatever changed underneath.
   const int n = num_handles();
   auto& h = s_.selection.handles;

@@ -30,6 +30,7 @@
 #include "core/rig/pose.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig.h"
+#include "core/scene/sculpt_session.h"
 #include "core/scene/weight_brush.h"
 #include "core/skin/endpoint_filter.h"
 #include "core/skin/skin.h"  // SkinMethod
@@ -76,6 +77,11 @@ struct SceneKey {
   // Picked pairs for a transition to the next key (transition.h, "The warp"): one a row, x0 y0 z0 on
   // this key, x1 y1 z1 on the next; #pairs x 6, or none.
   Eigen::MatrixXd pairs_to_next = Eigen::MatrixXd(0, 6);
+  // Local transition to the next key (Alexa 2002, 4.3; differential_blend.h's transition_states): one
+  // offset in (-1, 1) per vertex, > 0 arrives early, < 0 late; empty: none. When set and the two keys
+  // share one connectivity, the interval's in-betweens are the differential blend at those states
+  // (whatever `inbetween` says); an offset vector of another size than the keys' is ignored.
+  Eigen::VectorXd transition_to_next;
   bool is_mesh() const { return mesh.num_vertices() > 0; }
 };
 
@@ -332,9 +338,35 @@ class Document {
   // The picked pairs from key `index` to the next (#pairs x 6, finite; one undo step). Whether each
   // point lies on its key is the transition's check (scene/key_pairs.h checks it first).
   void set_key_pairs(int index, const Eigen::MatrixXd& pairs);
+  // The local transition from mesh key `index` to the next (both mesh keys of one connectivity): the
+  // offsets of `vertices` set to `values` (each in (-1, 1)). Merges within a gesture (a brush stroke).
+  void paint_transition(int index, const std::vector<int>& vertices, const std::vector<double>& values);
+  // Clears key `index`'s local transition (its in-betweens return to its method). One undo step.
+  void clear_transition(int index);
   void move_key(int index, double new_time);  // throws if another key sits at new_time
   // Applies the key's params as the current pose (a pose edit). A mesh key has no pose: dfm::Error.
   void go_to_key(int index);
+
+  // ---- sculpting (sculpt_session.h; document_sculpt.cpp) ----------------------------------------------
+  // The session is tool state: not saved, not undoable, ended by sculpt_key, sculpt_clear, a change of
+  // the surface (undo included), load, open and clear. Points and radii are world units measured on
+  // the session's result as it stands (what the viewport shows). Each throws dfm::Error on bad input,
+  // leaving the session unchanged.
+  const SculptSession* sculpt() const { return sculpt_.get(); }
+  // Adds to (erase: removes from) the free region the vertices within `radius` of `center`. Starts a
+  // session on the mesh key at time() if there is one, else on the rest surface.
+  int sculpt_region(const Eigen::Vector3d& center, double radius, bool erase);
+  // The handle: the free region's vertices within `radius` of `center` (none: dfm::Error).
+  int sculpt_handle(const Eigen::Vector3d& center, double radius);
+  void sculpt_order(int order);  // 2 or 3; the move is kept and solved again
+  // Adds `delta` to the handle's translation and solves (the factorization is cached per region,
+  // handle and order: a move is one back substitution).
+  void sculpt_move(const Eigen::Vector3d& delta);
+  // Keys the result as a mesh key at time t (one undo step, as key_mesh) and ends the session.
+  void sculpt_key(double t);
+  void sculpt_clear();
+  // Seconds the last factorization took (0 before any).
+  double sculpt_factor_seconds() const;
 
   // ---- view state (saved, not undoable, does not mark dirty) ---------------------------------------
   void set_time(double t);
@@ -377,6 +409,12 @@ class Document {
   mutable std::uint64_t endpoints_revision_ = ~0ull;
   mutable Eigen::MatrixXd endpoints_;
   FastSolveReport last_fast_;
+  std::unique_ptr<SculptSession> sculpt_;
+  struct SculptSolver;  // the factored region choice (document_sculpt.cpp)
+  std::shared_ptr<const SculptSolver> sculpt_solver_;
+  std::uint64_t sculpt_revision_ = 0;
+  SculptSession& sculpt_session();  // the session, started if none
+  void sculpt_commit();             // the result becomes the base (a region or handle change after a move)
   bool gesture_open_ = false;
   bool gesture_merge_ok_ = false;  // the top step was made inside the current gesture
 };

@@ -6,6 +6,7 @@
 #include "core/anim/bake.h"
 #include "core/anim/inbetween.h"
 #include "core/anim/interpolate.h"
+#include "core/sculpt/differential_blend.h"
 #include "core/skin/skin.h"
 #include "core/util/error.h"
 
@@ -20,6 +21,21 @@ std::string key_name(const Document& doc, int i) {
     return file.empty() ? "mesh key " + std::to_string(i) : file;
   }
   return "key " + std::to_string(i);
+}
+
+// A local transition's in-betweens (Alexa 2002, 4.3): at each layer time u the per-vertex states of
+// transition_states(offsets, u), blended in Laplacian coordinates (factored once for the interval).
+std::vector<KeySurface> differential_inbetweens(const KeySurface& a, const KeySurface& b, int count,
+                                                const Eigen::VectorXd& offsets) {
+  std::vector<KeySurface> out;
+  if (count <= 0) return out;
+  const DifferentialBlend blend(a.V, b.V, a.F);
+  for (int j = 1; j <= count; ++j) {
+    const double u = double(j) / (count + 1);
+    out.push_back({a.time + (b.time - a.time) * u, blend.at(transition_states(offsets, u)), a.F,
+                   "local transition in-between of " + a.name + " and " + b.name});
+  }
+  return out;
 }
 
 }  // namespace
@@ -114,7 +130,10 @@ std::vector<KeySurface> key_surfaces(const Document& doc) {
     out.back().pairs_to_next = keys[i].pairs_to_next;
     if (i + 1 == keys.size()) break;
     const KeySurface& next = baked[key[i + 1]];
-    if (keys[i].inbetween != InbetweenMethod::Handles && same_connectivity(out.back(), next)) {
+    if (keys[i].transition_to_next.size() == out.back().V.rows() && same_connectivity(out.back(), next)) {
+      for (KeySurface& s : differential_inbetweens(out.back(), next, doc.inbetweens(), keys[i].transition_to_next))
+        out.push_back(std::move(s));
+    } else if (keys[i].inbetween != InbetweenMethod::Handles && same_connectivity(out.back(), next)) {
       for (KeySurface& s : mesh_inbetweens(out.back(), next, doc.inbetweens(), keys[i].inbetween)) out.push_back(std::move(s));
     } else {
       for (int l = key[i] + 1; l < key[i + 1]; ++l) out.push_back(std::move(baked[l]));

@@ -242,6 +242,17 @@ void read_rig(const SceneReader& R, const json& j, long long nv, Rig& out) {
   }
 }
 
+// A local transition's offsets: one per vertex of the key's mesh, each in (-1, 1).
+void read_transition(const SceneReader& R, const json& ref, const std::string& c, bool last, SceneKey& k) {
+  if (last) R.fail("'" + c + ".transition': the last key has no next key to blend toward");
+  const Eigen::MatrixXd o = R.f64(ref, c + ".transition", 1);
+  if (!k.is_mesh() || o.rows() != k.mesh.V.rows())
+    R.fail("'" + c + ".transition' must have one offset per vertex of the key's mesh");
+  for (Eigen::Index v = 0; v < o.rows(); ++v)
+    if (!(o(v, 0) > -1 && o(v, 0) < 1)) R.fail("'" + c + ".transition' offsets must lie in (-1, 1)");
+  k.transition_to_next = o.col(0);
+}
+
 // Keys, strictly increasing in time; mesh keys need format version 2.
 void read_keys(const SceneReader& R, const json& j, long long version, SceneData& s) {
   const json& keys = R.array(R.field(j, "keys", "scene"), "keys");
@@ -272,6 +283,7 @@ void read_keys(const SceneReader& R, const json& j, long long version, SceneData
         for (int col = 0; col < 6; ++col) k.pairs_to_next(static_cast<Eigen::Index>(r), col) = R.number(pairs[r][col], cr);
       }
     }
+    if (keys[i].is_object() && keys[i].contains("transition")) read_transition(R, keys[i]["transition"], c, i + 1 == keys.size(), k);
     s.keys.push_back(std::move(k));
   }
 }
@@ -438,6 +450,8 @@ json keys_json(const std::vector<SceneKey>& scene_keys, BlobWriter& blob) {
         key["pairs"].push_back(row);
       }
     }
+    // Optional: the local transition's per-vertex offsets to the next key (differential_blend.h).
+    if (k.transition_to_next.size() > 0) key["transition"] = blob.add(k.transition_to_next);
     keys.push_back(key);
   }
   return keys;
