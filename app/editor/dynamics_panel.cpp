@@ -23,7 +23,10 @@ void PosePanels::draw_dynamics(Document& doc, double frame_rate) {
 
 void PosePanels::draw_dynamics_controls(Document& doc, double frame_rate) {
   PosingSettings p = doc.posing();
-  if (ImGui::Checkbox("Dynamics", &p.dynamics)) doc.set_posing(p);
+  if (ImGui::Checkbox("Dynamics", &p.dynamics)) {
+    p.fast = p.fast || p.dynamics;  // the Pose tool's drags solve only with FAST on (as `dynamics on`)
+    doc.set_posing(p);
+  }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Secondary dynamics (Jacobson 2013, 7.7): a drag steps a simulation once a frame, so\n"
                       "free handles lag, overshoot and settle; it keeps stepping after the drag until the\n"

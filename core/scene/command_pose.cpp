@@ -93,6 +93,7 @@ void dynamics(CommandContext& x, const CommandWords& w) {
   if (w[1] != "on" && w[1] != "off") throw Error("dynamics: expected on or off, got '" + w[1] + "'");
   PosingSettings p = x.doc.posing();
   p.dynamics = w[1] == "on";
+  p.fast = p.fast || p.dynamics;  // translate and rotate step it only with FAST on (as the panel's switch)
   if (w.size() > 2) p.dt = num(w, 2);
   if (w.size() > 3) p.damping = num(w, 3);
   if (w.size() > 4) p.density = num(w, 4);

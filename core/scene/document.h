@@ -325,7 +325,7 @@ class Document {
   // A drag: translate_handle, then the FAST solve whether or not posing().fast is on (what the Pose
   // tool's drag and the script's `drag` do). Needs weights (dfm::Error otherwise). Merges in a gesture.
   DragReport drag_handle(int handle, const Eigen::Vector3d& delta);
-  // With posing().dynamics on, a drag (drag_handle, or translate_handle with FAST on) takes one time
+  // With posing().dynamics on, a drag (drag_handle, or translate/rotate_handle with FAST on) takes one time
   // step of a simulation started at the pose before it, instead of the static solve. The simulation
   // stays live until it settles (vertex speed under 1e-3 diagonals a second, or 30 s simulated) or
   // any other edit, undo included, ends it; its steps change the pose without undo steps of their

@@ -127,6 +127,7 @@ void Document::rotate_handle(int handle, const Eigen::Quaterniond& q_in) {
   if (r.kind == HandleKind::CageVertex)
     throw Error("cage vertex handles only translate (" + handle_name(s_.rig, handle) + ")");
   const Eigen::Vector3d pivot = handle_pivot(handle);
+  dyn_keep_ = false;
   execute("rotate " + handle_name(s_.rig, handle), kPose, "transform " + std::to_string(handle),
           [&](SceneData& s) {
             PoseParams& p = s.pose;
@@ -146,7 +147,8 @@ void Document::rotate_handle(int handle, const Eigen::Quaterniond& q_in) {
               }
               case HandleKind::CageVertex: break;
             }
-            if (s.posing.fast) solve_fast(s);
+            if (s.posing.fast && s.posing.dynamics) step_dynamics_in(s);
+            else if (s.posing.fast) solve_fast(s);
           });
 }
 
