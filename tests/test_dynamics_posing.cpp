@@ -99,6 +99,9 @@ TEST_CASE("dynamics drag: lags on the first step, settles onto the static drag, 
   CHECK(d.pose_params().point_translation[2] == before.point_translation[2]);
   CHECK(d.pose_params().solved.empty() == before.solved.empty());
   CHECK_FALSE(d.step_dynamics());  // undo ended the simulation
+  // A new drag restarts the simulation from rest (the precompute kept): the same first step.
+  d.drag_handle(2, kDrag);
+  CHECK((d.pose().transforms[1].matrix() - first.transforms[1].matrix()).norm() < 1e-12);
 
   // The script's drag and settle do the same.
   Document s;

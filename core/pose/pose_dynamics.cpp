@@ -11,17 +11,24 @@ namespace dfm {
 PoseDynamics::PoseDynamics(const Rig& rig, const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements,
                            const Eigen::MatrixXd& W, const std::vector<HandleConstraint>& states,
                            const FastDynamicsOptions& opts, double density, const PoseParams& start)
-    : states_(states) {
+    : states_(states), opts_(opts) {
   const int nh = num_handles(rig);
   if (static_cast<int>(states.size()) != nh || W.cols() != nh)
     throw Error("dynamics: " + std::to_string(states.size()) + " handle states and " + std::to_string(W.cols()) +
                 " weight columns for a rig of " + std::to_string(nh) + " handles");
   model_ = std::make_unique<FastModel>(fast_model(V, elements, W));
   mass_ = std::make_unique<FastMass>(fast_mass(V, elements, W, density));
-  std::vector<FastConstraint> constraints(nh);
-  for (int h = 0; h < nh; ++h) constraints[h] = {states[h], handle_anchor(rig, h)};
-  dyn_ = std::make_unique<FastDynamics>(*model_, *mass_, constraints, fast_joints(rig), opts, evaluate_pose(rig, start));
   diagonal_ = std::max(1e-12, (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm());
+  restart(rig, start);
+}
+
+void PoseDynamics::restart(const Rig& rig, const PoseParams& start) {
+  const int nh = static_cast<int>(states_.size());
+  std::vector<FastConstraint> constraints(nh);
+  for (int h = 0; h < nh; ++h) constraints[h] = {states_[h], handle_anchor(rig, h)};
+  dyn_.reset();
+  dyn_ = std::make_unique<FastDynamics>(*model_, *mass_, constraints, fast_joints(rig), opts_, evaluate_pose(rig, start));
+  steps_ = 0;
 }
 
 void PoseDynamics::step(const Rig& rig, PoseParams& params) {

@@ -22,6 +22,9 @@ class PoseDynamics {
   PoseDynamics(const Rig& rig, const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements, const Eigen::MatrixXd& W,
                const std::vector<HandleConstraint>& states, const FastDynamicsOptions& opts, double density,
                const PoseParams& start);
+  // A new simulation at rest in `start` on the same mesh, weights, states and options: keeps the
+  // model and the mass (the precompute), rebuilds only the momentum solve (a small switch).
+  void restart(const Rig& rig, const PoseParams& start);
   // One time step toward `params`' constraints; params.solved receives the non-fixed handles' transforms.
   void step(const Rig& rig, PoseParams& params);
   // Root-mean-square vertex speed sqrt(2 KE / mass) over the bounding box's diagonal (1/s): below
@@ -31,6 +34,7 @@ class PoseDynamics {
 
  private:
   std::vector<HandleConstraint> states_;
+  FastDynamicsOptions opts_;
   std::unique_ptr<FastModel> model_;
   std::unique_ptr<FastMass> mass_;
   std::unique_ptr<FastDynamics> dyn_;

@@ -402,6 +402,14 @@ class Document {
   std::unique_ptr<FastPosing> fast_;  // caches only: not part of the scene or of undo
   std::unique_ptr<PoseDynamics> dyn_;  // the live drag's simulation (not part of the scene or of undo)
   bool dyn_live_ = false;
+  // What dyn_ was built for: a drag on the same inputs restarts it without the precompute.
+  struct DynamicsInputs {
+    std::uint64_t surface_weights = 0, surface_rig = 0;
+    PosingSettings posing;
+    bool operator==(const DynamicsInputs& o) const {
+      return surface_weights == o.surface_weights && surface_rig == o.surface_rig && posing == o.posing;
+    }
+  } dyn_inputs_;
   bool dyn_keep_ = false;  // the edit in progress is a dynamics step: after_change keeps dyn_live_
   struct PaintCache;  // what the weight brush reads of the surface and rig (document_weights.cpp)
   std::shared_ptr<const PaintCache> paint_cache_;

@@ -25,9 +25,18 @@ FastDynamicsOptions Document::dynamics_options(const PosingSettings& p) const {
 
 void Document::step_dynamics_in(SceneData& s) {
   if (!has_weights()) return;
-  if (!dyn_live_ || !dyn_)
-    dyn_ = std::make_unique<PoseDynamics>(s.rig, s.surface.V, s.surface.F, s.weights, handle_states(),
-                                          dynamics_options(s.posing), s.posing.density, s.pose);
+  if (!dyn_live_ || !dyn_) {
+    DynamicsInputs in{surface_weights_revision_, surface_rig_revision_, s.posing};
+    in.posing.states = handle_states();
+    in.posing.fast = true;  // only what the simulation reads
+    if (dyn_ && in == dyn_inputs_) {
+      dyn_->restart(s.rig, s.pose);
+    } else {
+      dyn_ = std::make_unique<PoseDynamics>(s.rig, s.surface.V, s.surface.F, s.weights, in.posing.states,
+                                            dynamics_options(s.posing), s.posing.density, s.pose);
+      dyn_inputs_ = in;
+    }
+  }
   dyn_->step(s.rig, s.pose);
   dyn_keep_ = true;
 }
