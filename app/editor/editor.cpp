@@ -208,6 +208,15 @@ void Editor::tick(double dt) {
       status(r->error, true);
     }
   }
+  // A live dynamics drag: one time step per drawn frame, unless this frame's drag already took it.
+  if (doc_.dynamics_live() && doc_.revision() == dynamics_revision_) {
+    try {
+      doc_.step_dynamics();
+    } catch (const std::exception& e) {
+      status(std::string("dynamics: ") + e.what(), true);
+    }
+  }
+  dynamics_revision_ = doc_.revision();
   if (playing_ && doc_.keys().size() >= 2) {
     const double t0 = doc_.keys().front().time, t1 = doc_.keys().back().time;
     double t = doc_.time() + dt * play_speed_;
@@ -337,7 +346,7 @@ void Editor::wait_for_frame() {
     LoopActivity a;
     a.input = events_ != events_seen_;
     events_seen_ = events_;
-    a.playing = playing_ && doc_.keys().size() >= 2;
+    a.playing = (playing_ && doc_.keys().size() >= 2) || doc_.dynamics_live();  // a settling drag draws every frame
     a.job_running = bind_.running() || view_->manifold_building() || !shape_space_progress().empty();
     const std::string progress = job_progress_signature();
     a.job_progress = progress != job_progress_seen_;

@@ -209,6 +209,7 @@ class Editor {
   Rect viewport_;
   bool viewport_hovered_ = false;
   double timeline_h_ = 118;  // the timeline's height (its toolbar wraps to more rows on narrow windows)
+  std::uint64_t dynamics_revision_ = 0;  // the document's revision after the last tick (dynamics steps)
   double frame_rate_ = 24;   // the timeline shows time as frames at this rate (and seconds)
   int open_sections_ = -1;   // --ui panels: a bit per right-panel section to open at the next frame
   // The panels for the window's current size (view_model.h's layout_panels): draw_ui lays them out, and

@@ -22,7 +22,7 @@ void Editor::draw_transform_section() {
                               0.002 * cam_.scene_radius);
 }
 
-void Editor::draw_posing_section() { pose_panels_.draw_posing(doc_); }
+void Editor::draw_posing_section() { pose_panels_.draw_posing(doc_, frame_rate_); }
 
 void PosePanels::draw_transform(Document& doc, const Pose& pose, const std::string& animated_at, double drag_step) {
   const auto& sel = doc.selection().handles;
@@ -148,7 +148,7 @@ void PosePanels::draw_typed_values(Document& doc, int h, const Eigen::Affine3d& 
   }
 }
 
-void PosePanels::draw_posing(Document& doc) {
+void PosePanels::draw_posing(Document& doc, double frame_rate) {
   PosingSettings p = doc.posing();
   if (ImGui::Checkbox("Drag solves the free handles", &p.fast)) doc.set_posing(p);
   if (ImGui::IsItemHovered())
@@ -169,6 +169,7 @@ void PosePanels::draw_posing(Document& doc) {
   if (f.precomputed) precompute_s_ = f.precompute_seconds;
   if (f.switched) switch_s_ = f.switch_seconds;
   if (precompute_s_ > 0) text_disabled_wrapped("precompute %.2f s, last switch %.2f ms", precompute_s_, 1e3 * switch_s_);
+  draw_dynamics(doc, frame_rate);
 }
 
 // The handle's FAST state (pinned, position, free) and, for a bone, the IK chain to its tip.

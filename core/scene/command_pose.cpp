@@ -1,5 +1,6 @@
 // The table's selection, posing and undo commands (SCRIPT.md).
 #include <cmath>
+#include <limits>
 
 #include "core/pose/fast_rig.h"
 #include "core/scene/command_parts.h"
@@ -87,6 +88,18 @@ void fast(CommandContext& x, const CommandWords& w) {
   x.doc.set_posing(p);
 }
 
+// dynamics on|off [DT [DAMPING [DENSITY]]]
+void dynamics(CommandContext& x, const CommandWords& w) {
+  if (w[1] != "on" && w[1] != "off") throw Error("dynamics: expected on or off, got '" + w[1] + "'");
+  PosingSettings p = x.doc.posing();
+  p.dynamics = w[1] == "on";
+  p.fast = p.fast || p.dynamics;  // translate and rotate step it only with FAST on (as the panel's switch)
+  if (w.size() > 2) p.dt = num(w, 2);
+  if (w.size() > 3) p.damping = num(w, 3);
+  if (w.size() > 4) p.density = num(w, 4);
+  x.doc.set_posing(p);
+}
+
 }  // namespace
 
 void add_pose_commands(std::vector<Command>& t) {
@@ -106,6 +119,22 @@ void add_pose_commands(std::vector<Command>& t) {
   add(t, "endpoint-filter", "endpoint-filter BONE_HANDLE [X1 Y1 X2 Y2 ...]", 1, 41, {handle_arg(), number_arg()},
       endpoint_filter);
   add(t, "fast", "fast on|off [ITERATIONS]", 1, 2, {word_arg()}, fast);
+  add(t, "dynamics", "dynamics on|off [DT [DAMPING [DENSITY]]]", 1, 4, {word_arg(), number_arg()}, dynamics);
+  add(t, "settle", "settle [STEPS]", 0, 1, {number_arg()}, [](CommandContext& x, const CommandWords& w) {
+    int steps = -1;
+    if (w.size() > 1) {
+      if (num(w, 1) < 0 || num(w, 1) != std::floor(num(w, 1))) throw Error("settle: '" + w[1] + "' is not a step count");
+      steps = static_cast<int>(num(w, 1));
+    }
+    const int n = x.doc.settle_dynamics(steps);
+    x.print("settle: " + std::to_string(n) + " steps" + (x.doc.dynamics_live() ? " (still moving)" : " (settled)"));
+  });
+  add(t, "simulate", "simulate FPS [FROM TO]", 1, 3, {number_arg()}, [](CommandContext& x, const CommandWords& w) {
+    if (w.size() == 3) throw Error("simulate: give both FROM and TO, or neither");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const int n = x.doc.simulate(num(w, 1), w.size() > 2 ? num(w, 2) : nan, w.size() > 3 ? num(w, 3) : nan);
+    x.print("simulate: keyed " + std::to_string(n) + " frames");
+  }).poll = needs_weights;
   add(t, "ik-chain", "ik-chain BONE_HANDLE", 1, 1, {handle_arg()}, ik_chain);
   add(t, "set-method", "set-method lbs|dqs|stbs|stbs-dqs", 1, 1, {word_arg()},
       [](CommandContext& x, const CommandWords& w) { x.doc.set_method(parse_skin_method(w[1])); });

@@ -162,8 +162,14 @@ void Document::rig_edit(const std::string& name, const std::string& merge_target
   });
 }
 
+void Document::touch_top_step() {
+  if (!undo_.empty()) undo_.back()->serial = next_serial_++;
+}
+
 void Document::after_change(unsigned parts) {
   ++revision_;
+  dyn_live_ = dyn_keep_;  // any edit but a dynamics step ends the live simulation
+  dyn_keep_ = false;
   if (parts & (kSurface | kWeights)) ++surface_weights_revision_;
   if (parts & (kSurface | kRig)) ++surface_rig_revision_;
   if (parts & (kSurface | kRig | kWeights | kSettings)) ++skin_inputs_revision_;

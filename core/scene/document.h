@@ -27,6 +27,7 @@
 #include "core/bind/weight_tools.h"
 #include "core/mesh/mesh.h"
 #include "core/pose/fast_posing.h"
+#include "core/pose/pose_dynamics.h"
 #include "core/rig/pose.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig.h"
@@ -93,8 +94,16 @@ struct PosingSettings {
   bool fast = false;
   int iterations = 8;  // local-global iterations per edit (per drawn frame while dragging)
   std::vector<HandleConstraint> states;
+  // Secondary dynamics (Jacobson 2013, 7.7; core/pose/pose_dynamics.h): a drag steps a simulation
+  // whose free handles lag, overshoot and settle. dt: the time step (s; the editor steps once per
+  // drawn frame, so 1/60 matches a 60 Hz display), damping (1/s) and density as FastDynamicsOptions.
+  bool dynamics = false;
+  double dt = 1.0 / 60;
+  double damping = 4.0;
+  double density = 1.0;
   bool operator==(const PosingSettings& o) const {
-    return fast == o.fast && iterations == o.iterations && states == o.states;
+    return fast == o.fast && iterations == o.iterations && states == o.states && dynamics == o.dynamics &&
+           dt == o.dt && damping == o.damping && density == o.density;
   }
 };
 
@@ -322,6 +331,22 @@ class Document {
   // A drag: translate_handle, then the FAST solve whether or not posing().fast is on (what the Pose
   // tool's drag and the script's `drag` do). Needs weights (dfm::Error otherwise). Merges in a gesture.
   DragReport drag_handle(int handle, const Eigen::Vector3d& delta);
+  // With posing().dynamics on, a drag (drag_handle, or translate/rotate_handle with FAST on) takes one time
+  // step of a simulation started at the pose before it, instead of the static solve. The simulation
+  // stays live until it settles (vertex speed under 1e-3 diagonals a second, or 30 s simulated) or
+  // any other edit, undo included, ends it; its steps change the pose without undo steps of their
+  // own, so undoing the drag restores the pose from before it (redo: the pose at the undo).
+  bool dynamics_live() const { return dyn_live_; }
+  // One more time step (the editor: once per drawn frame without a drag). Returns dynamics_live().
+  bool step_dynamics();
+  // Steps until settled, at most max_steps (< 0: no limit but the 30 s). Returns the steps taken.
+  int settle_dynamics(int max_steps = -1);
+  // Runs the keyed animation through the dynamics at `fps` from `from` to `to` (NaN: the keys' first
+  // and last time): each frame's key parameters (animation_params) are the constraints, free handles
+  // follow by momentum from rest at `from` (its static FAST solve). Keys every frame as pose keys,
+  // replacing the keys in [from, to]: one undo step. Needs weights and pose keys (no mesh key in the
+  // range); fps in (0, 1000]. Returns the frames keyed.
+  int simulate(double fps, double from, double to);
 
   // Keys: set_key stores the current pose params at time t (replacing a key at the same time, a mesh
   // key included).
@@ -394,6 +419,11 @@ class Document {
   DragReport move_handle(int handle, const Eigen::Vector3d& delta, bool solve);  // translate_handle, drag_handle
   // Re-solves s.pose's non-pinned handles (no-op without weights); inside an edit.
   void solve_fast(SceneData& s);
+  // One dynamics step of s.pose (starting a simulation at s.pose when none is live); inside an edit.
+  void step_dynamics_in(SceneData& s);
+  FastDynamicsOptions dynamics_options(const PosingSettings& p) const;
+  // The top undo step now stands for a state the file does not hold (an edit folded into it).
+  void touch_top_step();
 
   SceneData s_;
   std::string path_;
@@ -402,6 +432,17 @@ class Document {
   void replay_step(std::vector<std::unique_ptr<Step>>& from, std::vector<std::unique_ptr<Step>>& to);
   std::uint64_t next_serial_ = 1, saved_serial_ = 0, revision_ = 0, surface_weights_revision_ = 0;
   std::unique_ptr<FastPosing> fast_;  // caches only: not part of the scene or of undo
+  std::unique_ptr<PoseDynamics> dyn_;  // the live drag's simulation (not part of the scene or of undo)
+  bool dyn_live_ = false;
+  // What dyn_ was built for: a drag on the same inputs restarts it without the precompute.
+  struct DynamicsInputs {
+    std::uint64_t surface_weights = 0, surface_rig = 0;
+    PosingSettings posing;
+    bool operator==(const DynamicsInputs& o) const {
+      return surface_weights == o.surface_weights && surface_rig == o.surface_rig && posing == o.posing;
+    }
+  } dyn_inputs_;
+  bool dyn_keep_ = false;  // the edit in progress is a dynamics step: after_change keeps dyn_live_
   struct PaintCache;  // what the weight brush reads of the surface and rig (document_weights.cpp)
   std::shared_ptr<const PaintCache> paint_cache_;
   std::uint64_t surface_rig_revision_ = 0;  // bumped when the surface or the rig changes

@@ -66,6 +66,7 @@ bool free_bone_above(const Rig& rig, const std::vector<HandleConstraint>& states
 
 DragReport Document::move_handle(int handle, const Eigen::Vector3d& d, bool solve) {
   check_finite(d, "translation");
+  dyn_keep_ = false;
   const HandleRef r = handle_ref(s_.rig, handle);
   const std::string name = handle_name(s_.rig, handle);
   DragReport report{DragKind::Moved, "moved " + name};
@@ -113,7 +114,8 @@ DragReport Document::move_handle(int handle, const Eigen::Vector3d& d, bool solv
       }
       case HandleKind::Region: p.region_transform[r.index].pretranslate(d); break;
     }
-    if (solve) solve_fast(s);
+    if (solve && s.posing.dynamics) step_dynamics_in(s);
+    else if (solve) solve_fast(s);
   });
   return report;
 }
@@ -125,6 +127,7 @@ void Document::rotate_handle(int handle, const Eigen::Quaterniond& q_in) {
   if (r.kind == HandleKind::CageVertex)
     throw Error("cage vertex handles only translate (" + handle_name(s_.rig, handle) + ")");
   const Eigen::Vector3d pivot = handle_pivot(handle);
+  dyn_keep_ = false;
   execute("rotate " + handle_name(s_.rig, handle), kPose, "transform " + std::to_string(handle),
           [&](SceneData& s) {
             PoseParams& p = s.pose;
@@ -144,7 +147,8 @@ void Document::rotate_handle(int handle, const Eigen::Quaterniond& q_in) {
               }
               case HandleKind::CageVertex: break;
             }
-            if (s.posing.fast) solve_fast(s);
+            if (s.posing.fast && s.posing.dynamics) step_dynamics_in(s);
+            else if (s.posing.fast) solve_fast(s);
           });
 }
 
@@ -180,6 +184,9 @@ void Document::solve_fast(SceneData& s) {
 
 void Document::set_posing(const PosingSettings& p) {
   if (p.iterations < 1 || p.iterations > 1000) throw Error("FAST iterations must be in [1, 1000]");
+  if (!(p.dt > 0 && p.dt <= 1)) throw Error("dynamics: the time step must be in (0, 1] s");
+  if (!(p.damping >= 0 && std::isfinite(p.damping))) throw Error("dynamics: damping must be >= 0");
+  if (!(p.density > 0 && std::isfinite(p.density))) throw Error("dynamics: density must be > 0");
   if (!p.states.empty() && static_cast<int>(p.states.size()) != num_handles())
     throw Error("handle states: " + std::to_string(p.states.size()) + " for " + std::to_string(num_handles()) + " handles");
   execute("posing settings", kPose, "", [&](SceneData& s) {

@@ -306,6 +306,14 @@ void read_posing(const SceneReader& R, const json& j, SceneData& s) {
   if (!s.posing.states.empty() && static_cast<long long>(s.posing.states.size()) != num_handles(s.rig))
     R.fail("'posing.states' has " + std::to_string(s.posing.states.size()) + " entries for " +
            std::to_string(num_handles(s.rig)) + " handles");
+  // Optional: scenes from before dynamics keep its defaults (off).
+  if (p.contains("dynamics")) s.posing.dynamics = R.boolean(p["dynamics"], "posing.dynamics");
+  if (p.contains("dt")) s.posing.dt = R.number(p["dt"], "posing.dt");
+  if (p.contains("damping")) s.posing.damping = R.number(p["damping"], "posing.damping");
+  if (p.contains("density")) s.posing.density = R.number(p["density"], "posing.density");
+  if (!(s.posing.dt > 0 && s.posing.dt <= 1)) R.fail("'posing.dt' must be in (0, 1]");
+  if (!(s.posing.damping >= 0)) R.fail("'posing.damping' must be >= 0");
+  if (!(s.posing.density > 0)) R.fail("'posing.density' must be > 0");
 }
 
 // Optional (scenes from before they were saved keep the defaults): the robust volume's segmentation.
@@ -509,7 +517,9 @@ void write_scene(const std::string& json_path, const SceneData& s) {
   {
     json states = json::array();
     for (HandleConstraint c : s.posing.states) states.push_back(constraint_state_name(c));
-    j["posing"] = {{"fast", s.posing.fast}, {"iterations", s.posing.iterations}, {"states", states}};
+    j["posing"] = {{"fast", s.posing.fast}, {"iterations", s.posing.iterations}, {"states", states},
+                   {"dynamics", s.posing.dynamics}, {"dt", s.posing.dt}, {"damping", s.posing.damping},
+                   {"density", s.posing.density}};
   }
   j["bind_settings"] = {{"tetgen_switches", s.bind_settings.volume.tetgen_switches},
                         {"robust", robust_name(s.bind_settings.volume.robust)},

@@ -17,6 +17,9 @@ target_compile_definitions(test_scene_default PRIVATE DFM_ASSETS_DIR="${PROJECT_
 # Posing by dragging (FAST) through the document and the script.
 dfm_test(test_posing SOURCES test_posing.cpp LIBS dfm_scene dfm_export)
 target_compile_definitions(test_posing PRIVATE DFM_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
+# Dynamics in the document: live drags, simulate, the settings in the scene file.
+dfm_test(test_dynamics_posing SOURCES test_dynamics_posing.cpp LIBS dfm_scene dfm_export)
+target_compile_definitions(test_dynamics_posing PRIVATE DFM_ASSETS_DIR="${PROJECT_SOURCE_DIR}/assets")
 # The command table: a script line and a UI call give the same document; SCRIPT.md lists the table.
 dfm_test(test_commands SOURCES test_commands.cpp LIBS dfm_scene)
 target_compile_definitions(test_commands PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
