@@ -75,6 +75,7 @@ const std::vector<Command>& commands() {
     add_weight_commands(t);
     add_pose_commands(t);
     add_key_commands(t);
+    add_space_time_commands(t);
     add_file_commands(t);
     return t;
   }();
