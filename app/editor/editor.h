@@ -18,6 +18,7 @@
 #include "app/editor/frame_pacing.h"
 #include "app/editor/bone_tool.h"
 #include "app/editor/pair_tool.h"
+#include "app/editor/space_time_tool.h"
 #include "app/editor/paint_tool.h"
 #include "app/editor/pose_panels.h"
 #include "app/editor/pose_tool.h"
@@ -48,7 +49,7 @@ struct EditorOptions {
   int msaa = -1;           // --msaa N: multisample count (-1: 4, or 0 on a software renderer)
 };
 
-enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose, Pair };
+enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose, Pair, SpaceTime };
 
 struct ShapeSpacePanel;
 class ItemFlow;
@@ -128,6 +129,7 @@ class Editor {
   void tool_draw_bone(bool clicked);
   void tool_paint(bool down, bool clicked, bool released);
   void tool_pair(bool clicked);
+  void tool_space_time(bool clicked, bool released);
   void finish_bone_chain();
   void tool_pose(bool clicked, bool released);
   Eigen::Vector2d mouse_in_viewport() const;
@@ -220,6 +222,7 @@ class Editor {
   PoseTool pose_tool_;  // the gizmo and its drag (pose_tool.h)
   PaintTool paint_tool_;  // the brush, its settings and its stroke (paint_tool.h)
   PairTool pair_tool_;    // a picked pair in the making (pair_tool.h)
+  SpaceTimeTool space_time_tool_;  // the space-time edit's settings and drag (space_time_tool.h)
   TimelineRuler timeline_ruler_;  // the timeline's ruler and its drags (timeline_ruler.h)
   PosePanels pose_panels_;  // the Transform and Posing sections (pose_panels.h)
 

@@ -229,6 +229,9 @@ void Editor::draw_tools_panel() {
     tool_ = Tool::Pair;
     pair_tool_.cancel();
   }
+  ImGui::SameLine();
+  if (tool_button("Space-time", tool_ == Tool::SpaceTime, "Drag the animation itself: a region over a time window follows a handle (Southern ch. 4)", w))
+    tool_ = Tool::SpaceTime;
 
   ImGui::Separator();
   switch (tool_) {
@@ -251,6 +254,9 @@ void Editor::draw_tools_panel() {
     case Tool::Pair:
       ImGui::TextWrapped("%s", pair_tool_.hint(doc_).c_str());
       if (ImGui::Button("Clear pairs")) run_ui_command({"clear-pairs"});
+      break;
+    case Tool::SpaceTime:
+      space_time_tool_.draw_options(doc_, [this](const CommandWords& w) { return run_ui_command(w); });
       break;
     case Tool::Select:
       ImGui::TextWrapped("Click to select (Shift: add). Drag handles before binding. Click the surface to list a vertex's weights.");

@@ -189,6 +189,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     }
     d.has_manifold = d.builder.has_manifold();
     error_ = d.builder.error();
+    for (const std::string& n : d.builder.edit_notes()) error_ += (error_.empty() ? "" : "; ") + n;
     // Pose edits after the last scrub show the pose being edited; scrubbing shows the slice.
     const Pose pose = doc.pose();
     const std::uint64_t psig = pose_hash(kFnv1aBasis, pose);
