@@ -4,7 +4,8 @@
 //           the GPU; the CPU skin here is an upper bound);
 //   drag:   the document's set_space_time_edit + the manifold builder's replay (copy of the built
 //           manifold, back substitution on the cached factorisation) + the 4D vertex normals the view
-//           uploads + the slice at the current time (the editor slices on the GPU).
+//           uploads (the window's rows only) + the viewport's interval topology + the slice at the
+//           current time (the editor slices on the GPU).
 // Also the drag's first frame (select the region and factor: once per region).
 #include <algorithm>
 #include <chrono>
@@ -39,6 +40,7 @@ int main() {
                           "bench"),
              "bench");
   const AnimationManifold base = build_manifold_sequence(key_surfaces(doc));
+  const Eigen::MatrixXd base_normals = manifold_vertex_normals(base);
   std::printf("keyed default scene: %d surface vertices, manifold %d vertices, %d tets, %d layers\n",
               doc.surface().num_vertices(), base.num_vertices(), base.num_tets(), base.num_layers());
   const int frames = 60;
@@ -71,7 +73,7 @@ int main() {
     AnimationManifold m = base;
     const auto notes = apply_space_time_edits(m, doc.space_time_edits(), &cache);
     const double r = ms_since(t);
-    const Eigen::MatrixXd N = manifold_vertex_normals(m);
+    const Eigen::MatrixXd N = edited_vertex_normals(m, base_normals, doc.space_time_edits());
     const double n = ms_since(t) - r;
     // The viewport's interval cache starts over on a new manifold: the interval ending at t = 1 again.
     const IntervalSlice interval = build_interval_slice(m, N, 0.8, 1.0);

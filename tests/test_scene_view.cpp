@@ -13,6 +13,7 @@
 
 #include "app/editor/manifold_builder.h"
 #include "app/editor/scene_view.h"
+#include "core/anim/manifold_normals.h"
 #include "core/scene/document.h"
 #include "core/scene/key_surfaces.h"
 #include "app/editor/paint_tool.h"
@@ -972,6 +973,7 @@ TEST_CASE("manifold builder: the document's space-time edits replayed onto the v
     REQUIRE(b.edit_notes().empty());
     // The same bits as the saves' manifold (document_manifold replays without the cache).
     REQUIRE(b.manifold().V == document_manifold(doc).V);
+    REQUIRE(*b.normals() == manifold_vertex_normals(b.manifold()));  // the window's rows recomputed only
   }
   doc.end_gesture();
   REQUIRE(doc.undo_name() == "space-time edit");  // add + three drag frames: one step
@@ -979,4 +981,5 @@ TEST_CASE("manifold builder: the document's space-time edits replayed onto the v
   doc.undo();
   REQUIRE(b.update(doc));
   REQUIRE(b.manifold().V == keys_V);
+  REQUIRE(*b.normals() == manifold_vertex_normals(b.manifold()));
 }

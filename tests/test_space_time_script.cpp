@@ -7,6 +7,7 @@
 #include <map>
 #include <unistd.h>
 
+#include "core/anim/manifold_normals.h"
 #include "core/scene/key_surfaces.h"
 #include "core/scene/script.h"
 #include "core/scene/space_time_edit.h"
@@ -64,6 +65,14 @@ TEST_CASE("edit-region + edit-drag: the handle lands where dragged, frames befor
   CHECK(frame_at(d, 0).V == before0.V);
   CHECK(frame_at(d, 0.4).V == before04.V);
   CHECK(frame_at(d, 0.6).V == before06.V);
+  // The view's normals after the edit: only the window's rows summed again, the same bits as a full pass.
+  {
+    Document keys_only;
+    make_keyed(keys_only);
+    const AnimationManifold base = document_manifold(keys_only), edited_m = document_manifold(d);
+    CHECK(edited_vertex_normals(edited_m, manifold_vertex_normals(base), d.space_time_edits()) ==
+          manifold_vertex_normals(edited_m));
+  }
 
   // The same handle again adds to its move (still one edit); undo takes that drag back.
   std::snprintf(line, sizeof line, "set-time 1.2\nedit-drag %.17g %.17g %.17g 0 0 0.25\n", hp.x(), hp.y(), hp.z());

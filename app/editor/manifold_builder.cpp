@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "core/anim/manifold_normals.h"
 #include "core/anim/manifold_sequence.h"
 #include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
@@ -189,12 +190,16 @@ bool ManifoldBuilder::replay(const Document& doc) {
   const std::vector<SpaceTimeEdit>& edits = doc.space_time_edits();
   if (replayed_serial_ == base_serial_ && edits == applied_) return false;
   const auto t0 = std::chrono::steady_clock::now();
+  if (replayed_serial_ != base_serial_)
+    base_normals_ = std::make_shared<const Eigen::MatrixXd>(manifold_vertex_normals(*base_));
   if (edits.empty()) {
     manifold_ = base_;
+    normals_ = base_normals_;
     edit_notes_.clear();
   } else {
     auto m = std::make_shared<AnimationManifold>(*base_);
     edit_notes_ = apply_space_time_edits(*m, edits, cache_.get());
+    normals_ = std::make_shared<const Eigen::MatrixXd>(edited_vertex_normals(*m, *base_normals_, edits));
     manifold_ = std::move(m);
   }
   applied_ = edits;

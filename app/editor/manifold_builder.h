@@ -32,6 +32,9 @@ class ManifoldBuilder {
   // Cheap when nothing changed; call on every document change and every frame while busy().
   // Returns true when manifold() is new (upload it).
   bool update(const Document& doc);
+  // manifold()'s 4D vertex normals (manifold_vertex_normals' bits; after an edit only its window's
+  // vertices are recomputed).
+  std::shared_ptr<const Eigen::MatrixXd> normals() const { return normals_; }
   // The space-time edits the replay skipped (stale: their region is empty now), one line each.
   const std::vector<std::string>& edit_notes() const { return edit_notes_; }
   // Milliseconds the last replay of the edits took (copy + back substitutions, or a factorisation).
@@ -60,6 +63,7 @@ class ManifoldBuilder {
   std::shared_ptr<Job> job_;
   std::shared_ptr<const AnimationManifold> manifold_ = std::make_shared<const AnimationManifold>();
   std::shared_ptr<const AnimationManifold> base_;  // as built from the keys, before the edits
+  std::shared_ptr<const Eigen::MatrixXd> base_normals_, normals_;
   std::uint64_t base_serial_ = 0, replayed_serial_ = ~0ull;
   std::vector<SpaceTimeEdit> applied_;
   std::unique_ptr<SpaceTimeEditCache> cache_;

@@ -175,7 +175,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     if (d.builder.update(doc)) {
       if (!d.slice) d.slice = gpu_.make_slicer();
       const AnimationManifold& m = d.builder.manifold();
-      d.normals4 = std::make_shared<const Eigen::MatrixXd>(manifold_vertex_normals(m));
+      d.normals4 = d.builder.normals();
       d.slice->upload(m, *d.normals4);
       const std::vector<double> vertex_times = manifold_vertex_times(m);
       d.interval_policy.reset(vertex_times, prism_intervals(m, vertex_times));

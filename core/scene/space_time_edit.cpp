@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/anim/manifold_normals.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -90,6 +91,21 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
     }
   }
   return notes;
+}
+
+Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& m, const Eigen::MatrixXd& base_normals,
+                                      const std::vector<SpaceTimeEdit>& edits) {
+  Eigen::MatrixXd N = base_normals;
+  for (const SpaceTimeEdit& e : edits) {
+    int first = -1, last = -1;
+    for (int s = 0; s < m.num_slabs(); ++s)
+      if (m.times[s + 1] >= e.region.t0 && m.times[s] <= e.region.t1) last = s, first = first < 0 ? s : first;
+    if (first < 0) continue;
+    const VertexNormalSource src(m, nullptr, m.slab_offsets[first], m.slab_offsets[last + 1]);
+    for (int v = 0; v < m.num_vertices(); ++v)
+      if (m.V(v, 3) >= e.region.t0 && m.V(v, 3) <= e.region.t1) N.row(v) = src(v).transpose();
+  }
+  return N;
 }
 
 }  // namespace dfm

@@ -49,4 +49,10 @@ class SpaceTimeEditCache {
 std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std::vector<SpaceTimeEdit>& edits,
                                                 SpaceTimeEditCache* cache = nullptr);
 
+// manifold_vertex_normals(edited), bit for bit, from the normals before the edits: only vertices in an
+// edit's window move, and their stars lie in the slabs that overlap it, so only those rows are summed
+// again, over those slabs (VertexNormalSource). What a drag frame's view needs without a full pass.
+Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& edited, const Eigen::MatrixXd& base_normals,
+                                      const std::vector<SpaceTimeEdit>& edits);
+
 }  // namespace dfm
