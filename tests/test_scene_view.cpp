@@ -11,7 +11,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "app/editor/manifold_builder.h"
 #include "app/editor/scene_view.h"
+#include "core/anim/manifold_normals.h"
 #include "core/scene/document.h"
 #include "core/scene/key_surfaces.h"
 #include "app/editor/paint_tool.h"
@@ -21,9 +23,11 @@
 #include "core/scene/script.h"
 #include "tests/mock_render_backend.h"
 #include "tests/key_mesh_test_meshes.h"
+#include "tests/space_time_test_scene.h"
 #include "tests/volume_test_meshes.h"
 
 using namespace dfm;
+using dfm::editor::ManifoldBuilder;
 using dfm::editor::SceneView;
 using dfm::editor::ViewSettings;
 using dfm::editor::WeightView;
@@ -1058,4 +1062,40 @@ TEST_CASE("sculpt tool: a transition dab on an in-between is measured on the int
   std::string why;
   CHECK(editor::SculptTool::transition_line(one, a.F, 4, bary, on_a, 0.3, 0.5, 0, &why).empty());
   CHECK(why.find("two keys") != std::string::npos);
+TEST_CASE("manifold builder: the document's space-time edits replayed onto the viewport's manifold, a drag frame "
+          "without a rebuild, undo back to the keys' manifold", "[editor][scene_view][space-time]") {
+  Document doc;
+  test::make_keyed(doc);
+  ManifoldBuilder b;
+  REQUIRE(b.update(doc));
+  const MatrixX4dRow keys_V = b.manifold().V;
+  SpaceTimeEdit e;
+  e.region = {Vector3d(2, 0, 0), 1.2, 0.8, 2};
+  e.handle = {Vector3d(2, 0, 0), 1.2};
+  doc.set_time(1.2);
+  const TriMesh mid = posed_surface(doc);
+  int h = 0;  // the frame's vertex nearest the +x tip: the handle
+  for (int i = 1; i < mid.V.rows(); ++i)
+    if ((mid.V.row(i) - Eigen::RowVector3d(2, 0.4, 0)).norm() < (mid.V.row(h) - Eigen::RowVector3d(2, 0.4, 0)).norm()) h = i;
+  e.handle.point = mid.V.row(h).transpose();
+  doc.begin_gesture();
+  doc.add_space_time_edit(e);
+  b.update(doc);
+  REQUIRE(b.manifold().V == keys_V);  // a still edit changes nothing
+  for (int f = 1; f <= 3; ++f) {
+    e.move = Vector3d(0, 0, 0.1 * f);
+    doc.set_space_time_edit(0, e);
+    REQUIRE(b.update(doc));
+    REQUIRE(b.edit_notes().empty());
+    // The same bits as the saves' manifold (document_manifold replays without the cache).
+    REQUIRE(b.manifold().V == document_manifold(doc).V);
+    REQUIRE(*b.normals() == manifold_vertex_normals(b.manifold()));  // the window's rows recomputed only
+  }
+  doc.end_gesture();
+  REQUIRE(doc.undo_name() == "space-time edit");  // add + three drag frames: one step
+  REQUIRE((b.manifold().V - keys_V).cwiseAbs().maxCoeff() > 0.2);
+  doc.undo();
+  REQUIRE(b.update(doc));
+  REQUIRE(b.manifold().V == keys_V);
+  REQUIRE(*b.normals() == manifold_vertex_normals(b.manifold()));
 }

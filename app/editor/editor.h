@@ -19,6 +19,7 @@
 #include "app/editor/bone_tool.h"
 #include "app/editor/pair_tool.h"
 #include "app/editor/sculpt_tool.h"
+#include "app/editor/space_time_tool.h"
 #include "app/editor/paint_tool.h"
 #include "app/editor/pose_panels.h"
 #include "app/editor/pose_tool.h"
@@ -49,7 +50,7 @@ struct EditorOptions {
   int msaa = -1;           // --msaa N: multisample count (-1: 4, or 0 on a software renderer)
 };
 
-enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose, Pair, Sculpt };
+enum class Tool { Select, PlacePoint, DrawBone, Paint, Pose, Pair, Sculpt, SpaceTime };
 
 struct ShapeSpacePanel;
 class ItemFlow;
@@ -130,6 +131,7 @@ class Editor {
   void tool_paint(bool down, bool clicked, bool released);
   void tool_pair(bool clicked);
   void tool_sculpt(bool down, bool clicked, bool released);
+  void tool_space_time(bool clicked, bool released);
   void finish_bone_chain();
   void tool_pose(bool clicked, bool released);
   Eigen::Vector2d mouse_in_viewport() const;
@@ -224,6 +226,7 @@ class Editor {
   PaintTool paint_tool_;  // the brush, its settings and its stroke (paint_tool.h)
   PairTool pair_tool_;    // a picked pair in the making (pair_tool.h)
   SculptTool sculpt_tool_;  // the Sculpt tool's brush, handle drag and settings (sculpt_tool.h)
+  SpaceTimeTool space_time_tool_;  // the space-time edit's settings and drag (space_time_tool.h)
   TimelineRuler timeline_ruler_;  // the timeline's ruler and its drags (timeline_ruler.h)
   PosePanels pose_panels_;  // the Transform and Posing sections (pose_panels.h)
 

@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <cstdlib>
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
@@ -173,6 +174,7 @@ void Editor::apply_ui_options(const std::string& spec) {
       else if (v == "pair") tool_ = Tool::Pair;
       else if (v == "sculpt") tool_ = Tool::Sculpt, sculpt_tool_.set_mode(SculptMode::Region);
       else if (v == "sculpt-transition") tool_ = Tool::Sculpt, sculpt_tool_.set_mode(SculptMode::Transition);
+      else if (v == "spacetime") tool_ = Tool::SpaceTime;
       else throw bad();
     } else if (k == "weights") {
       if (v == "off") weight_view_ = WeightView::Off;
@@ -198,6 +200,11 @@ void Editor::apply_ui_options(const std::string& spec) {
     } else if (k == "sweep") {
       if (v != "t" && v != "x" && v != "y" && v != "z") throw bad();
       slice_axis_ = parse_slice_axis(v);
+    } else if (k == "sweep_at") {  // the sweep's place, a fraction of the extent along its axis
+      char* end = nullptr;
+      const double f = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end || !(f >= 0 && f <= 1)) throw bad();
+      sweep_value_ = f;
     } else if (k == "frame") {
       if (v == "all") frame_all();
       else if (v == "selection") frame_selection_after_script_ = true;  // the script may select
@@ -217,7 +224,7 @@ void Editor::apply_ui_options(const std::string& spec) {
     } else if (k == "vertex") {
       picked_vertex_ = std::atoi(v.c_str());
     } else {
-      throw Error("--ui: unknown key '" + k + "' (tool, weights, wireframe, ortho, grid, handles, preset, sweep, vertex, cursor, frame, panels)");
+      throw Error("--ui: unknown key '" + k + "' (tool, weights, wireframe, ortho, grid, handles, preset, sweep, sweep_at, vertex, cursor, frame, panels)");
     }
   }
 }

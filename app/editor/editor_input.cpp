@@ -101,7 +101,8 @@ void Editor::handle_camera_input() {
     view::zoom_to_cursor(cam_, std::pow(0.85, io.MouseWheel), m);
     sync_camera_to_doc();
   }
-  if (drag_ == Drag::None && !rig_drag_.dragging() && !pose_tool_.dragging() && !paint_tool_.painting() && !sculpt_tool_.busy() && over) {
+  if (drag_ == Drag::None && !rig_drag_.dragging() && !pose_tool_.dragging() && !paint_tool_.painting() &&
+      !sculpt_tool_.busy() && !space_time_tool_.dragging() && over) {
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Middle) || (io.KeyAlt && ImGui::IsMouseClicked(ImGuiMouseButton_Left)))
       drag_ = (io.KeyShift ? Drag::Pan : Drag::Orbit), drag_last_ = m;
     else if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) && !(tool_ == Tool::DrawBone && bone_tool_.active()))
@@ -138,6 +139,7 @@ void Editor::handle_viewport_input() {
       case Tool::Pose: tool_pose(clicked, released); break;
       case Tool::Pair: tool_pair(clicked); break;
       case Tool::Sculpt: tool_sculpt(down, clicked, released); break;
+      case Tool::SpaceTime: tool_space_time(clicked, released); break;
     }
   } catch (const std::exception& e) {
     drag_ = Drag::None;
@@ -145,6 +147,7 @@ void Editor::handle_viewport_input() {
     pose_tool_.cancel(doc_);
     paint_tool_.cancel(doc_);
     sculpt_tool_.cancel(doc_);
+    space_time_tool_.cancel(doc_);
     error_popup_ = e.what();
   }
 }
@@ -195,6 +198,18 @@ void Editor::tool_pair(bool clicked) {
   if (!s.command.empty()) run_ui_command(s.command);
   if (s.go_to) doc_.set_time(*s.go_to);
   if (!s.status.empty()) status(s.status);
+}
+
+void Editor::tool_space_time(bool clicked, bool released) {
+  SpaceTimeTool::Input in;
+  in.mouse = mouse_in_viewport();
+  in.hovered = viewport_hovered_;
+  in.clicked = clicked;
+  in.released = released || !ImGui::IsMouseDown(ImGuiMouseButton_Left);
+  in.new_region = ImGui::GetIO().KeyShift;
+  in.t_slice = slice_axis_ == SliceAxis::T;
+  const std::string s = space_time_tool_.update(doc_, *view_, cam_, in, [this](const CommandWords& w) { return run_ui_command(w); });
+  if (!s.empty()) status(s);
 }
 
 void Editor::tool_place_point(bool clicked) {

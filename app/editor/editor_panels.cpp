@@ -232,6 +232,8 @@ void Editor::draw_tools_panel() {
   ImGui::SameLine();
   if (tool_button("Sculpt  U", tool_ == Tool::Sculpt, "Shape keys: brush a free region, drag a handle inside it (C1 or C2), key the shape; or paint a local transition between two mesh keys", w))
     tool_ = Tool::Sculpt;
+  if (tool_button("Space-time", tool_ == Tool::SpaceTime, "Drag the animation itself: a region over a time window follows a handle (Southern ch. 4)", w))
+    tool_ = Tool::SpaceTime;
 
   ImGui::Separator();
   switch (tool_) {
@@ -257,6 +259,8 @@ void Editor::draw_tools_panel() {
       break;
     case Tool::Sculpt:
       sculpt_tool_.draw_options(doc_, [this](const CommandWords& w) { return run_ui_command(w); });  // sculpt_tool.h
+    case Tool::SpaceTime:
+      space_time_tool_.draw_options(doc_, [this](const CommandWords& w) { return run_ui_command(w); });
       break;
     case Tool::Select:
       ImGui::TextWrapped("Click to select (Shift: add). Drag handles before binding. Click the surface to list a vertex's weights.");

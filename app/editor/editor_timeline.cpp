@@ -87,6 +87,8 @@ void Editor::draw_timeline_toolbar() {
 
 void Editor::draw_timeline() {
   draw_timeline_toolbar();
+  if (tool_ == Tool::SpaceTime) timeline_ruler_.set_band(space_time_tool_.window());
+  else timeline_ruler_.set_band(std::nullopt);
   timeline_ruler_.draw(doc_, frame_rate_, error_popup_);
 }
 

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "core/anim/manifold_normals.h"
 #include "core/anim/manifold_sequence.h"
 #include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
@@ -81,7 +82,7 @@ struct ManifoldBuilder::Job {
   bool ok = false;
 };
 
-ManifoldBuilder::ManifoldBuilder() = default;
+ManifoldBuilder::ManifoldBuilder() : cache_(std::make_unique<SpaceTimeEditCache>()) {}
 
 ManifoldBuilder::~ManifoldBuilder() {
   if (job_) {
@@ -99,7 +100,8 @@ void ManifoldBuilder::collect() {
   if (j->sig != wanted_sig_ || (!j->ok && j->cancel.load())) return;
   built_sig_ = j->sig;
   if (j->ok) {
-    manifold_ = std::make_shared<const AnimationManifold>(std::move(j->result));
+    base_ = std::make_shared<const AnimationManifold>(std::move(j->result));
+    ++base_serial_;
     track_ = std::move(j->track);
     has_ = true;
     error_.clear();
@@ -123,7 +125,8 @@ void ManifoldBuilder::start(const Document& doc) {
   if (!needs_transition(keys)) {
     // The prism build only: milliseconds, as before mesh keys existed.
     try {
-      manifold_ = std::make_shared<const AnimationManifold>(build_manifold_sequence(keys));
+      base_ = std::make_shared<const AnimationManifold>(build_manifold_sequence(keys));
+      ++base_serial_;
       track_ = std::move(track);
       has_ = true;
       error_.clear();
@@ -179,7 +182,31 @@ bool ManifoldBuilder::update(const Document& doc) {
       start(doc);
     }
   }
-  return has_ && (built_sig_ != before || !had);
+  const bool replayed = replay(doc);
+  return has_ && (built_sig_ != before || !had || replayed);
+}
+
+bool ManifoldBuilder::replay(const Document& doc) {
+  if (!has_) return false;
+  const std::vector<SpaceTimeEdit>& edits = doc.space_time_edits();
+  if (replayed_serial_ == base_serial_ && edits == applied_) return false;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (replayed_serial_ != base_serial_)
+    base_normals_ = std::make_shared<const Eigen::MatrixXd>(manifold_vertex_normals(*base_));
+  if (edits.empty()) {
+    manifold_ = base_;
+    normals_ = base_normals_;
+    edit_notes_.clear();
+  } else {
+    auto m = std::make_shared<AnimationManifold>(*base_);
+    edit_notes_ = apply_space_time_edits(*m, edits, cache_.get());
+    normals_ = std::make_shared<const Eigen::MatrixXd>(edited_vertex_normals(*m, *base_normals_, edits));
+    manifold_ = std::move(m);
+  }
+  applied_ = edits;
+  replayed_serial_ = base_serial_;
+  replay_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return true;
 }
 
 std::string ManifoldBuilder::progress_text() const {

@@ -4,7 +4,9 @@
 // triangle list build at once on the UI thread (the prism build takes milliseconds); a sequence with a
 // transition (a mesh key of another connectivity: seconds) builds on a worker thread at a lower
 // priority while the window keeps drawing, with progress text. An edit during a build cancels it
-// (between slabs) and the newer keys build next.
+// (between slabs) and the newer keys build next. The document's space-time edits are replayed onto the
+// built manifold (core/scene/space_time_edit.h) with their factorisations cached: a drag that changes
+// only an edit's move is a back substitution, not a rebuild.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -12,6 +14,7 @@
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
 #include "core/scene/document.h"
+#include "core/scene/space_time_edit.h"
 
 namespace dfm::editor {
 
@@ -29,6 +32,13 @@ class ManifoldBuilder {
   // Cheap when nothing changed; call on every document change and every frame while busy().
   // Returns true when manifold() is new (upload it).
   bool update(const Document& doc);
+  // manifold()'s 4D vertex normals (manifold_vertex_normals' bits; after an edit only its window's
+  // vertices are recomputed).
+  std::shared_ptr<const Eigen::MatrixXd> normals() const { return normals_; }
+  // The space-time edits the replay skipped (stale: their region is empty now), one line each.
+  const std::vector<std::string>& edit_notes() const { return edit_notes_; }
+  // Milliseconds the last replay of the edits took (copy + back substitutions, or a factorisation).
+  double replay_ms() const { return replay_ms_; }
   // The manifold matches the document's keys (false while a build runs or after one failed).
   bool has_manifold() const { return has_; }
   const AnimationManifold& manifold() const { return *manifold_; }
@@ -48,9 +58,17 @@ class ManifoldBuilder {
   struct Job;
   void collect();
   void start(const Document& doc);
+  bool replay(const Document& doc);  // the edits onto base_ -> manifold_; true when manifold_ is new
 
   std::shared_ptr<Job> job_;
   std::shared_ptr<const AnimationManifold> manifold_ = std::make_shared<const AnimationManifold>();
+  std::shared_ptr<const AnimationManifold> base_;  // as built from the keys, before the edits
+  std::shared_ptr<const Eigen::MatrixXd> base_normals_, normals_;
+  std::uint64_t base_serial_ = 0, replayed_serial_ = ~0ull;
+  std::vector<SpaceTimeEdit> applied_;
+  std::unique_ptr<SpaceTimeEditCache> cache_;
+  std::vector<std::string> edit_notes_;
+  double replay_ms_ = 0;
   KeyTrack track_;
   bool has_ = false;
   std::string error_;

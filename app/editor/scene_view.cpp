@@ -192,7 +192,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     if (d.builder.update(doc)) {
       if (!d.slice) d.slice = gpu_.make_slicer();
       const AnimationManifold& m = d.builder.manifold();
-      d.normals4 = std::make_shared<const Eigen::MatrixXd>(manifold_vertex_normals(m));
+      d.normals4 = d.builder.normals();
       d.slice->upload(m, *d.normals4);
       const std::vector<double> vertex_times = manifold_vertex_times(m);
       d.interval_policy.reset(vertex_times, prism_intervals(m, vertex_times));
@@ -206,6 +206,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
     }
     d.has_manifold = d.builder.has_manifold();
     error_ = d.builder.error();
+    for (const std::string& n : d.builder.edit_notes()) error_ += (error_.empty() ? "" : "; ") + n;
     // Pose edits after the last scrub show the pose being edited; scrubbing shows the slice.
     const Pose pose = doc.pose();
     const std::uint64_t psig = pose_hash(kFnv1aBasis, pose);

@@ -63,6 +63,12 @@ void TimelineRuler::draw(Document& doc, double frame_rate, std::string& error) {
   s.w = ImGui::GetContentRegionAvail().x, s.h = std::max(30.0f, ImGui::GetContentRegionAvail().y);
   ImDrawList* dl = ImGui::GetWindowDrawList();
   draw_ticks(dl, s, doc, frame_rate);
+  for (const SpaceTimeEdit& e : doc.space_time_edits())  // where the motion was edited
+    dl->AddRectFilled(ImVec2(s.x_of(e.region.t0), s.y0 + s.h * 0.75f), ImVec2(s.x_of(e.region.t1), s.y0 + s.h * 0.85f),
+                      IM_COL32(190, 115, 255, 110));
+  if (band_ && band_->first < band_->second)
+    dl->AddRectFilled(ImVec2(s.x_of(band_->first), s.y0), ImVec2(s.x_of(band_->second), s.y0 + s.h),
+                      IM_COL32(190, 115, 255, 45));
   const int hover_key = handle_input(doc, s, frame_rate, error);
   draw_keys(doc, s, hover_key);
   const float xt = s.x_of(doc.time());

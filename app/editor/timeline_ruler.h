@@ -3,7 +3,9 @@
 // mesh keys as teal squares; drag one to move it, snapped to whole frames; right-click deletes it), the
 // in-between bars and the current time; dragging elsewhere scrubs. Owns its drag state; every edit is
 // one of the document's undoable calls.
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "core/scene/document.h"
 
@@ -14,6 +16,9 @@ class TimelineRuler {
   // Fills the current ImGui window's remaining space. A refused key move is reported in `error`.
   void draw(Document& doc, double frame_rate, std::string& error);
   bool dragging() const { return drag_ != Drag::None; }
+  // A time window drawn as a band (the Space-time tool's), or none. The document's space-time edits'
+  // windows are drawn fainter.
+  void set_band(std::optional<std::pair<double, double>> band) { band_ = band; }
 
   // Where the ruler lies this frame: screen x of a time and back, over [t0, t1].
   struct Span {
@@ -31,6 +36,7 @@ class TimelineRuler {
   int handle_input(Document& doc, const Span& s, double frame_rate, std::string& error);
   void draw_keys(const Document& doc, const Span& s, int hover_key) const;
 
+  std::optional<std::pair<double, double>> band_;
   Drag drag_ = Drag::None;
   int drag_key_ = -1;
 };

@@ -30,6 +30,7 @@ enum class LaplacianWeights { Equal, Reciprocal, PrimalBoundary };
 
 // "equal", "reciprocal", "primal-boundary"; dfm::Error otherwise.
 LaplacianWeights parse_laplacian_weights(const std::string& name);
+const char* laplacian_weights_name(LaplacianWeights w);  // parse_laplacian_weights' inverse
 
 struct LaplacianRow {
   std::vector<int> neighbours;   // sorted manifold vertex indices

@@ -76,6 +76,7 @@ const std::vector<Command>& commands() {
     add_pose_commands(t);
     add_key_commands(t);
     add_sculpt_commands(t);
+    add_space_time_commands(t);
     add_file_commands(t);
     return t;
   }();

@@ -38,6 +38,7 @@ void add_pose_commands(std::vector<Command>& table);     // command_pose.cpp: se
 void add_key_commands(std::vector<Command>& table);      // command_keys.cpp: keys and time
 void add_weight_commands(std::vector<Command>& table);   // command_weights.cpp: weights-*
 void add_sculpt_commands(std::vector<Command>& table);   // command_sculpt.cpp: sculpt-*, transition-state
+void add_space_time_commands(std::vector<Command>& table);  // command_space_time.cpp: edit-region, ...
 void add_file_commands(std::vector<Command>& table);     // command_files.cpp: saving, host commands, quit
 
 }  // namespace dfm::command_detail

@@ -60,7 +60,7 @@ void swap_parts(SceneData& a, SceneData& b, unsigned parts) {
   }
   if (parts & 2u) swap(a.rig, b.rig);
   if (parts & 4u) swap(a.pose, b.pose), swap(a.posing, b.posing);
-  if (parts & 8u) swap(a.keys, b.keys);
+  if (parts & 8u) swap(a.keys, b.keys), swap(a.space_time_edits, b.space_time_edits);
   if (parts & 16u) {
     swap(a.weights, b.weights);
     swap(a.replaced_weights, b.replaced_weights);
@@ -85,7 +85,7 @@ void copy_parts(const SceneData& from, SceneData& to, unsigned parts) {
   }
   if (parts & 2u) to.rig = from.rig;
   if (parts & 4u) to.pose = from.pose, to.posing = from.posing;
-  if (parts & 8u) to.keys = from.keys;
+  if (parts & 8u) to.keys = from.keys, to.space_time_edits = from.space_time_edits;
   if (parts & 16u) {
     to.weights = from.weights;
     to.replaced_weights = from.replaced_weights;

@@ -32,6 +32,7 @@
 #include "core/rig/pose_params.h"
 #include "core/rig/rig.h"
 #include "core/scene/sculpt_session.h"
+#include "core/scene/space_time_edit.h"
 #include "core/scene/weight_brush.h"
 #include "core/skin/endpoint_filter.h"
 #include "core/skin/skin.h"  // SkinMethod
@@ -142,6 +143,8 @@ struct SceneData {
   // Not saved with the scene.
   Eigen::MatrixXd replaced_weights;
   std::vector<SceneKey> keys;
+  // Space-time edits of the keys' manifold, replayed in order (space_time_edit.h); undone with the keys.
+  std::vector<SpaceTimeEdit> space_time_edits;
   Eigen::VectorXd mask;     // shape-preservation mask per surface vertex in [0,1] (painted)
   Camera camera;
   double time = 0;
@@ -202,6 +205,7 @@ class Document {
   // Why the weights are absent ("not bound yet", "rig changed after bind: ..."); "" when bound.
   const std::string& weights_note() const { return weights_note_; }
   const std::vector<SceneKey>& keys() const { return s_.keys; }
+  const std::vector<SpaceTimeEdit>& space_time_edits() const { return s_.space_time_edits; }
   // Index of the key at time t (|dt| <= 1e-9), or -1.
   int key_at(double t) const;
   // Every key's params evaluated to a Pose, in time order (a mesh key gives its unused params' pose:
@@ -369,6 +373,12 @@ class Document {
   // Clears key `index`'s local transition (its in-betweens return to its method). One undo step.
   void clear_transition(int index);
   void move_key(int index, double new_time);  // throws if another key sits at new_time
+  // Space-time edits (space_time_edit.h), stored with the keys. add: one step. set: replaces edit
+  // `index` and merges within a gesture, also with the add that made it (a drag of its handle is one step). clear: one step (none when
+  // there are none). All check the edit's numbers (check_space_time_edit) first.
+  void add_space_time_edit(const SpaceTimeEdit& e);
+  void set_space_time_edit(int index, const SpaceTimeEdit& e);
+  void clear_space_time_edits();
   // Applies the key's params as the current pose (a pose edit). A mesh key has no pose: dfm::Error.
   void go_to_key(int index);
 

@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <string>
 
+#include "core/scene/space_time_edit.h"
+
 #include "core/anim/bake.h"
 #include "core/anim/inbetween.h"
 #include "core/anim/interpolate.h"
@@ -178,10 +180,14 @@ bool needs_transition(const std::vector<KeySurface>& keys) {
 }
 
 AnimationManifold document_manifold(const Document& doc, SequenceStats* stats,
-                                    const std::function<bool(int, int)>& progress) {
+                                    const std::function<bool(int, int)>& progress,
+                                    std::vector<std::string>* edit_notes) {
   if (doc.keys().size() < 2)
     throw Error("an animation needs at least two keys (the document has " + std::to_string(doc.keys().size()) + ")");
-  return build_manifold_sequence(key_surfaces(doc), TransitionOptions{}, stats, progress);
+  AnimationManifold m = build_manifold_sequence(key_surfaces(doc), TransitionOptions{}, stats, progress);
+  std::vector<std::string> notes = apply_space_time_edits(m, doc.space_time_edits());
+  if (edit_notes) *edit_notes = std::move(notes);
+  return m;
 }
 
 }  // namespace dfm

@@ -49,8 +49,11 @@ BakedLayers baked_pose_frames(const Document& doc, int count);
 // True when some neighbouring key surfaces differ in connectivity (a transition joins them: seconds).
 bool needs_transition(const std::vector<KeySurface>& keys);
 
-// build_manifold_sequence(key_surfaces(doc)); needs >= 2 keys. `progress` as there (false cancels).
+// build_manifold_sequence(key_surfaces(doc)), then the document's space-time edits replayed onto it
+// (apply_space_time_edits); needs >= 2 keys. `progress` as there (false cancels). `edit_notes`, when
+// given, receives the stale edits skipped.
 AnimationManifold document_manifold(const Document& doc, SequenceStats* stats = nullptr,
-                                    const std::function<bool(int, int)>& progress = {});
+                                    const std::function<bool(int, int)>& progress = {},
+                                    std::vector<std::string>* edit_notes = nullptr);
 
 }  // namespace dfm

@@ -441,6 +441,54 @@ namespace {
 
 // Keys in time order: time and params; a mesh key's surface (version 2); the in-between and the
 // picked pairs to the next key when set.
+// Space-time edits (optional: scenes before issue 35 have none).
+json space_time_edits_json(const std::vector<SpaceTimeEdit>& edits) {
+  json out = json::array();
+  for (const SpaceTimeEdit& e : edits)
+    out.push_back({{"center", vec3(e.region.center)},
+                   {"radius", e.region.radius},
+                   {"t0", e.region.t0},
+                   {"t1", e.region.t1},
+                   {"handle", vec3(e.handle.point)},
+                   {"handle_time", e.handle.time},
+                   {"move", vec3(e.move)},
+                   {"rotation", quat(e.rotation)},
+                   {"weights", laplacian_weights_name(e.weights)},
+                   {"time_scale", e.time_scale},
+                   {"volume", e.preserve_volume}});
+  return out;
+}
+
+void read_space_time_edits(const SceneReader& R, const json& j, SceneData& s) {
+  if (!j.contains("space_time_edits")) return;
+  const json& a = R.array(j["space_time_edits"], "space_time_edits");
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string c = "space_time_edits[" + std::to_string(i) + "]";
+    SpaceTimeEdit e;
+    e.region.center = R.vec3(R.field(a[i], "center", c), c + ".center");
+    e.region.radius = R.number(R.field(a[i], "radius", c), c + ".radius");
+    e.region.t0 = R.number(R.field(a[i], "t0", c), c + ".t0");
+    e.region.t1 = R.number(R.field(a[i], "t1", c), c + ".t1");
+    e.handle.point = R.vec3(R.field(a[i], "handle", c), c + ".handle");
+    e.handle.time = R.number(R.field(a[i], "handle_time", c), c + ".handle_time");
+    e.move = R.vec3(R.field(a[i], "move", c), c + ".move");
+    e.rotation = R.quat(R.field(a[i], "rotation", c), c + ".rotation").normalized();
+    try {
+      e.weights = parse_laplacian_weights(R.string(R.field(a[i], "weights", c), c + ".weights"));
+    } catch (const Error& err) {
+      R.fail("'" + c + ".weights': " + err.what());
+    }
+    e.time_scale = R.number(R.field(a[i], "time_scale", c), c + ".time_scale");
+    e.preserve_volume = R.boolean(R.field(a[i], "volume", c), c + ".volume");
+    try {
+      check_space_time_edit(e);
+    } catch (const Error& err) {
+      R.fail("'" + c + "': " + err.what());
+    }
+    s.space_time_edits.push_back(e);
+  }
+}
+
 json keys_json(const std::vector<SceneKey>& scene_keys, BlobWriter& blob) {
   json keys = json::array();
   for (const SceneKey& k : scene_keys) {
@@ -511,6 +559,7 @@ void write_scene(const std::string& json_path, const SceneData& s) {
 
   j["pose"] = params_json(s.pose);
   j["keys"] = keys_json(s.keys, blob);
+  if (!s.space_time_edits.empty()) j["space_time_edits"] = space_time_edits_json(s.space_time_edits);
   j["method"] = skin_method_name(s.method);
   j["inbetweens"] = s.inbetweens;
   if (!s.endpoint_filters.empty()) j["endpoint_filters"] = endpoint_filters_json(s);
@@ -569,6 +618,7 @@ SceneData read_scene(const std::string& path) {
   read_rig(R, j, s.surface.V.rows(), s.rig);
   s.pose = R.params(R.field(j, "pose", "scene"), s.rig, "pose");
   read_keys(R, j, version, s);
+  read_space_time_edits(R, j, s);
   try {
     s.method = parse_skin_method(R.string(R.field(j, "method", "scene"), "method"));
   } catch (const Error& e) {

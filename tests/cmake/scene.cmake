@@ -30,3 +30,5 @@ add_dependencies(test_twist_stretch_script deform)
 # The script's transfer-weights (issue 34): a scene's or a mesh's weights onto the document's surface.
 dfm_test(test_transfer_weights_script SOURCES test_transfer_weights_script.cpp LIBS dfm_scene)
 target_compile_definitions(test_transfer_weights_script PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+# Space-time edits (issue 35): edit-region / edit-drag, the scene round trip, undo, hostile input.
+dfm_test(test_space_time_script SOURCES test_space_time_script.cpp LIBS dfm_scene)

@@ -1,0 +1,56 @@
+#pragma once
+// The Space-time tool (issue 35; Southern 2008 ch. 4): edits the animation manifold itself. Shift-click
+// (or the first click) on the surface at the current time sets an edit's region centre, with the
+// radius and the time window from the Tools panel (an edit-region line); then press on the surface
+// near it and drag: that point is the handle, moved in the view plane, and the region follows
+// smoothly in space and over the window. The press is an edit-drag line (the same checks a script
+// gets), each frame of the drag sets the edit's move in the document (the manifold builder replays it
+// by a back substitution on its cached factorisation), the whole drag one undo step.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "app/editor/scene_view.h"
+#include "core/scene/command.h"
+#include "core/scene/document.h"
+#include "core/view/camera.h"
+
+namespace dfm::editor {
+
+class SpaceTimeTool {
+ public:
+  struct Input {
+    Eigen::Vector2d mouse = Eigen::Vector2d::Zero();  // viewport pixels
+    bool hovered = false, clicked = false, released = false;
+    bool new_region = false;  // Shift held: the click starts a new region
+    bool t_slice = true;      // the view shows a t-slice (the region's ball is drawn only there)
+  };
+  using Run = std::function<bool(const CommandWords& words)>;  // a line as a UI command; false: failed
+  // Draws the region and handle and runs the click or drag. Returns a status line ("" for none).
+  std::string update(Document& doc, SceneView& view, const view::Camera& cam, const Input& in, const Run& run);
+  // The Tools panel: radius (a fraction of the surface's diagonal), window T0 T1, the edits, Clear.
+  void draw_options(const Document& doc, const Run& run);
+  void set_region(double radius_fraction, double t0, double t1) { radius_ = radius_fraction, t0_ = t0, t1_ = t1; }
+  // The window the timeline draws as a band.
+  std::pair<double, double> window() const { return {t0_, t1_}; }
+  bool dragging() const { return drag_.has_value(); }
+  void cancel(Document& doc);  // ends a drag cut short (its undo step stays as far as it got)
+
+ private:
+  struct Drag {
+    int index = 0;
+    Eigen::Vector3d handle, move0;  // the grabbed point and the edit's move when grabbed
+  };
+  // The window when the fields hold none yet: the middle half of the keys' span.
+  void default_window(const Document& doc);
+  // Adopts the window of an edit made elsewhere (a script's edit-region, undo), once per change.
+  void follow_document(const Document& doc);
+  double radius_ = 0.12;
+  size_t seen_edits_ = 0;
+  double t0_ = 0, t1_ = 0;
+  std::optional<Drag> drag_;
+};
+
+}  // namespace dfm::editor

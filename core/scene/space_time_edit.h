@@ -1,0 +1,58 @@
+#pragma once
+// The document's space-time edits (issue 35; Southern 2008 ch. 4): drags of the animation manifold
+// itself, stored in the scene and replayed in order onto the manifold built from the keys, so the
+// viewport, save-posed and save-frames all see them. Each edit is a region (a ball over a time
+// window), a handle (a point at a time) and its move (core/anim/manifold_edit.h).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "core/anim/manifold.h"
+#include "core/anim/manifold_edit.h"
+#include "core/anim/manifold_edit_region.h"
+
+namespace dfm {
+
+struct SpaceTimeEdit {
+  EditRegionSpec region;
+  EditHandleSpec handle;
+  Eigen::Vector3d move = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // about the handle point
+  LaplacianWeights weights = LaplacianWeights::Reciprocal;
+  double time_scale = 1.0;
+  bool preserve_volume = false;
+  bool operator==(const SpaceTimeEdit& o) const;
+  // Everything but the move and rotation: edits with the same setup share one factorisation.
+  bool same_setup(const SpaceTimeEdit& o) const;
+};
+
+// Checks the numbers (finite, radius > 0, t0 < t1, handle time in the window, unit rotation, time
+// scale > 0); throws dfm::Error saying what is wrong.
+void check_space_time_edit(const SpaceTimeEdit& e);
+
+// ManifoldEditors kept between replays: a drag that changes only the last edit's move re-solves by a
+// back substitution (4.6.1) instead of factoring again. Not part of the document.
+class SpaceTimeEditCache {
+ public:
+  SpaceTimeEditCache();
+  ~SpaceTimeEditCache();
+  struct Entry;
+  std::vector<std::unique_ptr<Entry>> entries;  // one per edit, in order
+};
+
+// Applies `edits` in order to m.V. An edit whose region no longer selects anything (the keys changed:
+// it is stale) is skipped and named in the returned notes ("space-time edit 2 skipped: ..."); the
+// others still apply. An edit with no move or turn is skipped (it changes nothing). `cache` may be null.
+std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std::vector<SpaceTimeEdit>& edits,
+                                                SpaceTimeEditCache* cache = nullptr);
+
+// manifold_vertex_normals(edited), bit for bit, from the normals before the edits: only vertices in an
+// edit's window move, and their stars lie in the slabs that overlap it, so only those rows are summed
+// again, over those slabs (VertexNormalSource). What a drag frame's view needs without a full pass.
+Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& edited, const Eigen::MatrixXd& base_normals,
+                                      const std::vector<SpaceTimeEdit>& edits);
+
+}  // namespace dfm
