@@ -1062,6 +1062,8 @@ TEST_CASE("sculpt tool: a transition dab on an in-between is measured on the int
   std::string why;
   CHECK(editor::SculptTool::transition_line(one, a.F, 4, bary, on_a, 0.3, 0.5, 0, &why).empty());
   CHECK(why.find("two keys") != std::string::npos);
+}
+
 TEST_CASE("manifold builder: the document's space-time edits replayed onto the viewport's manifold, a drag frame "
           "without a rebuild, undo back to the keys' manifold", "[editor][scene_view][space-time]") {
   Document doc;
