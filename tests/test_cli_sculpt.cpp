@@ -46,6 +46,26 @@ TEST_CASE("deform sculpt: fixed vertices kept, handle moved, timings printed; ba
     // The free ring between rises part of the way.
     CHECK(out.V.col(2).maxCoeff() == Approx(0.2));
   }
+  // --rotate: the handle turns by 30 degrees about z through (0.1, 0, 0), then moves: each handle vertex
+  // lands at R (p - c) + c + d exactly (the written file's digits).
+  {
+    const RunResult r = run_deform(s, {"sculpt", s / "disk.obj", "--fixed", s / "F.txt", "--handle", s / "H.txt", "--rotate", "0",
+                                       "0", "2", "30", "--about", "0.1", "0", "0", "--move", "0", "0", "0.2", "-o", s / "out.obj"});
+    INFO(describe_run(r));
+    REQUIRE(r.exit_code == 0);
+    const TriMesh out = read_surface(s / "out.obj");
+    const double a = M_PI / 6;
+    for (int i : handle) {
+      const double x = disk.V(i, 0) - 0.1, y = disk.V(i, 1);
+      const Eigen::RowVector3d want(0.1 + std::cos(a) * x - std::sin(a) * y, std::sin(a) * x + std::cos(a) * y, disk.V(i, 2) + 0.2);
+      CHECK((out.V.row(i) - want).norm() < 1e-9);
+    }
+    for (int i : fixed) CHECK(out.V.row(i) == disk.V.row(i));
+    const RunResult bad = run_deform(s, {"sculpt", s / "disk.obj", "--fixed", s / "F.txt", "--handle", s / "H.txt", "--rotate", "0",
+                                         "0", "0", "30", "--move", "0", "0", "0", "-o", s / "out.obj"});
+    CHECK(bad.exit_code == 2);
+    CHECK_THAT(bad.err, Catch::Contains("nonzero axis"));
+  }
   std::filesystem::remove(s / "out.obj");
   write_indices(s / "bad.txt", {0, 1, static_cast<int>(disk.V.rows())});
   std::ofstream(s / "junk.txt") << "3\nseven\n";
