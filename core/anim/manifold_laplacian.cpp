@@ -10,21 +10,6 @@
 
 namespace dfm {
 
-LaplacianWeights parse_laplacian_weights(const std::string& name) {
-  if (name == "equal") return LaplacianWeights::Equal;
-  if (name == "reciprocal") return LaplacianWeights::Reciprocal;
-  if (name == "primal-boundary") return LaplacianWeights::PrimalBoundary;
-  throw Error("unknown Laplacian weights '" + name + "' (equal, reciprocal, primal-boundary)");
-}
-
-const char* laplacian_weights_name(LaplacianWeights w) {
-  switch (w) {
-    case LaplacianWeights::Equal: return "equal";
-    case LaplacianWeights::PrimalBoundary: return "primal-boundary";
-    default: return "reciprocal";
-  }
-}
-
 std::vector<char> manifold_boundary_rows(const AnimationManifold& m, const std::vector<int>& rows) {
   std::unordered_map<int, int> slot;
   for (size_t r = 0; r < rows.size(); ++r) slot.emplace(rows[r], static_cast<int>(r));

@@ -36,7 +36,7 @@ TriMesh read_off(const std::string& path) {
   }
   if (t.size() == 1) next_fields("vertex and face counts");
   else t.erase(t.begin());
-  long long nv, nf;
+  long long nv = 0, nf = 0;
   if (t.size() < 2 || !parse_int(t[0], nv) || !parse_int(t[1], nf))
     fail("expected \"#vertices #faces #edges\", found " + quote(line));
   check_count(path, lr.line(), nv, 6, lr.bytes_left(), "vertex");

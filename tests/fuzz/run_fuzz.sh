@@ -18,13 +18,15 @@ build() {
   mkdir -p "$out/obj"
   flags="-std=c++17 -O1 -g -fno-omit-frame-pointer -I$ROOT -isystem /usr/include/eigen3"
   objs=""
-  # The scene reader needs rig/ and skin/ (handle counts, skin method names) and the in-between method
-  # names, but not bind/ or the GL; the glTF import its reader (tinygltf, linked) and the importers' table;
+  # The scene reader needs rig/ and skin/ (handle counts, skin method names), the in-between method and
+  # Laplacian weights' names and the space-time edits' checks, but not bind/, the solvers or the GL; the glTF import its reader (tinygltf, linked) and the importers' table;
   # the BVH import Assimp (linked: Debian's, not instrumented, so only our side of it is fuzzed).
   for src in "$ROOT"/core/util/*.cpp "$ROOT"/core/mesh/*.cpp "$ROOT"/core/rig/*.cpp "$ROOT"/core/skin/*.cpp \
-             "$ROOT"/core/anim/inbetween_method.cpp "$ROOT"/core/scene/scene_file.cpp "$ROOT"/core/scene/scene_reader.cpp \
+             "$ROOT"/core/anim/inbetween_method.cpp "$ROOT"/core/anim/manifold_laplacian_names.cpp \
+             "$ROOT"/core/scene/scene_file.cpp "$ROOT"/core/scene/scene_reader.cpp "$ROOT"/core/scene/space_time_edit.cpp \
              "$ROOT"/core/scene/scene_import.cpp "$ROOT"/core/export/gltf_import.cpp "$ROOT"/core/export/gltf_scene_import.cpp \
-             "$ROOT"/core/export/rig_import.cpp "$ROOT"/core/export/assimp_read.cpp "$ROOT"/core/export/bvh_motion.cpp; do
+             "$ROOT"/core/export/gltf_rig_extras.cpp "$ROOT"/core/export/rig_import.cpp "$ROOT"/core/export/assimp_read.cpp \
+             "$ROOT"/core/export/bvh_motion.cpp; do
     o="$out/obj/$(basename "$src" .cpp).o"
     # Rebuilt when the source or any header it includes (its -MM dependency list) is newer.
     if [ ! -f "$o.d" ]; then "$CXX" $flags -MM -MT "$o" "$src" > "$o.d"; fi
