@@ -150,7 +150,7 @@ TEST_CASE("glTF CUBICSPLINE: the reader follows the Hermite curve, the import ke
   bool bent = false;
   for (const CubicChannel& c : channels)
     for (double t : {0.1, 0.3, 0.5, 0.85}) {
-      const GltfNode& n = gltf_animated_nodes(g, t)[c.node];
+      const GltfNode n = gltf_animated_nodes(g, t)[c.node];  // a copy: the vector is a temporary
       const Eigen::RowVectorXd want = hermite(c, t);
       if (c.rotation) {
         const Eigen::RowVector4d got(n.rotation.x(), n.rotation.y(), n.rotation.z(), n.rotation.w());
