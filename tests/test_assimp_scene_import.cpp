@@ -23,20 +23,14 @@
 #include "core/scene/script.h"
 #include "core/util/error.h"
 #include "tests/cli_test_util.h"
+#include "tests/rigged_test_util.h"
 #include "tests/test_support.h"
 
 using namespace dfm;
+using dfm::test::diagonal;
+using dfm::test::nearest;
 
 namespace {
-
-// Per vertex of `ref`, the nearest vertex of `V` (brute force: an independent matching).
-std::vector<int> nearest(const Eigen::MatrixXd& ref, const Eigen::MatrixXd& V) {
-  std::vector<int> m(ref.rows());
-  for (Eigen::Index i = 0; i < ref.rows(); ++i) (V.rowwise() - ref.row(i)).rowwise().squaredNorm().minCoeff(&m[i]);
-  return m;
-}
-
-double diagonal(const Eigen::MatrixXd& V) { return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm(); }
 
 struct Distance {
   double worst = 0, mean = 0;

@@ -19,7 +19,7 @@
 #include "core/scene/script.h"
 #include "core/util/error.h"
 #include "tests/test_support.h"
-#include "tests/volume_test_meshes.h"
+#include "tests/rigged_test_util.h"
 
 using namespace dfm;
 
@@ -120,19 +120,7 @@ Eigen::RowVectorXd hermite(const CubicChannel& c, double t) {
 TEST_CASE("glTF CUBICSPLINE: the reader follows the Hermite curve, the import keys it", "[gltf][import]") {
   // A capsule along x with a chain of three bones and two keys (as the round trip test).
   Document d;
-  TriMesh m = test::icosphere(Eigen::Vector3d(1.5, 0, 0), 1.0, 3);
-  m.V.col(0) = (m.V.col(0).array() - 1.5) * 1.6 + 1.5;
-  m.V.col(1) *= 0.4;
-  m.V.col(2) *= 0.4;
-  d.set_surface(m, "capsule");
-  d.add_bone_chain({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(3, 0, 0)});
-  Eigen::MatrixXd W(m.V.rows(), 3);
-  for (int i = 0; i < m.V.rows(); ++i) {
-    for (int b = 0; b < 3; ++b) W(i, b) = 1.0 / (1e-3 + std::pow(std::abs(m.V(i, 0) - (b + 0.5)), 4));
-    W.row(i) /= W.row(i).sum();
-  }
-  d.set_weights(W, {});
-  run_script(d, parse_script("set-key 0\nselect 1\nrotate 70 0 0 1\nselect 2\nrotate -50 0 1 0\nset-key 1\n", "k.txt"), "k.txt");
+  const TriMesh m = test::keyed_capsule(d, "select 1\nrotate 70 0 0 1\nselect 2\nrotate -50 0 1 0\n");
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("dfm_gltf_cubic_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string linear = (dir / "linear.glb").string(), cubic = (dir / "cubic.glb").string();

@@ -19,21 +19,15 @@
 #include "core/scene/script.h"
 #include "core/util/error.h"
 #include "tests/cli_test_util.h"
+#include "tests/rigged_test_util.h"
 #include "tests/test_support.h"
 #include "tests/volume_test_meshes.h"
 
 using namespace dfm;
+using dfm::test::diagonal;
+using dfm::test::nearest;
 
 namespace {
-
-// Per vertex of `ref`, the nearest vertex of `V` (brute force: an independent matching).
-std::vector<int> nearest(const Eigen::MatrixXd& ref, const Eigen::MatrixXd& V) {
-  std::vector<int> m(ref.rows());
-  for (Eigen::Index i = 0; i < ref.rows(); ++i) (V.rowwise() - ref.row(i)).rowwise().squaredNorm().minCoeff(&m[i]);
-  return m;
-}
-
-double diagonal(const Eigen::MatrixXd& V) { return (V.colwise().maxCoeff() - V.colwise().minCoeff()).norm(); }
 
 }  // namespace
 
@@ -158,19 +152,8 @@ TEST_CASE("open FILE.glb: the script's open imports a rigged glTF as a new, unsa
 TEST_CASE("glTF round trip: a bones-only scene exported and imported again plays the same mesh at its keys", "[gltf][import]") {
   // A capsule along x with a chain of three bones, weights that blend along it, and two keys.
   Document d;
-  TriMesh m = test::icosphere(Eigen::Vector3d(1.5, 0, 0), 1.0, 3);
-  m.V.col(0) = (m.V.col(0).array() - 1.5) * 1.6 + 1.5;
-  m.V.col(1) *= 0.4;
-  m.V.col(2) *= 0.4;
-  d.set_surface(m, "capsule");
-  d.add_bone_chain({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(3, 0, 0)});
-  Eigen::MatrixXd W(m.V.rows(), 3);
-  for (int i = 0; i < m.V.rows(); ++i) {
-    for (int b = 0; b < 3; ++b) W(i, b) = 1.0 / (1e-3 + std::pow(std::abs(m.V(i, 0) - (b + 0.5)), 4));
-    W.row(i) /= W.row(i).sum();
-  }
-  d.set_weights(W, {});
-  run_script(d, parse_script("set-key 0\nselect 1\nrotate 40 0 0 1\nselect 2\nrotate -30 0 1 0\nset-key 1\n", "k.txt"), "k.txt");
+  const TriMesh m = test::keyed_capsule(d, "select 1\nrotate 40 0 0 1\nselect 2\nrotate -30 0 1 0\n");
+  const Eigen::MatrixXd W = d.weights();
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("dfm_gltf_rt_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string glb = (dir / "capsule.glb").string();

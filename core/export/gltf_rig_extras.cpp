@@ -12,17 +12,8 @@ using json = nlohmann::json;
 
 namespace {
 
-json rows(const Eigen::MatrixXd& M) {
-  json a = json::array();
-  for (Eigen::Index i = 0; i < M.rows(); ++i) {
-    json r = json::array();
-    for (Eigen::Index j = 0; j < M.cols(); ++j) r.push_back(M(i, j));
-    a.push_back(r);
-  }
-  return a;
-}
-
-json rows(const Eigen::MatrixXi& M) {
+template <class Matrix>
+json rows(const Matrix& M) {
   json a = json::array();
   for (Eigen::Index i = 0; i < M.rows(); ++i) {
     json r = json::array();
