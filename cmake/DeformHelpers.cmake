@@ -12,6 +12,13 @@ function(dfm_module name dir)
   add_library(${name} STATIC ${srcs})
   target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
   target_link_libraries(${name} PUBLIC ${M_DEPS})
+  dfm_module_pch(${name})
+endfunction()
+
+# cmake/module_pch.h precompiled for a target's own sources.
+function(dfm_module_pch name)
+  target_link_libraries(${name} PRIVATE Eigen3::Eigen)
+  target_precompile_headers(${name} PRIVATE ${PROJECT_SOURCE_DIR}/cmake/module_pch.h)
 endfunction()
 
 # dfm_test(NAME SOURCES files... LIBS libs... [GL] [TIMEOUT s]): one Catch2 executable = one ctest entry.

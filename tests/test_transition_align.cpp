@@ -423,8 +423,10 @@ PlanarPlacement planar_placement(const TriMesh& a, const TriMesh& b) {
 
 }  // namespace
 
+// [heavy]: release only (16 s there, about 150 s under the sanitizers); the pairs' warp runs there in
+// test_cli_key_mesh's --pairs case and this file's turn and travel cases.
 TEST_CASE("transition pairs: bumps that move along the top and bottom follow their picked pairs",
-          "[transition][align]") {
+          "[transition][align][heavy]") {
   // Two bumps (above and below) near the +x end of the source and near the -x end of the target (a
   // coarser icosphere's, so a transition). The keys are mirror images: alignment only shifts the
   // target by the centroids' difference, and the morph alone fades the bumps and grows the others. A

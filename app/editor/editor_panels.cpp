@@ -259,6 +259,7 @@ void Editor::draw_tools_panel() {
       break;
     case Tool::Sculpt:
       sculpt_tool_.draw_options(doc_, [this](const CommandWords& w) { return run_ui_command(w); });  // sculpt_tool.h
+      break;
     case Tool::SpaceTime:
       space_time_tool_.draw_options(doc_, [this](const CommandWords& w) { return run_ui_command(w); });
       break;
