@@ -4,6 +4,7 @@
 #include "core/scene/space_time_edit.h"
 
 #include "core/anim/manifold_normals.h"
+#include "core/anim/manifold_retime.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -27,7 +28,27 @@ std::unique_ptr<ManifoldEditor> make_editor(const AnimationManifold& m, const Sp
   return std::make_unique<ManifoldEditor>(m, select_edit_region(m, e.region, e.handle), e.handle.point, o);
 }
 
+// The edit's drag onto m (a retime's slabs merged on a copy: a refusal leaves m as it was).
+void apply_drag(AnimationManifold& m, const ManifoldEditor& editor, const SpaceTimeEdit& e) {
+  ManifoldDrag d;
+  d.translation = e.move;
+  d.rotation = e.rotation.toRotationMatrix();
+  if (e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) d.rotation = Eigen::Matrix3d::Identity();
+  d.retime = e.retime;
+  MatrixX4dRow V = editor.drag(d);
+  if (e.retime != 0) {
+    AnimationManifold retimed = m;
+    retimed.V = std::move(V);
+    merge_retimed_slabs(retimed);
+    m = std::move(retimed);
+  } else {
+    m.V = std::move(V);
+  }
+}
+
 }  // namespace
+
+void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e) { apply_drag(m, *make_editor(m, e), e); }
 
 std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std::vector<SpaceTimeEdit>& edits,
                                                 SpaceTimeEditCache* cache) {
@@ -36,7 +57,9 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
   for (size_t i = 0; i < edits.size(); ++i) {
     const SpaceTimeEdit& e = edits[i];
     // A still edit (edit-region before its drag) changes nothing: no region to select or factor.
-    if (e.move == Eigen::Vector3d::Zero() && e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) continue;
+    if (e.move == Eigen::Vector3d::Zero() && e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs() &&
+        e.retime == 0)
+      continue;
     try {
       const ManifoldEditor* editor = nullptr;
       std::unique_ptr<ManifoldEditor> own;
@@ -55,11 +78,7 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
         own = make_editor(m, e);
         editor = own.get();
       }
-      ManifoldDrag d;
-      d.translation = e.move;
-      d.rotation = e.rotation.toRotationMatrix();
-      if (e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) d.rotation = Eigen::Matrix3d::Identity();
-      m.V = editor->drag(d);
+      apply_drag(m, *editor, e);
     } catch (const Error& err) {
       if (cache && cache->entries.size() > i) cache->entries[i].reset();
       notes.push_back("space-time edit " + std::to_string(i + 1) + " skipped: " + err.what());
