@@ -70,7 +70,7 @@ TEST_CASE("edit-region + edit-drag: the handle lands where dragged, frames befor
     Document keys_only;
     make_keyed(keys_only);
     const AnimationManifold base = document_manifold(keys_only), edited_m = document_manifold(d);
-    CHECK(edited_vertex_normals(edited_m, manifold_vertex_normals(base), d.space_time_edits()) ==
+    CHECK(edited_vertex_normals(edited_m, base.V, manifold_vertex_normals(base), d.space_time_edits()) ==
           manifold_vertex_normals(edited_m));
   }
 

@@ -53,10 +53,11 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
 // One edit onto m, without a cache; throws dfm::Error (m unchanged) where the replay would skip it.
 void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e);
 
-// manifold_vertex_normals(edited), bit for bit, from the normals before the edits: only vertices in an
-// edit's window move, and their stars lie in the slabs that overlap it, so only those rows are summed
-// again, over those slabs (VertexNormalSource). What a drag frame's view needs without a full pass.
-Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& edited, const Eigen::MatrixXd& base_normals,
-                                      const std::vector<SpaceTimeEdit>& edits);
+// manifold_vertex_normals(edited), bit for bit, from the unedited manifold's vertices and normals:
+// only the rows of vertices sharing a tetrahedron with a moved vertex (base_V row != edited row) are
+// summed again, over their stars (found in the slabs overlapping the edits' windows). What a drag
+// frame's view needs without a full pass.
+Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& edited, const MatrixX4dRow& base_V,
+                                      const Eigen::MatrixXd& base_normals, const std::vector<SpaceTimeEdit>& edits);
 
 }  // namespace dfm
