@@ -1129,6 +1129,8 @@ TEST_CASE("scene view: a space-time drag frame keeps the interval's topology and
     REQUIRE(scene.slice_from_cache());
     // No new topology (the tetrahedra and times are the keys'), the positions are the edit's.
     REQUIRE(scene.intervals_built() == built);
+    REQUIRE(gpu.slicers[0]->uploads == 1);  // the tetrahedra once; each frame its vertices
+    REQUIRE(gpu.slicers[0]->vertex_uploads == f);
     const TriMesh want = manifold_frame(document_manifold(doc), 1.2).mesh;
     const Eigen::MatrixXd& shown = scene.display_vertices();
     REQUIRE(shown.rows() == want.V.rows());

@@ -198,12 +198,16 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       if (!d.slice) d.slice = gpu_.make_slicer();
       const AnimationManifold& m = d.builder.manifold();
       d.normals4 = d.builder.normals();
-      d.slice->upload(m, *d.normals4);
       // A space-time drag frame (or any change that keeps the tetrahedra and every t) cuts each interval
-      // the same way: the cached topologies stay, their positions re-upload when shown.
+      // the same way: the cached topologies stay, their positions re-upload when shown, and the GPU
+      // slicer takes the new positions and normals only.
       const bool same_cut = d.cut && d.cut->times == m.times && d.cut->T.rows() == m.T.rows() &&
                             d.cut->V.rows() == m.V.rows() && d.cut->V.col(3) == m.V.col(3) && d.cut->T == m.T;
       d.cut = d.builder.shared_manifold();
+      if (same_cut)
+        d.slice->upload_vertices(m, *d.normals4);
+      else
+        d.slice->upload(m, *d.normals4);
       if (same_cut) {
         d.slot_stale.assign(d.interval_slots.size(), true);
         d.prefetch.reset(d.cut, d.normals4, d.interval_policy.times());
