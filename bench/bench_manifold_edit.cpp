@@ -110,6 +110,7 @@ int main(int argc, char** argv) {
     run("block tube, top turned 90 deg", M, rs, hs, d, false);
     run("  the same, equal weights", M, rs, hs, d, false, LaplacianWeights::Equal);
     run("  the same, primal boundary (4.4.1)", M, rs, hs, d, false, LaplacianWeights::PrimalBoundary);
+    run("  the same, dual with ghosts (4.4.2)", M, rs, hs, d, false, LaplacianWeights::Dual);
   }
   const TriMesh arm = read_surface(arm_path);
   const Eigen::Vector3d elbow(0.081400687, 0.18519857, -0.042544638), wrist(0.5987815, -0.077609889, 0.065252126);
@@ -153,6 +154,7 @@ int main(int argc, char** argv) {
       EditRegionSpec first = rs;  // from the start: the first layer is the manifold's open boundary
       first.t0 = 0;
       run((name + ", t0 = 0, primal-boundary").c_str(), M, first, hs, d, false, LaplacianWeights::PrimalBoundary);
+      run((name + ", t0 = 0, dual").c_str(), M, first, hs, d, false, LaplacianWeights::Dual);
     }
   }
   return 0;

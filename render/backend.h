@@ -50,6 +50,8 @@ class ManifoldSlicer {
  public:
   virtual ~ManifoldSlicer() = default;
   virtual void upload(const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4) = 0;
+  // The last upload's tetrahedra and times with new positions and normals (SlicePass::upload_vertices).
+  virtual void upload_vertices(const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4) = 0;
   virtual int slice(SliceAxis axis, double value) = 0;  // returns the triangles written
   virtual GeometryRef output() const = 0;               // a soup, 3 vertices per triangle
   virtual std::vector<PosNormal> read_back() const = 0;

@@ -38,6 +38,9 @@ class GlSlicer final : public ManifoldSlicer {
   void upload(const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4) override {
     pass_.upload(m, &vertex_normals4);
   }
+  void upload_vertices(const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4) override {
+    pass_.upload_vertices(m, vertex_normals4);
+  }
   int slice(SliceAxis axis, double value) override { return pass_.slice(axis, value); }
   GeometryRef output() const override { return {pass_.output().id(), 3 * pass_.triangle_count(), 0, 0}; }
   std::vector<PosNormal> read_back() const override { return pass_.read_back(); }

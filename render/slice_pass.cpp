@@ -31,6 +31,20 @@ SlicePass::SlicePass()
   check_error("slice pass setup");
 }
 
+namespace {
+
+// Positions (row-major x y z t) and 4D normals as the vertex attributes' floats.
+void float_vertices(const AnimationManifold& m, const Eigen::MatrixXd& normals4, std::vector<float>& pos,
+                    std::vector<float>& nrm) {
+  pos.resize(m.V.size());
+  nrm.resize(m.V.size());
+  for (Eigen::Index i = 0; i < m.V.size(); ++i) pos[i] = static_cast<float>(m.V.data()[i]);
+  for (int v = 0; v < m.num_vertices(); ++v)
+    for (int d = 0; d < 4; ++d) nrm[4 * v + d] = static_cast<float>(normals4(v, d));
+}
+
+}  // namespace
+
 void SlicePass::upload(const AnimationManifold& m, const Eigen::MatrixXd* vertex_normals4) {
   validate_manifold(m, "GPU slice manifold");
   Eigen::MatrixXd computed;
@@ -40,10 +54,8 @@ void SlicePass::upload(const AnimationManifold& m, const Eigen::MatrixXd* vertex
   }
   if (vertex_normals4->rows() != m.num_vertices() || vertex_normals4->cols() != 4)
     throw Error("GPU slice: vertex normals must be " + std::to_string(m.num_vertices()) + " x 4");
-  std::vector<float> pos(m.V.size()), nrm(m.V.size());
-  for (Eigen::Index i = 0; i < m.V.size(); ++i) pos[i] = static_cast<float>(m.V.data()[i]);  // row-major x y z t
-  for (int v = 0; v < m.num_vertices(); ++v)
-    for (int d = 0; d < 4; ++d) nrm[4 * v + d] = static_cast<float>((*vertex_normals4)(v, d));
+  std::vector<float> pos, nrm;
+  float_vertices(m, *vertex_normals4, pos, nrm);
   vao_.bind();
   positions_.upload(GL_ARRAY_BUFFER, pos);
   glEnableVertexAttribArray(0);
@@ -58,10 +70,26 @@ void SlicePass::upload(const AnimationManifold& m, const Eigen::MatrixXd* vertex
   meta_.times = m.times;
   meta_.slab_offsets = m.slab_offsets;
   num_tets_ = m.num_tets();
+  num_vertices_ = m.num_vertices();
   for (int d = 0; d < 4; ++d) lowest_[d] = m.num_vertices() ? m.V.col(d).minCoeff() : 0.0;
   lowest_[3] = m.times.front();
   triangles_ = 0;
   check_error("slice pass upload");
+}
+
+void SlicePass::upload_vertices(const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4) {
+  if (m.num_vertices() != num_vertices_ || vertex_normals4.rows() != m.num_vertices() || vertex_normals4.cols() != 4)
+    throw Error("GPU slice: new vertices for " + std::to_string(num_vertices_) + " uploaded ones, got " +
+                std::to_string(m.num_vertices()) + " (normals " + std::to_string(vertex_normals4.rows()) + " x " +
+                std::to_string(vertex_normals4.cols()) + ")");
+  std::vector<float> pos, nrm;
+  float_vertices(m, vertex_normals4, pos, nrm);
+  // Same sizes: the buffers are rewritten in place.
+  positions_.update(GL_ARRAY_BUFFER, pos.data(), pos.size() * sizeof(float));
+  normals_.update(GL_ARRAY_BUFFER, nrm.data(), nrm.size() * sizeof(float));
+  for (int d = 0; d < 3; ++d) lowest_[d] = m.num_vertices() ? m.V.col(d).minCoeff() : 0.0;
+  triangles_ = 0;
+  check_error("slice pass vertex upload");
 }
 
 int SlicePass::slice(SliceAxis axis, double value) {

@@ -24,6 +24,11 @@ class SlicePass {
   // slab offsets. vertex_normals4: manifold_vertex_normals(m) when the caller has it, else computed.
   void upload(const AnimationManifold& m, const Eigen::MatrixXd* vertex_normals4 = nullptr);
 
+  // New positions and normals for the last upload's tetrahedra and times (a space-time drag frame
+  // moves vertices in x, y, z only): no validation, no index upload. The caller keeps T and every t as
+  // they were; throws dfm::Error when the vertex count or the normals' size differs.
+  void upload_vertices(const AnimationManifold& m, const Eigen::MatrixXd& vertex_normals4);
+
   // Slices into output(); returns the triangle count. Grows the output buffer when needed.
   int slice(SliceAxis axis, double value);
 
@@ -42,6 +47,7 @@ class SlicePass {
   AnimationManifold meta_;  // times and slab offsets only (no vertices or tetrahedra)
   int num_tets_ = 0;
   double lowest_[4] = {0, 0, 0, 0};
+  int num_vertices_ = 0;
   int triangles_ = 0;
   long long last_tets_ = 0;
 };

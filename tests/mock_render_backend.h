@@ -6,6 +6,7 @@
 // that outlives it (alive turns false when the view drops it).
 #include <memory>
 #include <utility>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Core>
@@ -40,6 +41,7 @@ class MockRenderBackend final : public gl::RenderBackend {
   };
   struct SlicerLog {
     int uploads = 0;
+    int vertex_uploads = 0;  // upload_vertices: positions and normals only
     std::vector<std::pair<SliceAxis, double>> slices;
     unsigned buffer = 0;
     bool alive = true;
@@ -151,6 +153,13 @@ class Slicer final : public gl::ManifoldSlicer {
   void upload(const AnimationManifold& m, const Eigen::MatrixXd& normals4) override {
     ++log_->uploads;
     m_ = m;
+    normals4_ = normals4;
+  }
+  void upload_vertices(const AnimationManifold& m, const Eigen::MatrixXd& normals4) override {
+    ++log_->vertex_uploads;
+    if (!(m.T == m_.T) || !(m.V.col(3) == m_.V.col(3)))  // the caller's promise
+      throw std::logic_error("upload_vertices with other tetrahedra or times than the last upload");
+    m_.V = m.V;
     normals4_ = normals4;
   }
   int slice(SliceAxis axis, double value) override {

@@ -111,11 +111,45 @@ TEST_CASE("deform edit-manifold: hostile input exits 1 naming the file, nothing 
   CHECK(bad_weights.exit_code == 2);
   CHECK(bad_weights.err.find("cubic") != std::string::npos);
   // Each weighting scheme runs through the CLI and keeps the handle exact (checked in the core tests).
-  for (const char* w : {"equal", "reciprocal", "primal-boundary"}) {
+  for (const char* w : {"equal", "reciprocal", "primal-boundary", "dual"}) {
     const RunResult r = run_deform(s, {"edit-manifold", in, "--region", "1", "0.5", "0", "0.6", "0", "4", "--handle", "1", "0.5",
                                        "0", "2", "--move", "0", "0", "0.1", "--rotate", "0", "1", "0", "20", "--weights", w, "-o", out});
     INFO(describe_run(r));
     CHECK(r.exit_code == 0);
     std::filesystem::remove(out);
   }
+}
+
+TEST_CASE("deform edit-manifold --retime: the handle moves in t exactly, a fold is refused", "[cli]") {
+  ScratchDir s("cli_edit_manifold_retime");
+  const AnimationManifold M = sheet_manifold();
+  const std::string in = (s.dir / "sheet.tet4").string(), out = (s.dir / "retimed.tet4").string();
+  write_manifold(in, M);
+  // The window [0.5, 3.5] holds layer 2's neighbourhood (layers 1 and 3 anchor it).
+  auto args = [&](const char* dt) {
+    return std::vector<std::string>{"edit-manifold", in, "--region", "1.0", "0.5", "0", "0.6", "0.5", "3.5", "--handle", "1.3",
+                                    "0.5", "0", "2", "--move", "0", "0", "0.1", "--retime", dt, "-o", out};
+  };
+  const RunResult r = run_deform(s, args("0.25"));
+  INFO(describe_run(r));
+  REQUIRE(r.exit_code == 0);
+  const AnimationManifold E = read_manifold(out);  // read back: a valid manifold (slabs merged)
+  int handle = 0, moved_t = 0;
+  for (int v = 0; v < M.num_vertices(); ++v) {
+    const Eigen::Vector3d p = M.V.row(v).head<3>().transpose();
+    if (M.V(v, 3) == 2 && (p - Eigen::Vector3d(1.3, 0.5, 0)).norm() <= 0.6 / 4) {
+      ++handle;
+      REQUIRE(E.V(v, 3) == 2.25);
+    }
+    if (M.V(v, 3) != 2) REQUIRE(E.V(v, 3) == M.V(v, 3));  // layers 1 and 3 are anchors or outside
+    moved_t += E.V(v, 3) != M.V(v, 3);
+  }
+  REQUIRE(handle > 5);
+  REQUIRE(moved_t > handle);  // the region follows in t by its reach
+  CHECK(E.num_layers() == 4);  // the two slabs around layer 2 are one now
+  std::filesystem::remove(out);
+  const RunResult fold = run_deform(s, args("1.5"));  // past layer 3, which stays
+  CHECK(fold.exit_code == 1);
+  CHECK(fold.err.find("folds the manifold in time") != std::string::npos);
+  CHECK(!std::filesystem::exists(out));
 }

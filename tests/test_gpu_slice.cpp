@@ -6,7 +6,9 @@
 #include <Eigen/Geometry>
 
 #include "core/anim/manifold.h"
+#include "core/anim/manifold_normals.h"
 #include "core/anim/slice.h"
+#include "core/util/error.h"
 #include "core/mesh/io.h"
 #include "render/gl_context.h"
 #include "render/slice_pass.h"
@@ -122,4 +124,19 @@ TEST_CASE("GPU slices equal the CPU slices on every axis", "[gl][manifold]") {
   }
   // At a key time the GPU gives the keyframe's triangles (no collapsed ones).
   REQUIRE(pass.slice(SliceAxis::T, 1.0) == arm.num_faces());
+
+  // New positions for the same tetrahedra and times (a space-time drag frame): the slices follow them.
+  AnimationManifold moved = M;
+  for (int v = 0; v < moved.num_vertices(); ++v)
+    moved.V.row(v).head<3>() += Eigen::RowVector3d(0.05, -0.02, 0.03) * std::sin(3 * moved.V(v, 0) + moved.V(v, 3));
+  pass.upload_vertices(moved, manifold_vertex_normals(moved));
+  for (const Case& c : {Case{SliceAxis::T, 0.37}, Case{SliceAxis::T, 1.8}, Case{SliceAxis::X, lo[0] + 0.5 * (hi[0] - lo[0])}}) {
+    INFO("moved, axis " << slice_axis_name(c.axis) << " at " << c.at);
+    const ManifoldSlice cpu = slice_manifold(moved, c.axis, c.at);
+    REQUIRE(pass.slice(c.axis, c.at) == cpu.mesh.num_faces());
+    require_same_triangles(cpu, pass.read_back(), tol, false);
+  }
+  AnimationManifold fewer = M;
+  fewer.V.conservativeResize(M.num_vertices() - 1, 4);
+  REQUIRE_THROWS_AS(pass.upload_vertices(fewer, manifold_vertex_normals(M)), Error);
 }

@@ -7,10 +7,13 @@
 #include <catch2/catch.hpp>
 #include <Eigen/Geometry>
 
+#include "core/anim/dual_laplacian.h"
 #include "core/anim/manifold.h"
 #include "core/anim/manifold_edit.h"
 #include "core/anim/manifold_edit_region.h"
 #include "core/anim/manifold_laplacian.h"
+#include "core/anim/manifold_retime.h"
+#include "core/mesh/mesh_info.h"
 #include "core/anim/primal_boundary_weights.h"
 #include "core/anim/slice.h"
 #include "core/mesh/io.h"
@@ -367,6 +370,17 @@ TEST_CASE("details turn with the drag (4.2.1): a bump follows a 90 degree handle
               ed.reach()[std::lower_bound(sel.region.begin(), sel.region.end(), apex) - sel.region.begin()]);
   REQUIRE(sheared > 30);
   REQUIRE(turned < 10);
+  // The dual graph Laplacian (Au et al. 2006, with 4.4.2's ghosts at the sheet's first and last layers).
+  ManifoldEditOptions dual;
+  dual.weights = LaplacianWeights::Dual;
+  const ManifoldEditor ed_dual(M, sel, hs.point, dual);
+  const MatrixX4dRow Vd = ed_dual.drag(d);
+  const double turned_dual = angle(bump_normal(Vd));
+  std::printf("details turn, dual Laplacian: bump normal %.2f degrees from the turned normal (primal %.2f); apex "
+              "moved %.4f (primal %.4f)\n", turned_dual, turned, (Vd.row(apex) - M.V.row(apex)).norm(),
+              (ed.drag(d).row(apex) - M.V.row(apex)).norm());
+  REQUIRE(turned_dual < 10);
+  REQUIRE((ed_dual.drag(ManifoldDrag{}).array() == M.V.array()).all());
   // Handle vertices are placed rigidly.
   const MatrixX4dRow V = ed.drag(d);
   for (int v : sel.handle) {
@@ -468,4 +482,186 @@ TEST_CASE("weighting schemes (4.6.1) on the arm's first layer: boundary rows, sm
     for (int v : sel.handle)
       for (int c = 0; c < 3; ++c) REQUIRE(V(v, c) == M.V(v, c) + d.translation[c]);
   }
+}
+
+TEST_CASE("dual Laplacian (Au et al. 2006) and its ghost boundary condition (4.4.2)", "[manifold_edit]") {
+  // The ghost of tetrahedron (A, B, C, D) across its boundary face BCD: A reflected through the face's
+  // centroid, the tetrahedron (B, C, D, 2 c_f - A); its centroid by hand.
+  Eigen::Matrix<double, 3, 4> face;
+  face << 1, 0, 0, 0.5, 0, 2, 0, 0.5, 0, 0, 3, 0.5;
+  const Eigen::RowVector4d A(0.2, 0.3, 0.4, 0.0);
+  const Eigen::RowVector4d cf = face.colwise().mean();
+  const Eigen::RowVector4d ghost_by_hand = (face.row(0) + face.row(1) + face.row(2) + (2 * cf - A)) / 4;
+  REQUIRE((ghost_dual_vertex(face, A) - ghost_by_hand).norm() < 1e-15);
+  const Eigen::RowVector4d shift(5, -1, 2, 7);  // an affine combination: moves with a translation
+  REQUIRE((ghost_dual_vertex(face.rowwise() + shift, A + shift) - (ghost_by_hand + shift)).norm() < 1e-14);
+
+  // Projection weights: the hyperplane t = 0 through the origin and the x, y, z unit points; c = (0.1,
+  // 0.2, 0.3, 0.7) projects to (0.1, 0.2, 0.3, 0) = 0.4 o + 0.1 x + 0.2 y + 0.3 z, the rest is normal.
+  Eigen::MatrixXd P(4, 4);
+  P << 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0;
+  const Eigen::VectorXd w = affine_projection_weights(Eigen::RowVector4d(0.1, 0.2, 0.3, 0.7), P);
+  REQUIRE((w - Eigen::Vector4d(0.4, 0.1, 0.2, 0.3)).norm() < 1e-14);
+  // Degenerate (a repeated point): still the nearest point, weights summing to 1.
+  P.row(3) = P.row(2);
+  const Eigen::VectorXd wd = affine_projection_weights(Eigen::RowVector4d(0.1, 0.2, 0.3, 0.7), P);
+  REQUIRE(wd.sum() == Approx(1).margin(1e-14));
+  REQUIRE((P.transpose() * wd - Eigen::Vector4d(0.1, 0.2, 0.0, 0.0)).norm() < 1e-14);
+
+  // A flat manifold (a still square of the z = 0 plane over 4 layers lies in the hyperplane z = 0 of
+  // R^4): every dual facet spans that hyperplane, so delta' = 0 on every row -- with the ghosts at the
+  // first and last layers. Without them (the boundary face's neighbour dropped), a boundary row's three
+  // neighbours span a plane the centroid is off: a tangential delta', which 4.4.2 exists to remove.
+  const int nx = 6;
+  TriMesh sq;
+  sq.V.resize(nx * nx, 3);
+  for (int j = 0; j < nx; ++j)
+    for (int i = 0; i < nx; ++i) sq.V.row(j * nx + i) << i * 0.2 + 0.01 * j * j, j * 0.2, 0;
+  sq.F.resize(2 * (nx - 1) * (nx - 1), 3);
+  for (int j = 0, f = 0; j + 1 < nx; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+      sq.F.row(f++) << a, b, d;
+      sq.F.row(f++) << a, d, c;
+    }
+  const AnimationManifold flat = build_manifold(std::vector<Eigen::MatrixXd>(4, sq.V), sq.F, {0, 0.5, 1, 1.5});
+  std::vector<int> all(flat.num_tets());
+  for (int k = 0; k < flat.num_tets(); ++k) all[k] = k;
+  const std::vector<DualLaplacianRow> rows = dual_laplacian_rows(flat, all);
+  int ghost_rows = 0;
+  double largest = 0;
+  for (const DualLaplacianRow& r : rows) {
+    Eigen::RowVector4d d = Eigen::RowVector4d::Zero();
+    double sum = 0;
+    for (size_t k = 0; k < r.vertices.size(); ++k) d += r.coeffs[k] * flat.V.row(r.vertices[k]), sum += r.coeffs[k];
+    REQUIRE(std::abs(sum) < 1e-12);
+    largest = std::max(largest, d.norm());
+    ghost_rows += r.ghosts > 0;
+  }
+  REQUIRE(ghost_rows > 0);
+  REQUIRE(largest < 1e-12);
+  // The same boundary tetrahedron without its ghost: its face neighbours only.
+  int probe = -1;
+  for (const DualLaplacianRow& r : rows)
+    if (r.ghosts == 1 && flat.V(flat.T(r.tet, 0), 3) == 0) probe = r.tet;
+  REQUIRE(probe >= 0);
+  Eigen::MatrixXd Q(0, 4);
+  Eigen::RowVector4d c = Eigen::RowVector4d::Zero();
+  for (int j = 0; j < 4; ++j) c += 0.25 * flat.V.row(flat.T(probe, j));
+  for (int k = 0; k < flat.num_tets(); ++k) {
+    int shared = 0;
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) shared += flat.T(k, a) == flat.T(probe, b);
+    if (k == probe || shared != 3) continue;
+    Q.conservativeResize(Q.rows() + 1, 4);
+    Q.row(Q.rows() - 1).setZero();
+    for (int j = 0; j < 4; ++j) Q.row(Q.rows() - 1) += 0.25 * flat.V.row(flat.T(k, j));
+  }
+  REQUIRE(Q.rows() == 3);
+  const Eigen::RowVector4d no_ghost = c - (Q.transpose() * affine_projection_weights(c, Q)).transpose();
+  std::printf("dual rows on a flat manifold: largest |delta'| %.2e with ghosts (%d boundary rows); a boundary row "
+              "without its ghost %.3g (z part %.1e: tangential)\n", largest, ghost_rows, no_ghost.norm(), no_ghost[2]);
+  REQUIRE(no_ghost.norm() > 1e-3);
+  REQUIRE(std::abs(no_ghost[2]) < 1e-15);
+  REQUIRE_THROWS_WITH(manifold_laplacian_rows(flat, {0}, LaplacianWeights::Dual), Catch::Contains("per tetrahedron"));
+  REQUIRE(parse_laplacian_weights("dual") == LaplacianWeights::Dual);
+  REQUIRE(std::string(laplacian_weights_name(LaplacianWeights::Dual)) == "dual");
+}
+
+TEST_CASE("dual Laplacian editing of the keyed arm: exact handle, window, primal vs dual", "[manifold_edit]") {
+  DFM_DATA_OR_SKIP(path, "arm.obj");
+  const ArmScene S = arm_scene(path, 2);
+  const AnimationManifold& M = S.M;
+  EditRegionSpec rs;
+  rs.center = S.wrist_mid;
+  rs.radius = 0.45;
+  rs.t0 = 0;  // from the start: the first layer's boundary rows get ghosts
+  rs.t1 = 1.6;
+  EditHandleSpec hs;
+  hs.point = S.wrist_mid;
+  hs.time = 1;
+  const EditRegion sel = select_edit_region(M, rs, hs);
+  ManifoldDrag d;
+  d.translation = Eigen::Vector3d(0, 0.1, 0.05);
+  std::vector<MatrixX4dRow> out;
+  for (LaplacianWeights w : {LaplacianWeights::Reciprocal, LaplacianWeights::PrimalBoundary, LaplacianWeights::Dual}) {
+    ManifoldEditOptions opt;
+    opt.weights = w;
+    const ManifoldEditor ed(M, sel, hs.point, opt);
+    REQUIRE((ed.drag(ManifoldDrag{}).array() == M.V.array()).all());
+    const MatrixX4dRow V = ed.drag(d);
+    for (int v : sel.handle)
+      for (int c = 0; c < 3; ++c) REQUIRE(V(v, c) == M.V(v, c) + d.translation[c]);
+    REQUIRE(V.col(3) == M.V.col(3));
+    for (int v = 0; v < M.num_vertices(); ++v)
+      if (M.V(v, 3) > rs.t1) REQUIRE(V.row(v) == M.V.row(v));
+    // The reach along the handle's time line at the first layer (t = 0, on the boundary): how far the
+    // drag carries to the animation's start.
+    double first = 0;
+    int count = 0;
+    for (int v : sel.region)
+      if (M.V(v, 3) == 0 && (M.V.row(v).head<3>().transpose() - S.wrist_mid).norm() < 0.45) {
+        first += (V.row(v) - M.V.row(v)).norm();
+        ++count;
+      }
+    std::printf("keyed arm, %s: mean move at t = 0 of the region's first-layer vertices %.4f (%d), handle move %.4f\n",
+                laplacian_weights_name(w), first / std::max(count, 1), count, d.translation.norm());
+    out.push_back(V);
+  }
+  REQUIRE((out[2] - out[0]).norm() > 0);
+}
+
+TEST_CASE("retime: the handle moves in t, the slices stay closed, folds are refused", "[manifold_edit]") {
+  DFM_DATA_OR_SKIP(path, "arm.obj");
+  const ArmScene S = arm_scene(path, 2);  // layers every 1/3
+  const AnimationManifold& M = S.M;
+  EditRegionSpec rs;
+  rs.center = S.wrist_mid;
+  rs.radius = 0.45;
+  rs.t0 = 0.3;
+  rs.t1 = 1.7;
+  EditHandleSpec hs;
+  hs.point = S.wrist_mid;
+  hs.time = 1;
+  const EditRegion sel = select_edit_region(M, rs, hs);
+  const ManifoldEditor ed(M, sel, hs.point);
+  ManifoldDrag d;
+  d.translation = Eigen::Vector3d(0, 0.05, 0);
+  // Default: t bit for bit.
+  REQUIRE(ed.drag(d).col(3) == M.V.col(3));
+  d.retime = 0.2;
+  AnimationManifold R = M;
+  R.V = ed.drag(d);
+  for (int v : sel.handle) REQUIRE(R.V(v, 3) == M.V(v, 3) + 0.2);
+  for (int v : sel.anchors) REQUIRE(R.V(v, 3) == M.V(v, 3));
+  merge_retimed_slabs(R);
+  std::printf("retime 0.2: %d layers left of %d (slabs around the edit merged)\n", R.num_layers(), M.num_layers());
+  REQUIRE(R.num_layers() < M.num_layers());
+  for (double t : {0.1, 0.45, 0.8, 1.0, 1.1, 1.25, 1.5, 1.9}) {
+    const ManifoldSlice sl = slice_manifold(R, SliceAxis::T, t);
+    INFO("t = " << t);
+    // Closed, and of the arm's Euler characteristic: no second sheet where a fold would cut twice.
+    REQUIRE(is_closed(sl.mesh.F));
+    auto euler = [](const Eigen::MatrixXd& V, const Eigen::MatrixXi& F) { return V.rows() - F.rows() / 2; };
+    REQUIRE(euler(sl.mesh.V, sl.mesh.F) == euler(S.arm.V, S.arm.F));
+    if (t < rs.t0 || t > rs.t1) {
+      const ManifoldSlice before = slice_manifold(M, SliceAxis::T, t);
+      REQUIRE(sl.mesh.V == before.mesh.V);
+    }
+  }
+  // The handle's frame: at t = 1 + 0.2 the dragged handle vertices lie exactly on the slice.
+  const ManifoldSlice at = slice_manifold(R, SliceAxis::T, 1.0 + 0.2);
+  int on = 0;
+  for (const auto& e : at.edges) on += e[0] == e[1] && std::binary_search(sel.handle.begin(), sel.handle.end(), e[0]);
+  REQUIRE(on > 0);
+  // A retime past the anchors' layer (5/3) folds a slab back in time: refused, saying so.
+  d.retime = 2.0;
+  REQUIRE_THROWS_WITH(ed.drag(d), Catch::Contains("folds the manifold in time"));
+  // The first layer bounds the animation: a region holding it cannot be retimed.
+  rs.t0 = 0;
+  const ManifoldEditor first(M, select_edit_region(M, rs, hs), hs.point);
+  d.retime = 0.1;
+  REQUIRE_THROWS_WITH(first.drag(d), Catch::Contains("first or last layer"));
+  d.retime = NAN;
+  REQUIRE_THROWS_WITH(ed.drag(d), Catch::Contains("retime is not finite"));
 }

@@ -70,7 +70,7 @@ TEST_CASE("edit-region + edit-drag: the handle lands where dragged, frames befor
     Document keys_only;
     make_keyed(keys_only);
     const AnimationManifold base = document_manifold(keys_only), edited_m = document_manifold(d);
-    CHECK(edited_vertex_normals(edited_m, manifold_vertex_normals(base), d.space_time_edits()) ==
+    CHECK(edited_vertex_normals(edited_m, base.V, manifold_vertex_normals(base), d.space_time_edits()) ==
           manifold_vertex_normals(edited_m));
   }
 
@@ -150,4 +150,48 @@ TEST_CASE("space-time edits: hostile input is a clear error and changes nothing;
   CHECK(notes[0].find("space-time edit 2 skipped") == 0);
   d.set_time(1.2);
   CHECK_NOTHROW(posed_surface(d));
+}
+
+TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene keeps it, a fold is refused",
+          "[script][space-time]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_retime_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string sc = (dir / "r.scene.json").string();
+  Document d;
+  make_keyed(d);
+  const TriMesh mid = frame_at(d, 1.0), early = frame_at(d, 0.2);
+  const Eigen::Vector3d hp = mid.V.row(nearest(mid, {2.0, 0.4, 0})).transpose();
+  char line[256];
+  std::snprintf(line, sizeof line, "set-time 1\nedit-region %.17g %.17g %.17g 1.2 0.4 1.6\n", hp.x(), hp.y(), hp.z());
+  run(d, line);
+  const int depth = d.undo_depth();
+  // Past the window's end (1.6) the anchors stay: the slab would fold back in time.
+  try {
+    std::snprintf(line, sizeof line, "edit-drag %.17g %.17g %.17g 0 0 0.3 0.9\n", hp.x(), hp.y(), hp.z());
+    run(d, line);
+    FAIL("a folding retime was accepted");
+  } catch (const Error& err) {
+    INFO(err.what());
+    CHECK(std::string(err.what()).find("folds the manifold in time") != std::string::npos);
+  }
+  CHECK(d.undo_depth() == depth);
+  std::snprintf(line, sizeof line, "edit-drag %.17g %.17g %.17g 0 0 0.3 0.1\n", hp.x(), hp.y(), hp.z());
+  run(d, line);
+  REQUIRE(d.space_time_edits().size() == 1);
+  CHECK(d.space_time_edits()[0].retime == 0.1);
+  // The handle point's frame is at t = 1.1 now, moved by the drag.
+  const TriMesh later = frame_at(d, 1.1);
+  const Eigen::Vector3d want = hp + Eigen::Vector3d(0, 0, 0.3);
+  const double miss = (later.V.row(nearest(later, want)).transpose() - want).norm();
+  INFO("nearest frame vertex at t = 1.1 to the dragged handle point: " << miss);
+  CHECK(miss < 1e-9);
+  CHECK(frame_at(d, 0.2).V == early.V);  // before the window: bit for bit
+  // The scene keeps the retime and replays it.
+  d.save_scene(sc);
+  Document e;
+  e.load_scene(sc);
+  REQUIRE(e.space_time_edits().size() == 1);
+  CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
+  CHECK(frame_at(e, 1.1).V == later.V);
+  fs::remove_all(dir);
 }

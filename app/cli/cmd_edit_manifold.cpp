@@ -10,21 +10,26 @@
 #include "core/anim/manifold_edit_region.h"
 #include "core/anim/manifold_io.h"
 #include "core/anim/manifold_laplacian.h"
+#include "core/anim/manifold_retime.h"
 #include "core/util/error.h"
 
 namespace {
 
 const char* kUsage =
     "usage: deform edit-manifold IN.tet4 --region CX CY CZ RADIUS T0 T1 --handle HX HY HZ T --move DX DY DZ\n"
-    "                            [--rotate AX AY AZ DEGREES] [--weights W] [--time-scale S] [--volume] -o OUT.tet4\n"
+    "                            [--rotate AX AY AZ DEGREES] [--retime DT] [--weights W] [--time-scale S] [--volume]\n"
+    "                            -o OUT.tet4\n"
     "  Laplacian editing of the animation manifold (Southern 2008, 4.3): the region is every vertex within\n"
     "  RADIUS of (CX, CY, CZ) whose neighbourhood lies in the time window [T0, T1] (so frames outside the\n"
     "  window are unchanged); its boundary ring stays put. The handle is the region's vertices within\n"
     "  RADIUS / 4 of (HX, HY, HZ) on the layers at (or either side of) time T, moved by (DX, DY, DZ) after\n"
     "  turning DEGREES about the axis (AX, AY, AZ) through the handle point. The rest of the region follows\n"
     "  smoothly in space and time, its details turned with the handle (4.2.1). Vertices keep their times.\n"
-    "  --weights W   equal, reciprocal (1 / edge length; default) or primal-boundary (reciprocal, and at the\n"
-    "                manifold's first and last layers the least-|delta| weights of 4.4.1, Eq. 4.3)\n"
+    "  --retime DT   move the handle by DT in time as well (the region follows by its reach); refused when\n"
+    "                it would fold a slab back in time or the region holds the first or last layer\n"
+    "  --weights W   equal, reciprocal (1 / edge length; default), primal-boundary (reciprocal, and at the\n"
+    "                manifold's first and last layers the least-|delta| weights of 4.4.1, Eq. 4.3) or dual\n"
+    "                (the dual graph Laplacian, rows per tetrahedron, ghost tetrahedra at the boundary: 4.4.2)\n"
     "  --time-scale S  t's factor in the weights' edge lengths (default 1): larger keeps each frame's shape\n"
     "                stiffer against the time edges, so parts past the handle follow it (10 on the keyed arm)\n"
     "  --volume      each edited time layer keeps its enclosed volume (4.2.2; keyframe-built manifolds)\n"
@@ -64,6 +69,8 @@ int run(const dfm::cli::Args& args) {
       const double degrees = a.number(f);
       if (!(axis.norm() > 0)) throw UsageError("--rotate needs a nonzero axis");
       drag.rotation = Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized()).toRotationMatrix();
+    } else if (f == "--retime") {
+      drag.retime = a.number(f);
     } else if (f == "--weights") {
       try {
         options.weights = dfm::parse_laplacian_weights(a.value(f));
@@ -100,6 +107,7 @@ int run(const dfm::cli::Args& args) {
     std::printf("initialise seconds: %.4f\n", seconds_since(t0));
     const auto t1 = std::chrono::steady_clock::now();
     m.V = editor.drag(drag);
+    if (drag.retime != 0) dfm::merge_retimed_slabs(m);
     std::printf("deform seconds: %.4f\n", seconds_since(t1));
   } catch (const dfm::Error& e) {
     throw dfm::Error(in + ": " + e.what());

@@ -200,7 +200,7 @@ bool ManifoldBuilder::replay(const Document& doc) {
   } else {
     auto m = std::make_shared<AnimationManifold>(*base_);
     edit_notes_ = apply_space_time_edits(*m, edits, cache_.get());
-    normals_ = std::make_shared<const Eigen::MatrixXd>(edited_vertex_normals(*m, *base_normals_, edits));
+    normals_ = std::make_shared<const Eigen::MatrixXd>(edited_vertex_normals(*m, base_->V, *base_normals_, edits));
     manifold_ = std::move(m);
   }
   applied_ = edits;

@@ -54,6 +54,11 @@ struct SceneView::Deformer {
   IntervalCachePolicy interval_policy{4};
   std::vector<std::unique_ptr<gl::IntervalSlicer>> interval_slots;  // one per policy slot
   std::vector<bool> slot_closed;  // per slot: its topology's closed_outward
+  // Per slot: the topology it holds, and whether its positions predate the manifold (re-uploaded from
+  // the topology when next shown: a manifold with the same tetrahedra and times cuts the same way).
+  std::vector<std::shared_ptr<const IntervalSlice>> slot_topology;
+  std::vector<bool> slot_stale;
+  std::shared_ptr<const AnimationManifold> cut;  // the manifold the interval topologies were cut from
   IntervalPrefetch prefetch;  // the interval playback reaches next, built on a worker
   int shown_slot = -1;  // the interval slot on display, -1 for the general pass
   bool have_slice_time = false;  // the last frame was a time slice at slice_time
@@ -193,16 +198,32 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       if (!d.slice) d.slice = gpu_.make_slicer();
       const AnimationManifold& m = d.builder.manifold();
       d.normals4 = d.builder.normals();
-      d.slice->upload(m, *d.normals4);
-      const std::vector<double> vertex_times = manifold_vertex_times(m);
-      d.interval_policy.reset(vertex_times, prism_intervals(m, vertex_times));
-      d.prefetch.reset(d.builder.shared_manifold(), d.normals4, d.interval_policy.times());
-      d.interval_slots.clear();
-      d.interval_slots.resize(d.interval_policy.capacity());
-      d.slot_closed.assign(d.interval_policy.capacity(), false);
+      // A space-time drag frame (or any change that keeps the tetrahedra and every t) cuts each interval
+      // the same way: the cached topologies stay, their positions re-upload when shown, and the GPU
+      // slicer takes the new positions and normals only.
+      const bool same_cut = d.cut && d.cut->times == m.times && d.cut->T.rows() == m.T.rows() &&
+                            d.cut->V.rows() == m.V.rows() && d.cut->V.col(3) == m.V.col(3) && d.cut->T == m.T;
+      d.cut = d.builder.shared_manifold();
+      if (same_cut)
+        d.slice->upload_vertices(m, *d.normals4);
+      else
+        d.slice->upload(m, *d.normals4);
+      if (same_cut) {
+        d.slot_stale.assign(d.interval_slots.size(), true);
+        d.prefetch.reset(d.cut, d.normals4, d.interval_policy.times());
+      } else {
+        const std::vector<double> vertex_times = manifold_vertex_times(m);
+        d.interval_policy.reset(vertex_times, prism_intervals(m, vertex_times));
+        d.prefetch.reset(d.cut, d.normals4, d.interval_policy.times());
+        d.interval_slots.clear();
+        d.interval_slots.resize(d.interval_policy.capacity());
+        d.slot_closed.assign(d.interval_policy.capacity(), false);
+        d.slot_topology.assign(d.interval_policy.capacity(), nullptr);
+        d.slot_stale.assign(d.interval_policy.capacity(), false);
+        d.interval_build_ms = 0;
+      }
       d.shown_slot = -1;
       d.have_slice_time = false;
-      d.interval_build_ms = 0;
     }
     d.has_manifold = d.builder.has_manifold();
     error_ = d.builder.error();
@@ -264,6 +285,8 @@ void SceneView::grow_interval_cache(Deformer& d, const IntervalSlice& built) {
   d.interval_policy.grow(std::min(intervals, fit));
   d.interval_slots.resize(d.interval_policy.capacity());
   d.slot_closed.resize(d.interval_policy.capacity(), false);
+  d.slot_topology.resize(d.interval_policy.capacity());
+  d.slot_stale.resize(d.interval_policy.capacity(), false);
 }
 
 // The manifold's slice on display: a time inside a cached (or worth caching) interval by
@@ -289,18 +312,27 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
     try {
       const auto& times = d.interval_policy.times();
       std::optional<PreparedInterval> ready = d.prefetch.take(route.interval);
-      const IntervalSlice topology =
+      auto topology = std::make_shared<const IntervalSlice>(
           ready ? std::move(ready->topology)
-                : build_interval_slice(m, *d.normals4, times[route.interval], times[route.interval + 1]);
+                : build_interval_slice(m, *d.normals4, times[route.interval], times[route.interval + 1]));
       auto& slot = d.interval_slots[route.slot];
       if (!slot) slot = gpu_.make_interval_slicer();
-      slot->upload(topology, m, *d.normals4, ready ? &ready->records : nullptr);
-      d.slot_closed[route.slot] = topology.closed_outward;
-      grow_interval_cache(d, topology);
+      slot->upload(*topology, m, *d.normals4, ready ? &ready->records : nullptr);
+      d.slot_closed[route.slot] = topology->closed_outward;
+      d.slot_topology[route.slot] = topology;
+      d.slot_stale[route.slot] = false;
+      grow_interval_cache(d, *topology);
     } catch (const std::exception&) {  // not a clean interval: the general pass draws it
       d.interval_policy.forget(route.slot);
       route = SliceDecision{};
     }
+    d.interval_build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b0).count();
+  }
+  if (route.route != SliceRoute::General && d.slot_stale[route.slot] && d.slot_topology[route.slot]) {
+    // Cut before this manifold's positions (a drag frame): the same topology, new positions.
+    const auto b0 = std::chrono::steady_clock::now();
+    d.interval_slots[route.slot]->upload(*d.slot_topology[route.slot], m, *d.normals4, nullptr);
+    d.slot_stale[route.slot] = false;
     d.interval_build_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - b0).count();
   }
   if (route.route != SliceRoute::General) {

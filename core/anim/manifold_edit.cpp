@@ -1,13 +1,17 @@
 #include "core/anim/manifold_edit.h"
 
 #include <algorithm>
+#include <array>
+#include <string>
 #include <cmath>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
 #include <Eigen/Sparse>
 
+#include "core/anim/dual_laplacian.h"
 #include "core/anim/manifold_edit_volume.h"
+#include "core/anim/manifold_retime.h"
 #include "core/anim/manifold_laplacian.h"
 #include "core/bind/cholesky.h"
 #include "core/util/error.h"
@@ -19,8 +23,19 @@ struct ManifoldEditor::Impl {
   Eigen::Vector3d pivot;
   ManifoldEditOptions options;
   MatrixX4dRow V;                    // the original vertices
-  std::vector<LaplacianRow> rows;    // one per region vertex
-  Eigen::MatrixXd delta;             // #region x 3: original differential coordinates (x, y, z)
+  // Rows of L over manifold vertices: primal, one per region vertex (Eq. 4.1; the vertex first, then its
+  // neighbours); dual, one per tetrahedron with a region vertex (dual_laplacian.h). turn: the region
+  // slots whose reach, summed and divided by turn_div, is the row's share of the handle's turn (4.2.1).
+  struct Row {
+    std::vector<int> vertices;
+    std::vector<double> coeffs;
+    std::vector<int> turn;
+    double turn_div = 1;
+  };
+  std::vector<Row> rows;
+  Eigen::MatrixXd delta;             // #rows x 3: original differential coordinates (x, y, z)
+  std::vector<std::array<int, 2>> time_edges;  // retime: (lower, upper) prism time edges at region vertices
+  std::string retime_refusal;        // why this region cannot be retimed ("" when it can)
   std::vector<int> free_of_region;   // region slot -> free column, -1 for a handle vertex
   std::vector<int> handle_of_region; // region slot -> handle column, -1 otherwise
   std::vector<int> free_vertex;      // free column -> manifold vertex
@@ -70,8 +85,39 @@ ManifoldEditor::ManifoldEditor(const AnimationManifold& m, EditRegion selection,
   }
   const int nf = static_cast<int>(s.free_vertex.size());
 
-  s.rows = manifold_laplacian_rows(m, region, s.options.weights, s.options.time_scale);
-  s.delta = differential_coordinates(m, region, s.rows).leftCols<3>();
+  if (s.options.weights == LaplacianWeights::Dual) {
+    std::vector<int> tets;
+    for (int k = 0; k < m.num_tets(); ++k)
+      for (int j = 0; j < 4; ++j)
+        if (slot.count(m.T(k, j))) {
+          tets.push_back(k);
+          break;
+        }
+    for (DualLaplacianRow& d : dual_laplacian_rows(m, tets, s.options.time_scale)) {
+      Impl::Row row{std::move(d.vertices), std::move(d.coeffs), {}, 4};
+      for (int j = 0; j < 4; ++j)
+        if (const auto it = slot.find(m.T(d.tet, j)); it != slot.end()) row.turn.push_back(it->second);
+      s.rows.push_back(std::move(row));
+    }
+    s.delta.resize(s.rows.size(), 3);
+    for (size_t r = 0; r < s.rows.size(); ++r) {
+      Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
+      for (size_t k = 0; k < s.rows[r].vertices.size(); ++k) d += s.rows[r].coeffs[k] * m.V.row(s.rows[r].vertices[k]).head<3>();
+      s.delta.row(r) = d;
+    }
+  } else {
+    const std::vector<LaplacianRow> L = manifold_laplacian_rows(m, region, s.options.weights, s.options.time_scale);
+    s.delta = differential_coordinates(m, region, L).leftCols<3>();
+    for (int r = 0; r < nr; ++r) {
+      Impl::Row row{{region[r]}, {1.0}, {r}, 1};
+      for (size_t k = 0; k < L[r].neighbours.size(); ++k) {
+        row.vertices.push_back(L[r].neighbours[k]);
+        row.coeffs.push_back(-L[r].weights[k]);
+      }
+      s.rows.push_back(std::move(row));
+    }
+  }
+  const int nrows = static_cast<int>(s.rows.size());
 
   std::vector<Eigen::Triplet<double>> tf, th;
   auto put = [&](int row, int v, double value) {
@@ -83,13 +129,11 @@ ManifoldEditor::ManifoldEditor(const AnimationManifold& m, EditRegion selection,
     else
       th.emplace_back(row, s.handle_of_region[r], value);
   };
-  for (int r = 0; r < nr; ++r) {
-    put(r, region[r], 1.0);
-    for (size_t k = 0; k < s.rows[r].neighbours.size(); ++k) put(r, s.rows[r].neighbours[k], -s.rows[r].weights[k]);
-  }
-  s.LF.resize(nr, nf);
+  for (int r = 0; r < nrows; ++r)
+    for (size_t k = 0; k < s.rows[r].vertices.size(); ++k) put(r, s.rows[r].vertices[k], s.rows[r].coeffs[k]);
+  s.LF.resize(nrows, nf);
   s.LF.setFromTriplets(tf.begin(), tf.end());
-  s.LH.resize(nr, nh);
+  s.LH.resize(nrows, nh);
   s.LH.setFromTriplets(th.begin(), th.end());
   s.LFt = s.LF.transpose();
   if (nf > 0) {
@@ -104,9 +148,15 @@ ManifoldEditor::ManifoldEditor(const AnimationManifold& m, EditRegion selection,
 
   // Reach: the handle at 1, the anchors at 0, details unchanged.
   const Eigen::MatrixXd ones = Eigen::MatrixXd::Ones(nh, 1);
-  const Eigen::MatrixXd sF = s.solve(ones, Eigen::MatrixXd::Zero(nr, 1));
+  const Eigen::MatrixXd sF = s.solve(ones, Eigen::MatrixXd::Zero(nrows, 1));
   s.reach.resize(nr);
   for (int r = 0; r < nr; ++r) s.reach[r] = s.free_of_region[r] >= 0 ? sF(s.free_of_region[r], 0) : 1.0;
+
+  try {
+    s.time_edges = prism_time_edges(m, region);
+  } catch (const Error& e) {
+    s.retime_refusal = e.what();
+  }
 
   if (s.options.preserve_volume) {
     std::vector<double> weight;
@@ -131,6 +181,8 @@ MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
     throw Error("space-time edit: the drag's translation or rotation is not finite");
   if (!(d.rotation.transpose() * d.rotation).isApprox(Eigen::Matrix3d::Identity(), 1e-9) || d.rotation.determinant() < 0)
     throw Error("space-time edit: the drag's rotation is not a rotation matrix");
+  if (!std::isfinite(d.retime)) throw Error("space-time edit: the drag's retime is not finite");
+  if (d.retime != 0 && !s.retime_refusal.empty()) throw Error("space-time edit: cannot retime: " + s.retime_refusal);
   const bool turns = d.rotation != Eigen::Matrix3d::Identity();
   MatrixX4dRow out = s.V;
 
@@ -147,15 +199,20 @@ MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
   }
 
   // 4.2.1: each detail turns by its share s_i of the handle's rotation.
-  std::vector<Eigen::Matrix3d> R(nr, Eigen::Matrix3d::Identity());
+  const int nrows = static_cast<int>(s.rows.size());
+  std::vector<Eigen::Matrix3d> R(nrows, Eigen::Matrix3d::Identity());
   if (turns && s.options.turn_details) {
     const Eigen::AngleAxisd aa(d.rotation);
-    for (int r = 0; r < nr; ++r)
-      R[r] = Eigen::AngleAxisd(std::clamp(s.reach[r], 0.0, 1.0) * aa.angle(), aa.axis()).toRotationMatrix();
+    for (int r = 0; r < nrows; ++r) {
+      double share = 0;
+      for (int slot : s.rows[r].turn) share += s.reach[slot];
+      share /= s.rows[r].turn_div;
+      R[r] = Eigen::AngleAxisd(std::clamp(share, 0.0, 1.0) * aa.angle(), aa.axis()).toRotationMatrix();
+    }
   }
   auto details = [&] {
-    Eigen::MatrixXd b(nr, 3);
-    for (int r = 0; r < nr; ++r) b.row(r) = ((R[r] - Eigen::Matrix3d::Identity()) * s.delta.row(r).transpose()).transpose();
+    Eigen::MatrixXd b(nrows, 3);
+    for (int r = 0; r < nrows; ++r) b.row(r) = ((R[r] - Eigen::Matrix3d::Identity()) * s.delta.row(r).transpose()).transpose();
     return b;
   };
   auto place = [&](const Eigen::MatrixXd& dF) {
@@ -164,6 +221,15 @@ MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
   place(s.solve(dH, details()));
 
   if (!s.layers.empty()) restore_layer_volumes(s.layers, out);
+
+  // Retime: t solves like x, y, z with no detail change, so its displacement is the reach times the
+  // handle's (the handle lands on t + retime exactly, the anchors keep theirs).
+  if (d.retime != 0) {
+    for (int r = 0; r < nr; ++r)
+      out(region[r], 3) = s.handle_of_region[r] >= 0 ? s.V(region[r], 3) + d.retime
+                                                     : s.V(region[r], 3) + d.retime * s.reach[r];
+    check_time_edges(out, s.time_edges);
+  }
   return out;
 }
 

@@ -7,8 +7,14 @@
 // the handle's d is the drag, both hard constraints. Over the rows of every region vertex, d minimises
 //   sum_i | (L d)_i - (R_i - I) delta_i |^2                                        (4.2, in x, y, z)
 // with L the manifold Laplacian of manifold_laplacian.h (4D one-rings, 4.6.1's reciprocal-length
-// weights) and delta_i the original differential coordinates. Vertices keep their t (edits move shape,
-// not timing), so only x, y, z are solved: L t' = delta^t holds already.
+// weights) and delta_i the original differential coordinates. By default vertices keep their t (edits
+// move shape, not timing), so only x, y, z are solved: L t' = delta^t holds already. A drag's retime
+// moves the handle in t as well: t is solved like x, y, z with its details unchanged, which is the reach
+// field s times the retime (core/anim/manifold_retime.h says which retimes are refused).
+//
+// With LaplacianWeights::Dual the rows are the dual graph Laplacian's (Au et al. 2006), one per
+// tetrahedron with a region vertex, with 4.4.2's ghost boundary condition (core/anim/dual_laplacian.h);
+// everything else is the same least-squares system.
 //
 // Transformation invariance (4.2.1): R_i rotates vertex i's detail. A drag's rotation about the handle
 // point spreads over the region by the reach field s (the same least-squares system with the handle at 1
@@ -46,6 +52,11 @@ struct ManifoldEditOptions {
 struct ManifoldDrag {
   Eigen::Vector3d translation = Eigen::Vector3d::Zero();
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // about the handle point, before translating
+  // The handle's move in t (issue 35's retime; 0 keeps every t bit for bit). The region follows by its
+  // reach. Refused (dfm::Error) where the region touches the first or last layer or a transition, or
+  // where a prism's time edge would stop rising (the slab would fold back in time). The caller then
+  // calls merge_retimed_slabs (manifold_retime.h) on the manifold holding the result.
+  double retime = 0;
 };
 
 class ManifoldEditor {
@@ -60,7 +71,7 @@ class ManifoldEditor {
   ManifoldEditor& operator=(const ManifoldEditor&) = delete;
 
   // The manifold's vertices after the drag (#V x 4; rows outside the region are the original rows,
-  // t is never changed). A handle vertex v lands at v + translation (exactly) when rotation is the
+  // t is changed only by a retime). A handle vertex v lands at v + translation (exactly) when rotation is the
   // identity, else at rotation (v - pivot) + pivot + translation. Throws dfm::Error (nothing changed) for
   // a non-finite drag or a rotation that is not orthonormal with determinant 1.
   MatrixX4dRow drag(const ManifoldDrag& drag) const;

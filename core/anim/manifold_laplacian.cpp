@@ -48,6 +48,8 @@ std::vector<LaplacianRow> manifold_laplacian_rows(const AnimationManifold& m, co
                                                   LaplacianWeights scheme, double time_scale) {
   if (!(time_scale > 0) || !std::isfinite(time_scale))
     throw Error("manifold Laplacian: the time scale must be positive and finite");
+  if (scheme == LaplacianWeights::Dual)
+    throw Error("manifold Laplacian: the dual Laplacian has rows per tetrahedron (dual_laplacian_rows), not per vertex");
   std::unordered_map<int, int> slot;
   slot.reserve(rows.size() * 2);
   for (size_t r = 0; r < rows.size(); ++r) slot.emplace(rows[r], static_cast<int>(r));

@@ -26,9 +26,12 @@ namespace dfm {
 //   PrimalBoundary  Reciprocal inside, and at vertices on the manifold's open boundary (a face of their
 //                   star lies in one tetrahedron only) the least-|delta| weights of Eq. 4.3 (4.4.1;
 //                   core/anim/primal_boundary_weights.h).
-enum class LaplacianWeights { Equal, Reciprocal, PrimalBoundary };
+//   Dual            the dual graph Laplacian of Au et al. 2006 with 4.4.2's ghost boundary condition: rows
+//                   per tetrahedron, not per vertex (core/anim/dual_laplacian.h); manifold_laplacian_rows
+//                   does not build it (dfm::Error), ManifoldEditor does.
+enum class LaplacianWeights { Equal, Reciprocal, PrimalBoundary, Dual };
 
-// "equal", "reciprocal", "primal-boundary"; dfm::Error otherwise.
+// "equal", "reciprocal", "primal-boundary", "dual"; dfm::Error otherwise.
 LaplacianWeights parse_laplacian_weights(const std::string& name);
 const char* laplacian_weights_name(LaplacianWeights w);  // parse_laplacian_weights' inverse
 

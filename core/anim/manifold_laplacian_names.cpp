@@ -11,13 +11,15 @@ LaplacianWeights parse_laplacian_weights(const std::string& name) {
   if (name == "equal") return LaplacianWeights::Equal;
   if (name == "reciprocal") return LaplacianWeights::Reciprocal;
   if (name == "primal-boundary") return LaplacianWeights::PrimalBoundary;
-  throw Error("unknown Laplacian weights '" + name + "' (equal, reciprocal, primal-boundary)");
+  if (name == "dual") return LaplacianWeights::Dual;
+  throw Error("unknown Laplacian weights '" + name + "' (equal, reciprocal, primal-boundary, dual)");
 }
 
 const char* laplacian_weights_name(LaplacianWeights w) {
   switch (w) {
     case LaplacianWeights::Equal: return "equal";
     case LaplacianWeights::PrimalBoundary: return "primal-boundary";
+    case LaplacianWeights::Dual: return "dual";
     default: return "reciprocal";
   }
 }

@@ -25,25 +25,25 @@ Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k) {
   return N;
 }
 
+void add_tet_normal(const AnimationManifold& m, int k, int c, const Eigen::RowVector4d& n, Eigen::MatrixXd& sum, int row) {
+  const int v = m.T(k, c);
+  auto r = sum.row(row);
+  const bool ends = m.num_layers() >= 2;
+  if (!ends || (m.V(v, 3) != m.times.front() && m.V(v, 3) != m.times.back())) {
+    r.head<4>() += n;
+    return;
+  }
+  int in_plane = 0;
+  for (int d = 0; d < 4; ++d) in_plane += m.V(m.T(k, d), 3) == m.V(v, 3);
+  if (in_plane >= 3) r.head<4>() += n;
+  r.tail<4>() += n;
+}
+
 void accumulate_tet_normals(const AnimationManifold& m, int first_tet, int last_tet, int vertex_offset,
                             Eigen::MatrixXd& sum) {
-  const bool ends = m.num_layers() >= 2;
-  const double t_first = ends ? m.times.front() : 0, t_last = ends ? m.times.back() : 0;
-  auto end_plane = [&](int v) { return ends && (m.V(v, 3) == t_first || m.V(v, 3) == t_last); };
   for (int k = first_tet; k < last_tet; ++k) {
     const Eigen::RowVector4d n = tet_normal4(m, k).transpose();
-    for (int c = 0; c < 4; ++c) {
-      const int v = m.T(k, c);
-      auto row = sum.row(v - vertex_offset);
-      if (!end_plane(v)) {
-        row.head<4>() += n;
-        continue;
-      }
-      int in_plane = 0;
-      for (int d = 0; d < 4; ++d) in_plane += m.V(m.T(k, d), 3) == m.V(v, 3);
-      if (in_plane >= 3) row.head<4>() += n;
-      row.tail<4>() += n;
-    }
+    for (int c = 0; c < 4; ++c) add_tet_normal(m, k, c, n, sum, m.T(k, c) - vertex_offset);
   }
 }
 

@@ -30,6 +30,10 @@ Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k);
 void accumulate_tet_normals(const AnimationManifold& m, int first_tet, int last_tet, int vertex_offset,
                             Eigen::MatrixXd& sum);
 
+// accumulate_tet_normals for one corner: adds n (tet_normal4 of tetrahedron k) to row `row` of sum as
+// corner c's vertex sees it. Summing a vertex's tetrahedra in increasing k gives the same bits.
+void add_tet_normal(const AnimationManifold& m, int k, int c, const Eigen::RowVector4d& n, Eigen::MatrixXd& sum, int row);
+
 // sum / |sum|, or zero when sum is zero (a vertex in no tetrahedron, or cancelling facets).
 Eigen::Vector4d unit_or_zero(const Eigen::Vector4d& sum);
 

@@ -19,7 +19,8 @@ AnimationManifold manifold_before(const Document& doc, size_t count) {
 }
 
 bool moves(const SpaceTimeEdit& e) {
-  return e.move != Eigen::Vector3d::Zero() || e.rotation.coeffs() != Eigen::Quaterniond::Identity().coeffs();
+  return e.move != Eigen::Vector3d::Zero() || e.rotation.coeffs() != Eigen::Quaterniond::Identity().coeffs() ||
+         e.retime != 0;
 }
 
 // Starts an edit: the region and window, no move yet (a still edit changes nothing).
@@ -50,21 +51,30 @@ void edit_drag(CommandContext& x, const CommandWords& w) {
   const std::vector<SpaceTimeEdit>& edits = x.doc.space_time_edits();
   if (edits.empty()) throw Error("no space-time edit: start one with edit-region");
   const Eigen::Vector3d h(num(w, 1), num(w, 2), num(w, 3)), d(num(w, 4), num(w, 5), num(w, 6));
+  const double dt = w.size() > 7 ? num(w, 7) : 0.0;  // retime (optional)
   SpaceTimeEdit e = edits.back();
   int index = static_cast<int>(edits.size()) - 1;
   if (!moves(e)) {
     e.handle = {h, x.doc.time()};
     e.move = d;
+    e.retime = dt;
   } else if (e.handle.point == h && e.handle.time == x.doc.time()) {
     e.move += d;
+    e.retime += dt;
   } else {
     e.handle = {h, x.doc.time()};
     e.move = d;
+    e.retime = dt;
     e.rotation = Eigen::Quaterniond::Identity();
     ++index;
   }
   check_space_time_edit(e);
-  select_edit_region(manifold_before(x.doc, index), e.region, e.handle);  // a clear error, nothing changed
+  {
+    // A clear error, nothing changed: the region, and a retime that would fold the manifold in time.
+    AnimationManifold m = manifold_before(x.doc, index);
+    select_edit_region(m, e.region, e.handle);
+    if (e.retime != 0) apply_space_time_edit(m, e);  // solves once more: only retimes can be refused
+  }
   if (index == static_cast<int>(edits.size()))
     x.doc.add_space_time_edit(e);
   else
@@ -76,7 +86,7 @@ void edit_drag(CommandContext& x, const CommandWords& w) {
 void add_space_time_commands(std::vector<Command>& t) {
   Command* c = &add(t, "edit-region", "edit-region CX CY CZ RADIUS T0 T1", 6, 6, {number_arg()}, edit_region);
   c->poll = needs_two_keys;
-  c = &add(t, "edit-drag", "edit-drag HX HY HZ DX DY DZ", 6, 6, {number_arg()}, edit_drag);
+  c = &add(t, "edit-drag", "edit-drag HX HY HZ DX DY DZ [DT]", 6, 7, {number_arg()}, edit_drag);
   c->poll = needs_two_keys;
   add(t, "edit-clear", "edit-clear", 0, 0, {}, [](CommandContext& x, const CommandWords&) { x.doc.clear_space_time_edits(); });
 }

@@ -453,6 +453,7 @@ json space_time_edits_json(const std::vector<SpaceTimeEdit>& edits) {
                    {"handle_time", e.handle.time},
                    {"move", vec3(e.move)},
                    {"rotation", quat(e.rotation)},
+                   {"retime", e.retime},
                    {"weights", laplacian_weights_name(e.weights)},
                    {"time_scale", e.time_scale},
                    {"volume", e.preserve_volume}});
@@ -473,6 +474,7 @@ void read_space_time_edits(const SceneReader& R, const json& j, SceneData& s) {
     e.handle.time = R.number(R.field(a[i], "handle_time", c), c + ".handle_time");
     e.move = R.vec3(R.field(a[i], "move", c), c + ".move");
     e.rotation = R.quat(R.field(a[i], "rotation", c), c + ".rotation").normalized();
+    if (a[i].contains("retime")) e.retime = R.number(a[i]["retime"], c + ".retime");  // absent before retime
     try {
       e.weights = parse_laplacian_weights(R.string(R.field(a[i], "weights", c), c + ".weights"));
     } catch (const Error& err) {

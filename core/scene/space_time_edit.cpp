@@ -13,7 +13,7 @@ bool SpaceTimeEdit::same_setup(const SpaceTimeEdit& o) const {
 }
 
 bool SpaceTimeEdit::operator==(const SpaceTimeEdit& o) const {
-  return same_setup(o) && move == o.move && rotation.coeffs() == o.rotation.coeffs();
+  return same_setup(o) && move == o.move && rotation.coeffs() == o.rotation.coeffs() && retime == o.retime;
 }
 
 void check_space_time_edit(const SpaceTimeEdit& e) {
@@ -26,7 +26,7 @@ void check_space_time_edit(const SpaceTimeEdit& e) {
   if (e.handle.time < e.region.t0 || e.handle.time > e.region.t1)
     throw Error("space-time edit: the handle's time " + std::to_string(e.handle.time) + " is outside the window [" +
                 std::to_string(e.region.t0) + ", " + std::to_string(e.region.t1) + "]");
-  if (!e.move.allFinite() || !e.rotation.coeffs().allFinite() || std::abs(e.rotation.norm() - 1) > 1e-9)
+  if (!e.move.allFinite() || !std::isfinite(e.retime) || !e.rotation.coeffs().allFinite() || std::abs(e.rotation.norm() - 1) > 1e-9)
     throw Error("space-time edit: the move is not finite or the rotation not a unit quaternion");
   if (!std::isfinite(e.time_scale) || !(e.time_scale > 0))
     throw Error("space-time edit: the time scale must be positive");

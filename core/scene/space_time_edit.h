@@ -21,11 +21,12 @@ struct SpaceTimeEdit {
   EditHandleSpec handle;
   Eigen::Vector3d move = Eigen::Vector3d::Zero();
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();  // about the handle point
+  double retime = 0;  // the handle's move in t (ManifoldDrag::retime; scenes before it have none: 0)
   LaplacianWeights weights = LaplacianWeights::Reciprocal;
   double time_scale = 1.0;
   bool preserve_volume = false;
   bool operator==(const SpaceTimeEdit& o) const;
-  // Everything but the move and rotation: edits with the same setup share one factorisation.
+  // Everything but the move, rotation and retime: edits with the same setup share one factorisation.
   bool same_setup(const SpaceTimeEdit& o) const;
 };
 
@@ -45,14 +46,18 @@ class SpaceTimeEditCache {
 
 // Applies `edits` in order to m.V. An edit whose region no longer selects anything (the keys changed:
 // it is stale) is skipped and named in the returned notes ("space-time edit 2 skipped: ..."); the
-// others still apply. An edit with no move or turn is skipped (it changes nothing). `cache` may be null.
+// others still apply. An edit with no move, turn or retime is skipped (it changes nothing). `cache` may be null.
 std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std::vector<SpaceTimeEdit>& edits,
                                                 SpaceTimeEditCache* cache = nullptr);
 
-// manifold_vertex_normals(edited), bit for bit, from the normals before the edits: only vertices in an
-// edit's window move, and their stars lie in the slabs that overlap it, so only those rows are summed
-// again, over those slabs (VertexNormalSource). What a drag frame's view needs without a full pass.
-Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& edited, const Eigen::MatrixXd& base_normals,
-                                      const std::vector<SpaceTimeEdit>& edits);
+// One edit onto m, without a cache; throws dfm::Error (m unchanged) where the replay would skip it.
+void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e);
+
+// manifold_vertex_normals(edited), bit for bit, from the unedited manifold's vertices and normals:
+// only the rows of vertices sharing a tetrahedron with a moved vertex (base_V row != edited row) are
+// summed again, over their stars (found in the slabs overlapping the edits' windows). What a drag
+// frame's view needs without a full pass.
+Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& edited, const MatrixX4dRow& base_V,
+                                      const Eigen::MatrixXd& base_normals, const std::vector<SpaceTimeEdit>& edits);
 
 }  // namespace dfm

@@ -3,7 +3,10 @@
 // fuzz target) links without the solver.
 #include "core/scene/space_time_edit.h"
 
+#include <algorithm>
+
 #include "core/anim/manifold_normals.h"
+#include "core/anim/manifold_retime.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -27,7 +30,27 @@ std::unique_ptr<ManifoldEditor> make_editor(const AnimationManifold& m, const Sp
   return std::make_unique<ManifoldEditor>(m, select_edit_region(m, e.region, e.handle), e.handle.point, o);
 }
 
+// The edit's drag onto m (a retime's slabs merged on a copy: a refusal leaves m as it was).
+void apply_drag(AnimationManifold& m, const ManifoldEditor& editor, const SpaceTimeEdit& e) {
+  ManifoldDrag d;
+  d.translation = e.move;
+  d.rotation = e.rotation.toRotationMatrix();
+  if (e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) d.rotation = Eigen::Matrix3d::Identity();
+  d.retime = e.retime;
+  MatrixX4dRow V = editor.drag(d);
+  if (e.retime != 0) {
+    AnimationManifold retimed = m;
+    retimed.V = std::move(V);
+    merge_retimed_slabs(retimed);
+    m = std::move(retimed);
+  } else {
+    m.V = std::move(V);
+  }
+}
+
 }  // namespace
+
+void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e) { apply_drag(m, *make_editor(m, e), e); }
 
 std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std::vector<SpaceTimeEdit>& edits,
                                                 SpaceTimeEditCache* cache) {
@@ -36,7 +59,9 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
   for (size_t i = 0; i < edits.size(); ++i) {
     const SpaceTimeEdit& e = edits[i];
     // A still edit (edit-region before its drag) changes nothing: no region to select or factor.
-    if (e.move == Eigen::Vector3d::Zero() && e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) continue;
+    if (e.move == Eigen::Vector3d::Zero() && e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs() &&
+        e.retime == 0)
+      continue;
     try {
       const ManifoldEditor* editor = nullptr;
       std::unique_ptr<ManifoldEditor> own;
@@ -55,11 +80,7 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
         own = make_editor(m, e);
         editor = own.get();
       }
-      ManifoldDrag d;
-      d.translation = e.move;
-      d.rotation = e.rotation.toRotationMatrix();
-      if (e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) d.rotation = Eigen::Matrix3d::Identity();
-      m.V = editor->drag(d);
+      apply_drag(m, *editor, e);
     } catch (const Error& err) {
       if (cache && cache->entries.size() > i) cache->entries[i].reset();
       notes.push_back("space-time edit " + std::to_string(i + 1) + " skipped: " + err.what());
@@ -68,18 +89,39 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
   return notes;
 }
 
-Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& m, const Eigen::MatrixXd& base_normals,
-                                      const std::vector<SpaceTimeEdit>& edits) {
+Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& m, const MatrixX4dRow& base_V,
+                                      const Eigen::MatrixXd& base_normals, const std::vector<SpaceTimeEdit>& edits) {
   Eigen::MatrixXd N = base_normals;
-  for (const SpaceTimeEdit& e : edits) {
-    int first = -1, last = -1;
+  // The tetrahedra of the slabs overlapping any edit's window hold every moved vertex's star and its
+  // neighbours' stars (a region vertex's star lies in its window).
+  int first = m.num_tets(), last = 0;
+  for (const SpaceTimeEdit& e : edits)
     for (int s = 0; s < m.num_slabs(); ++s)
-      if (m.times[s + 1] >= e.region.t0 && m.times[s] <= e.region.t1) last = s, first = first < 0 ? s : first;
-    if (first < 0) continue;
-    const VertexNormalSource src(m, nullptr, m.slab_offsets[first], m.slab_offsets[last + 1]);
-    for (int v = 0; v < m.num_vertices(); ++v)
-      if (m.V(v, 3) >= e.region.t0 && m.V(v, 3) <= e.region.t1) N.row(v) = src(v).transpose();
+      if (m.times[s + 1] >= e.region.t0 && m.times[s] <= e.region.t1)
+        first = std::min(first, m.slab_offsets[s]), last = std::max(last, m.slab_offsets[s + 1]);
+  if (first >= last || base_V.rows() != m.V.rows()) return N;
+  const int nv = m.num_vertices();
+  std::vector<char> moved(nv, 0);
+  bool any = false;
+  for (int v = 0; v < nv; ++v) any |= moved[v] = m.V.row(v) != base_V.row(v);
+  if (!any) return N;
+  // Affected: a vertex sharing a tetrahedron with a moved one (its star's normals changed).
+  std::vector<int> slot(nv, -1);
+  std::vector<int> affected;
+  for (int k = first; k < last; ++k) {
+    if (!moved[m.T(k, 0)] && !moved[m.T(k, 1)] && !moved[m.T(k, 2)] && !moved[m.T(k, 3)]) continue;
+    for (int c = 0; c < 4; ++c)
+      if (slot[m.T(k, c)] < 0) slot[m.T(k, c)] = static_cast<int>(affected.size()), affected.push_back(m.T(k, c));
   }
+  // Their stars, in increasing tetrahedron order like manifold_vertex_normals: the same bits.
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(affected.size(), 8);
+  for (int k = first; k < last; ++k) {
+    if (slot[m.T(k, 0)] < 0 && slot[m.T(k, 1)] < 0 && slot[m.T(k, 2)] < 0 && slot[m.T(k, 3)] < 0) continue;
+    const Eigen::RowVector4d n = tet_normal4(m, k).transpose();
+    for (int c = 0; c < 4; ++c)
+      if (slot[m.T(k, c)] >= 0) add_tet_normal(m, k, c, n, sum, slot[m.T(k, c)]);
+  }
+  for (size_t a = 0; a < affected.size(); ++a) N.row(affected[a]) = vertex_normal4(sum.row(a)).transpose();
   return N;
 }
 
