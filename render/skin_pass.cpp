@@ -40,6 +40,7 @@ SkinPass::SkinPass(const SkinBinding& b) {
   num_entries_ = sp.num_entries();
   max_row_ = sp.max_row;
   num_handles_ = b.num_handles;
+  first_additional_ = b.num_handles - b.additional;
   max_handle_ = sp.handle.empty() ? -1 : *std::max_element(sp.handle.begin(), sp.handle.end());
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
@@ -83,7 +84,8 @@ void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
   if (max_handle_ >= nh)
     throw Error("GPU skinning: the weights name handle " + std::to_string(max_handle_) + " but the pose has " +
                 std::to_string(nh) + " transforms");
-  if (!stbs.empty() && static_cast<int>(stbs.size()) != nh)
+  // One record per handle, or per rig handle (the additional ones have none: inactive).
+  if (!stbs.empty() && static_cast<int>(stbs.size()) != nh && static_cast<int>(stbs.size()) != std::min(nh, first_additional_))
     throw Error("GPU skinning: " + std::to_string(stbs.size()) + " twist/stretch records for " + std::to_string(nh) +
                 " handles");
   GLint max_texels = 0;
@@ -91,11 +93,14 @@ void SkinPass::set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs) {
   if (static_cast<long long>(nh) * kHandleTexels > max_texels)
     throw Error("GPU skinning: " + std::to_string(nh) + " handles exceed this driver's texture buffer (" +
                 std::to_string(max_texels / kHandleTexels) + " handles)");
-  const std::vector<DqsHandle> dq = dqs_handles(pose);
+  // Additional handles skin linearly (the shader's first_additional): no dual quaternion, which a
+  // zero (unsolved) transform would not have.
+  std::vector<DqsHandle> dq(nh);
+  for (int h = 0; h < std::min(nh, first_additional_); ++h) dq[h] = dqs_handle(pose.transforms[h]);
   std::vector<float> data(static_cast<size_t>(std::max(nh, 1)) * kHandleTexels * 4, 0.0f);
   for (int h = 0; h < nh; ++h) {
     float* d = &data[static_cast<size_t>(h) * kHandleTexels * 4];
-    const bool active = !stbs.empty() && stbs[h].active;
+    const bool active = h < static_cast<int>(stbs.size()) && stbs[h].active;
     const Eigen::Affine3d& T = pose.transforms[h];
     for (int r = 0; r < 3; ++r) put_row(d + 4 * r, T.matrix().row(r).transpose());
     put_row(d + 12, dq[h].real);
@@ -148,6 +153,7 @@ void SkinPass::run(SkinMethod method) {
     glBindTexture(GL_TEXTURE_BUFFER, textures[unit].second);
     glUniform1i(prog.uniform(textures[unit].first), unit);
   }
+  glUniform1i(prog.uniform("first_additional"), first_additional_);
   capture_points(vao_, output_, num_vertices_);
   for (int unit = 3; unit >= 0; --unit) {
     glActiveTexture(GL_TEXTURE0 + unit);

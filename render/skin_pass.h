@@ -28,7 +28,8 @@ class SkinPass {
   // driver's texture buffer.
   explicit SkinPass(const SkinBinding& binding);
 
-  // One transform per handle; stbs: per-handle records (stbs_handles), empty = none active.
+  // One transform per handle (the additional ones last, SkinBinding::additional); stbs: per-handle
+  // records (stbs_handles; per rig handle will do), empty = none active.
   // Throws dfm::Error if the pose has fewer handles than the influences name, or too many for the
   // driver's texture buffer.
   void set_pose(const Pose& pose, const std::vector<StbsHandle>& stbs = {});
@@ -48,6 +49,7 @@ class SkinPass {
   const Program& program(SkinMethod method);
 
   int num_vertices_ = 0, num_entries_ = 0, max_row_ = 0, num_handles_ = 0, max_handle_ = -1;
+  int first_additional_ = 0;  // SkinBinding::additional: handles from here on skin linearly
   VertexArray vao_;
   Buffer rest_, output_, handle_data_, offsets_, pairs_, endpoints_;
   Texture handle_texture_, offsets_texture_, pairs_texture_, endpoints_texture_;

@@ -15,6 +15,9 @@
 //   11-13  STBS: rows of T' = T W^-1 (the bone without its twist/stretch) for active bones
 //   14-15  STBS over DQS: the dual quaternion of T' (real, dual) for active bones
 #define HANDLE_TEXELS 16
+// Handles from first_additional on are additional handles (core/rig/additional_handles.h): linear
+// whatever the method (their transforms may be zero, which has no dual quaternion); the DQS methods
+// add their term to the position, as core/skin/skin.cpp does.
 
 layout(location = 0) in vec3 rest_position;
 layout(location = 1) in vec3 rest_normal;
@@ -23,6 +26,7 @@ uniform samplerBuffer handles;
 uniform isamplerBuffer row_offsets;
 uniform isamplerBuffer pairs;
 uniform samplerBuffer endpoints;
+uniform int first_additional;
 
 out vec3 out_position;
 out vec3 out_normal;
@@ -98,10 +102,16 @@ void main() {
   vec4 pivot = first < last ? texel(texelFetch(pairs, first).x, 3) : vec4(0.0);
   vec4 br = vec4(0.0), bd = vec4(0.0);
   mat3 S = mat3(1.0);
+  vec3 additional = vec3(0.0);
   for (int j = first; j < last; ++j) {
     ivec2 entry = texelFetch(pairs, j).xy;
     int h = entry.x;
     float w = intBitsToFloat(entry.y);
+    if (h >= first_additional) {
+      vec4 a0 = texel(h, 0), a1 = texel(h, 1), a2 = texel(h, 2);
+      additional += w * (transpose(mat3(a0.xyz, a1.xyz, a2.xyz)) * p + vec3(a0.w, a1.w, a2.w));
+      continue;
+    }
     vec4 r = texel(h, 3);
     vec4 d = texel(h, 4);
 #ifdef METHOD_STBS_DQS
@@ -131,12 +141,12 @@ void main() {
   }
   float len = length(br);
   if (len == 0.0) {
-    out_position = p;
+    out_position = p + additional;
     out_normal = n;
   } else {
     br /= len;
     bd /= len;
-    out_position = dq_transform(br, bd, S * p);
+    out_position = dq_transform(br, bd, S * p) + additional;
     out_normal = dq_transform(br, vec4(0.0), transform_normal(S, n));
   }
 #endif

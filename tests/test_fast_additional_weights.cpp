@@ -14,6 +14,7 @@
 #include "core/pose/fast_solver.h"
 #include "core/skin/lbs.h"
 #include "core/util/error.h"
+#include "tests/capsule_test_mesh.h"
 #include "tests/test_support.h"
 
 using namespace dfm;
@@ -24,45 +25,6 @@ using Eigen::Vector3d;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-// A closed capsule along x: cylinder |x| <= a of radius r, hemispherical caps, poles on the axis.
-TriMesh capsule(double a, double r, int cap_rings, int body_rings, int around) {
-  std::vector<std::pair<double, double>> profile;  // (x, radius), pole to pole
-  for (int i = 1; i <= cap_rings; ++i) {
-    const double t = 0.5 * kPi * i / cap_rings;
-    profile.push_back({-a - r * std::cos(t), r * std::sin(t)});
-  }
-  for (int i = 1; i < body_rings; ++i) profile.push_back({-a + 2 * a * i / body_rings, r});
-  for (int i = cap_rings; i >= 1; --i) {
-    const double t = 0.5 * kPi * i / cap_rings;
-    profile.push_back({a + r * std::cos(t), r * std::sin(t)});
-  }
-  const int rings = static_cast<int>(profile.size());
-  TriMesh m;
-  m.V.resize(rings * around + 2, 3);
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < around; ++j) {
-      const double phi = 2 * kPi * j / around;
-      m.V.row(i * around + j) << profile[i].first, profile[i].second * std::cos(phi), profile[i].second * std::sin(phi);
-    }
-  const int south = rings * around, north = south + 1;
-  m.V.row(south) << -a - r, 0, 0;
-  m.V.row(north) << a + r, 0, 0;
-  std::vector<Eigen::Vector3i> F;
-  for (int j = 0; j < around; ++j) {
-    const int j1 = (j + 1) % around;
-    F.push_back({south, j1, j});
-    for (int i = 0; i + 1 < rings; ++i) {
-      const int p = i * around, q = (i + 1) * around;
-      F.push_back({p + j, p + j1, q + j1});
-      F.push_back({p + j, q + j1, q + j});
-    }
-    F.push_back({north, (rings - 1) * around + j, (rings - 1) * around + j1});
-  }
-  m.F.resize(F.size(), 3);
-  for (size_t f = 0; f < F.size(); ++f) m.F.row(f) = F[f].transpose();
-  return m;
-}
 
 // Spokes-and-rims ARAP energy with each vertex's own best-fit rotation (Eq. 7.4), as test_fast's.
 double per_vertex_arap_energy(const MatrixXd& V, const Eigen::MatrixXi& F, const MatrixXd& U) {
@@ -136,7 +98,7 @@ TEST_CASE("farthest-point samples: each the farthest from the seeds and the samp
 TEST_CASE("additional weights on the cigar of Fig. 7.7: lower ARAP energy, less pinch (7.3.3)",
           "[fast][weights]") {
   const double a = 2.0, r = 0.5;
-  const TriMesh cigar = capsule(a, r, 4, 40, 16);
+  const TriMesh cigar = test::capsule(a, r, 4, 40, 16);
   // Two fully constrained end regions: the vertices beyond |x| = a - 0.25.
   Rig rig;
   rig.regions.resize(2);

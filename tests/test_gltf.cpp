@@ -415,6 +415,52 @@ TEST_CASE("export_document_gltf: a twisted, stretched STBS document plays its ke
   fs::remove_all(dir);
 }
 
+// Additional weights (Jacobson 2013, 7.3.3) are baked (export_document.h): the file's joints are the
+// rig's, and the residual morph targets carry what the additional handles FAST solved add.
+TEST_CASE("export_document_gltf: a document with additional weights plays its keys as the document shows them",
+          "[gltf][document][additional]") {
+  Document doc;
+  doc.set_surface(test::tube(21, 12, 3.0, 0.3), "tube.obj");
+  doc.add_bone_chain({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1.5, 0, 0), Eigen::Vector3d(3, 0, 0)});
+  const Eigen::MatrixXd& V = doc.surface().V;
+  Eigen::MatrixXd A(V.rows(), 3);  // bumps along the tube, as a bind's additional weights would be
+  for (int e = 0; e < 3; ++e)
+    for (int i = 0; i < V.rows(); ++i) A(i, e) = std::exp(-std::pow((V(i, 0) - 0.75 * (e + 1)) / 0.4, 2));
+  doc.set_weights(test::inverse_distance_weights(doc.surface(), doc.rig()), BindStats{}, {}, A);
+  REQUIRE(doc.num_additional() == 3);
+  PosingSettings p = doc.posing();
+  p.fast = true;
+  p.iterations = 30;
+  doc.set_posing(p);
+  doc.set_key(0);
+  for (int k = 1; k <= 2; ++k) {
+    doc.rotate_handle(1, Eigen::Quaterniond(Eigen::AngleAxisd(0.5, Eigen::Vector3d(0, 0, 1))));
+    REQUIRE(doc.pose_params().solved.count(doc.num_handles()) == 1);  // FAST solved the additional handles
+    doc.set_key(k);
+  }
+  const fs::path dir = temp_dir("additional");
+  const std::string path = (dir / "additional.glb").string();
+  GltfExportOptions o;
+  o.residual_morph_tolerance = 1e-6;
+  const GltfExportReport rep = export_document_gltf(doc, path, o);
+  CHECK(rep.joints == doc.num_handles());  // baked: no joint for an additional handle
+  CHECK(rep.residual_targets >= 2);
+  bool noted = false;
+  for (const auto& n : rep.notes) noted = noted || n.find("3 additional weights baked") != std::string::npos;
+  CHECK(noted);
+  const GltfDocument g = read_gltf(path);
+  const double diag = rep.bbox_diagonal;
+  for (double t : {0.0, 1.0, 2.0}) {
+    INFO("t = " << t);
+    doc.set_time(t);
+    const Eigen::MatrixXd want = posed_surface(doc).V;
+    CHECK(max_row_distance(gltf_skinned_positions(g, t), want) < 1e-5 * diag);
+    if (t > 0)  // the additional handles' share: LBS of the rig's weights alone misses it
+      CHECK(max_row_distance(lbs(V, doc.weights(), doc.key_poses()[static_cast<int>(t)]), want) > 1e-3 * diag);
+  }
+  fs::remove_all(dir);
+}
+
 TEST_CASE("rig extras: every kind of handle through the glTF rig node's JSON text and back", "[gltf]") {
   Rig rig;
   rig.points = {{Eigen::Vector3d(0.1, 0.2, 0.3), "l_ear"}, {Eigen::Vector3d(-0.1, 0.2, 0.3), "r_ear"}};

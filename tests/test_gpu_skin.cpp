@@ -5,6 +5,7 @@
 
 #include "core/mesh/io.h"
 #include "core/mesh/mesh_info.h"
+#include "core/rig/additional_handles.h"
 #include "core/rig/pose_io.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
@@ -200,3 +201,59 @@ TEST_CASE("GPU skinning: identity pose returns the rest mesh; many handles fit",
   REQUIRE_THROWS_AS(pass.set_pose(identity_pose(10)), Error);
 }
 
+
+// Additional handles (core/rig/additional_handles.h, Jacobson 2013 7.3.3) on the arm: three bumps of
+// weight that do not partition unity, skinned linearly after every method. Their transforms: two
+// general affines (as FAST solves them) and one zero (unsolved). The CPU skin is checked against the
+// sum written here, the GPU against the CPU.
+TEST_CASE("GPU skinning with additional weights: arm, every method", "[gl][skin]") {
+  DFM_DATA_OR_SKIP(obj, "arm.obj");
+  DFM_DATA_OR_SKIP(tgf, "arm.tgf");
+  const TriMesh mesh = read_surface(obj);
+  Rig rig;
+  add_tgf_to_rig(rig, read_tgf(tgf), tgf);
+  const Eigen::MatrixXd& V = mesh.V;
+  const Eigen::MatrixXd W = test::inverse_distance_bone_weights(V, rig);
+  const double diag = bbox_diagonal(V);
+  Eigen::MatrixXd A(V.rows(), 3);
+  for (int e = 0; e < 3; ++e) {
+    const Eigen::RowVector3d c = V.row((e + 1) * V.rows() / 4);
+    for (int i = 0; i < V.rows(); ++i) A(i, e) = std::exp(-(V.row(i) - c).squaredNorm() / std::pow(0.15 * diag, 2));
+  }
+  PoseParams params = rest_pose_params(rig);
+  params.bone_rotation[1] = Eigen::Quaterniond(Eigen::AngleAxisd(0.6, Eigen::Vector3d(0, 0, 1)));
+  params.bone_twist_stretch[2] = {1.5, 1.2};
+  const int nh = num_handles(rig);
+  Eigen::Affine3d S0 = Eigen::Affine3d::Identity(), S1 = Eigen::Affine3d::Identity();
+  S0.matrix().topRows(3) << 0.2, -0.1, 0.05, 0.1 * diag, 0.03, 0.15, -0.02, -0.05 * diag, 0.0, 0.04, -0.1, 0.02 * diag;
+  S1.matrix().topRows(3) << -0.1, 0.0, 0.2, 0.0, 0.05, 0.1, 0.0, 0.08 * diag, 0.1, -0.1, 0.05, -0.03 * diag;
+  params.solved[nh] = S0;
+  params.solved[nh + 1] = S1;  // nh + 2 unsolved: zero
+  const Pose pose = skin_pose(rig, params, 3);
+  REQUIRE(pose.size() == nh + 3);
+  REQUIRE(pose.transforms[nh + 2].matrix().topRows(3).isZero());
+  const auto stbs = stbs_handles(rig, params.bone_twist_stretch);
+  const SkinBinding b = make_skin_binding(V, vertex_normals(V, mesh.F), W, rig, 0, {}, A);
+  REQUIRE(b.additional == 3);
+  const SkinBinding plain = make_skin_binding(V, Eigen::MatrixXd(), W, rig, 0);
+  const Pose rig_pose = evaluate_pose(rig, params);
+  // The additional term, written out: sum_e A_ie S_e v_i.
+  Eigen::MatrixXd extra = Eigen::MatrixXd::Zero(V.rows(), 3);
+  for (int i = 0; i < V.rows(); ++i)
+    for (int e = 0; e < 3; ++e) extra.row(i) += A(i, e) * (pose.transforms[nh + e] * Eigen::Vector3d(V.row(i).transpose())).transpose();
+  REQUIRE(extra.rowwise().norm().maxCoeff() > 0.01 * diag);  // the bumps really move the arm
+  gl::Context ctx;
+  gl::SkinPass pass(b);
+  pass.set_pose(pose, stbs);  // one twist/stretch record per rig handle: the additional ones have none
+  for (SkinMethod m : {SkinMethod::LBS, SkinMethod::DQS, SkinMethod::STBS, SkinMethod::STBS_DQS}) {
+    INFO("method " << skin_method_name(m) << ", " << ctx.renderer());
+    const SkinResult cpu = skin(m, b, pose, stbs);
+    REQUIRE((cpu.V - (skin(m, plain, rig_pose, stbs).V + extra)).rowwise().norm().maxCoeff() < 1e-12 * diag);
+    pass.run(m);
+    const SkinResult gpu = pass.read_back_result();
+    const double pos_err = (gpu.V - cpu.V).rowwise().norm().maxCoeff();
+    WARN(skin_method_name(m) << " with 3 additional weights: max |GPU - CPU| = " << pos_err / diag << " of the diagonal");
+    REQUIRE(pos_err <= 1e-5 * diag);
+    REQUIRE((gpu.N - cpu.N).rowwise().norm().maxCoeff() <= 1e-4);
+  }
+}

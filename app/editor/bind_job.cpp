@@ -16,6 +16,7 @@ std::string stage_label(const std::string& stage, bool tet_input) {
   if (stage == "solve") return "solving weights";
   if (stage == "mapping") return "mapping to the surface";
   if (stage == "endpoints") return "endpoint weights (joints)";
+  if (stage == "additional") return "additional weights";
   return stage;
 }
 }  // namespace

@@ -404,6 +404,13 @@ void Editor::draw_bind_section() {
     run_ui_command({"bind-monotone", monotone ? "on" : "off"});
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("No local maxima or minima away from the handles (Jacobson 2013, ch. 5); slower bind");
+  int additional = doc_.bind_settings().additional_weights;
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.4f);
+  if (ImGui::InputInt("Additional weights", &additional, 1, 5) && additional >= 0 && additional <= kMaxAdditionalWeights)
+    run_ui_command({"bind-additional", std::to_string(additional)});  // one undo step; at the next bind
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Extra weight functions whose transformations FAST solves (Jacobson 2013, 7.3.3):\n"
+                      "more freedom where fully constrained handles pinch. Takes effect at the next bind.");
   const bool can = available("bind");
   if (!can) ImGui::BeginDisabled();
   if (ImGui::Button(doc_.has_weights() ? "Rebind" : "Bind", ImVec2(-1, 28))) run_ui_command({"bind"});  // the worker

@@ -34,7 +34,6 @@ std::uint64_t manifold_signature(const Document& doc) {
   for (const SceneKey& k : keys) pose_keys |= !k.is_mesh();
   if (pose_keys && (!doc.has_weights() || doc.surface().num_vertices() == 0)) return 0;
   std::uint64_t h = kFnv1aBasis;
-  const std::vector<Pose> poses = doc.key_poses();
   for (size_t i = 0; i < keys.size(); ++i) {
     h = fnv1a(h, &keys[i].time, sizeof(double));
     h = fnv1a(h, &keys[i].inbetween, sizeof(InbetweenMethod));
@@ -45,7 +44,8 @@ std::uint64_t manifold_signature(const Document& doc) {
       h = mix_matrix(h, keys[i].mesh.V);
       h = mix_matrix(h, keys[i].mesh.F);
     } else {
-      for (const auto& T : poses[i].transforms) h = fnv1a(h, T.matrix().data(), sizeof(double) * 16);
+      for (const auto& T : doc.skin_pose(keys[i].params).transforms)  // with the additional handles'
+        h = fnv1a(h, T.matrix().data(), sizeof(double) * 16);
       for (const BoneTwistStretch& ts : keys[i].params.bone_twist_stretch)  // STBS reads the start twist too
         h = fnv1a(h, &ts.twist_start, sizeof(double));
     }

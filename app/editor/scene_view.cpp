@@ -243,7 +243,7 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       show_slice(doc, s);
     } else if (d.skin) {
       const PoseParams params = animate_skin ? animation_params(doc, doc.time()) : doc.pose_params();
-      d.skin->set_pose(animate_skin ? evaluate_pose(doc.rig(), params) : pose,
+      d.skin->set_pose(doc.skin_pose(params),  // the additional handles' transforms too
                        stbs_handles(doc.rig(), params.bone_twist_stretch));
       d.skin->run(doc.method());
       showing_animation_pose_ = animate_skin;
@@ -375,7 +375,7 @@ void SceneView::update_skin(const Document& doc) {
     return;
   }
   if (d.skin && doc.revision() == d.skin_revision) return;
-  const Eigen::MatrixXd& W = doc.weights();
+  const Eigen::MatrixXd& W = doc.skin_weights();  // with the additional weights' columns (the cache's key)
   // Every weight the bind computed (sparse rows on the GPU), unless the scene prunes to k.
   const int k = doc.bind_settings().max_influences;
   auto same = [](const auto& a, const auto& b) { return a.rows() == b.rows() && a.cols() == b.cols() && a == b; };
@@ -383,7 +383,9 @@ void SceneView::update_skin(const Document& doc) {
   const bool same_binding = d.skin && k == d.k && same(W, d.skin_W) && same(E, d.skin_E);
   if (!same_binding || !same(rest.V, d.skin_V) || !same(rest.F, d.skin_F)) {
     d.skin.reset();  // if the binding below throws, none: the rest shows with the error, and it is retried
-    d.skin = gpu_.make_skin(make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), W, doc.rig(), k, E), rest.F);
+    d.skin = gpu_.make_skin(make_skin_binding(rest.V, vertex_normals(rest.V, rest.F), doc.weights(), doc.rig(), k, E,
+                                              doc.additional_weights()),
+                            rest.F);
     d.skin_W = W;
     d.skin_E = E;
     d.skin_V = rest.V;

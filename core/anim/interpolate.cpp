@@ -4,6 +4,7 @@
 
 #include <Eigen/SVD>
 
+#include "core/rig/additional_handles.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -96,7 +97,19 @@ PoseParams interpolate_pose_params(const Rig& rig, const PoseParams& a, const Po
     for (const auto* m : {&a.solved, &b.solved})
       for (const auto& [h, T] : *m) ends[h] = T;
     for (const auto& [h, unused] : ends) {
-      if (h < 0 || h >= own_a.size() || h >= own_b.size()) continue;  // evaluate_pose ignores these too
+      if (h < 0) continue;
+      if (h >= own_a.size() || h >= own_b.size()) {
+        // An additional handle (additional_handles.h): its transforms blend linearly, as the
+        // subspace does (a rotation-aware blend of a zero matrix means nothing); unsolved is zero.
+        const auto at = [h = h](const PoseParams& p) {
+          const auto it = p.solved.find(h);
+          return it == p.solved.end() ? zero_transform() : it->second;
+        };
+        Eigen::Affine3d T = zero_transform();
+        T.matrix() = (1.0 - u) * at(a).matrix() + u * at(b).matrix();
+        out.solved[h] = T;
+        continue;
+      }
       out.solved[h] = affine(own_a.transforms[h], own_b.transforms[h]);
     }
   }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/bind/additional_weights.h"
 #include "core/bind/endpoint_weights.h"
 #include "core/bind/rigid_pieces.h"
 #include "core/util/error.h"
@@ -94,6 +95,21 @@ BindResult solve_weights(BindVolume volume, const BindOptions& opts, double prog
   return res;
 }
 
+// The additional weights (BindOptions::additional_weights) on the finished bind's volume.
+BindResult with_additional(BindResult res, const BindOptions& opts, Clock::time_point t_all) {
+  if (opts.additional_weights <= 0) return res;
+  const auto t0 = Clock::now();
+  if (opts.progress) opts.progress("additional", 0.99);
+  BindOptions o = opts;
+  o.progress = nullptr;  // a second solve: its own fractions would run the bar backwards
+  o.additional_weights = 0;
+  res.additional_weights = additional_weights(res, opts.additional_weights, o).weights;
+  res.report.additional_seconds = since(t0);
+  res.report.total_seconds = since(t_all);
+  if (opts.progress) opts.progress("done", 1.0);
+  return res;
+}
+
 }  // namespace
 
 Eigen::VectorXd tet_mask_from_user_vertices(const BindVolume& vol, const Eigen::VectorXd& m) {
@@ -129,7 +145,7 @@ BindResult bind_surface(const TriMesh& surface, const Rig& rig, const BindOption
   check_cancel(opts);
   BindVolume vol = build_bind_volume(surface, rig, opts.volume);
   if (vol.meshing_seconds == 0) vol.meshing_seconds = since(t0);
-  return solve_weights(std::move(vol), opts, kMeshingShare, t0, &rig);
+  return with_additional(solve_weights(std::move(vol), opts, kMeshingShare, t0, &rig), opts, t0);
 }
 
 BindResult bind_tet_mesh(const TetMesh& tets, const Rig& rig, const BindOptions& opts) {
@@ -138,7 +154,7 @@ BindResult bind_tet_mesh(const TetMesh& tets, const Rig& rig, const BindOptions&
   check_cancel(opts);
   BindVolume vol = bind_volume_from_tets(tets, rig);
   if (vol.meshing_seconds == 0) vol.meshing_seconds = since(t0);
-  return solve_weights(std::move(vol), opts, 0.05, t0, &rig);
+  return with_additional(solve_weights(std::move(vol), opts, 0.05, t0, &rig), opts, t0);
 }
 
 BindResult bind_on_volume(BindVolume volume, const BindOptions& opts) {

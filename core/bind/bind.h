@@ -24,16 +24,21 @@ struct BindOptions {
   // empty: mapped onto the volume once it is built (tet_mask_from_user_vertices).
   Eigen::VectorXd vertex_mask;
   // (stage, fraction of the whole bind in [0, 1]); stages: "meshing", "assembly", "factorization",
-  // "solve", "monotone" (BbwOptions::monotone), "mapping", "done". May be empty.
+  // "solve", "monotone" (BbwOptions::monotone), "mapping", "endpoints", "additional"
+  // (additional_weights), "done". May be empty.
   std::function<void(const std::string& stage, double fraction)> progress;
   const std::atomic<bool>* cancel = nullptr;  // throws dfm::Cancelled soon after it is set
   // With bones: also the STBS endpoint weights (endpoint_weights.h), a second solve over the joints.
   bool endpoint_weights = true;
+  // Additional weight functions (additional_weights.h, Jacobson 2013 7.3.3): bind_surface and
+  // bind_tet_mesh then solve the weights a second time with this many more handles (0: none).
+  int additional_weights = 0;
 };
 
 struct BindReport {
   double meshing_seconds = 0, assembly_seconds = 0, factorization_seconds = 0, solve_seconds = 0, total_seconds = 0;
   double endpoint_seconds = 0;  // the joint weights' solve (in total_seconds)
+  double additional_seconds = 0;  // the additional weights' solve (in total_seconds)
   int tet_vertices = 0, tets = 0, handles = 0;
   BbwStats bbw;  // iterations, KKT residual, factor size
   // On the user's vertices:
@@ -48,6 +53,8 @@ struct BindResult {
   // STBS endpoint weights on the user's vertices (#user vertices x #bones); empty without bones or
   // with BindOptions::endpoint_weights off (bind_on_volume: no rig, none).
   Eigen::MatrixXd endpoint_weights;
+  // #user vertices x BindOptions::additional_weights (additional_weights.h), or empty.
+  Eigen::MatrixXd additional_weights;
   BindReport report;
 };
 

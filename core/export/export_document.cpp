@@ -18,12 +18,15 @@ bool twisted_or_stretched(const PoseParams& p) {
 
 // Whether what the document shows differs from LBS of its poses: another method, or a twisted or
 // stretched bone in the current pose or a pose key.
-bool shows_more_than_lbs(const Document& doc) {
+bool skins_more_than_lbs(const Document& doc) {
   if (doc.method() != SkinMethod::LBS || twisted_or_stretched(doc.pose_params())) return true;
   for (const SceneKey& k : doc.keys())
     if (!k.is_mesh() && twisted_or_stretched(k.params)) return true;
   return false;
 }
+
+// ... or additional handles (baked: export_document.h).
+bool shows_more_than_lbs(const Document& doc) { return skins_more_than_lbs(doc) || doc.num_additional() > 0; }
 
 }  // namespace
 
@@ -61,7 +64,13 @@ GltfExportReport export_document_gltf(const Document& doc, const std::string& pa
   if (mesh_keys > 0)
     r.notes.push_back(std::to_string(mesh_keys) + " mesh key(s) left out: a glTF skin animates one mesh, so only the "
                       "pose keys are exported");
-  if (shows_more_than_lbs(doc))
+  if (doc.num_additional() > 0)
+    r.notes.push_back(std::to_string(doc.num_additional()) + " additional weights baked (glTF joint weights sum to 1): " +
+                      (r.residual_targets > 0 ? "the residual morph targets carry them at the keys and the current pose, "
+                                                "blending linearly in between"
+                                              : "the file plays the bind's weights alone (residual morph targets would "
+                                                "carry them)"));
+  if (skins_more_than_lbs(doc))
     r.notes.push_back(std::string("the document skins with ") + skin_method_name(doc.method()) +
                       (is_stbs(doc.method()) ? " (twist and stretch)" : "") +
                       "; glTF skinning is linear (LBS): " +

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/pose/fast_rig.h"
+#include "core/rig/additional_handles.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -54,9 +55,10 @@ FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, cons
                                   const Eigen::MatrixXd& W, const std::vector<HandleConstraint>& states,
                                   int iterations, PoseParams& params) {
   const int nh = num_handles(rig);
-  if (static_cast<int>(states.size()) != nh || W.cols() != nh)
+  if (static_cast<int>(states.size()) != nh || W.cols() < nh)
     throw Error("FAST posing: " + std::to_string(states.size()) + " handle states and " + std::to_string(W.cols()) +
                 " weight columns for a rig of " + std::to_string(nh) + " handles");
+  const int na = static_cast<int>(W.cols()) - nh;  // additional handles (additional_handles.h): free
   FastSolveReport report;
   Signature sig;
   sig.data[0] = V.data(), sig.data[1] = elements.data(), sig.data[2] = W.data();
@@ -70,8 +72,9 @@ FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, cons
     report.precomputed = true;
     report.precompute_seconds = seconds_since(t0);
   }
-  std::vector<FastConstraint> constraints(nh);
+  std::vector<FastConstraint> constraints(nh + na);
   for (int h = 0; h < nh; ++h) constraints[h] = {states[h], handle_anchor(rig, h)};
+  for (int h = nh; h < nh + na; ++h) constraints[h] = {HandleConstraint::Free, Eigen::Vector3d::Zero()};
   std::vector<FastJoint> joints = fast_joints(rig);
   if (!solver_ || !same_constraints(constraints, constraints_) || joints != joints_) {
     solver_ = std::make_unique<FastSolver>(*model_, constraints, joints);
@@ -82,13 +85,16 @@ FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, cons
   }
   PoseParams base = params;
   base.solved.clear();
-  const Pose given = evaluate_pose(rig, base);
-  Pose pose = evaluate_pose(rig, params);  // the warm start: last solved transforms where present
+  Pose given = evaluate_pose(rig, base);
+  given.transforms.resize(nh + na, zero_transform());  // set_targets reads one per handle
+  Pose pose = skin_pose(rig, params, na);  // the warm start: last solved transforms where present
   for (int h = 0; h < nh; ++h)
     if (states[h] == HandleConstraint::Fixed) pose.transforms[h] = given.transforms[h];
   // Targets where the parameters put each anchor: a bone dragged as IK keeps its target in its
   // translation, which the connected pose projects out.
-  solver_->set_targets(given, fast_targets(constraints, evaluate_handle_parameters(rig, base)));
+  Pose anchors = evaluate_handle_parameters(rig, base);
+  anchors.transforms.resize(nh + na, zero_transform());
+  solver_->set_targets(given, fast_targets(constraints, anchors));
   const auto t0 = std::chrono::steady_clock::now();
   solver_->iterate(pose, iterations);
   report.iterate_seconds = seconds_since(t0);
@@ -96,8 +102,8 @@ FastSolveReport FastPosing::solve(const Rig& rig, const Eigen::MatrixXd& V, cons
   report.clusters = model_->clusters;
   report.energy = fast_energy(*model_, pose);
   params.solved.clear();
-  for (int h = 0; h < nh; ++h)
-    if (states[h] != HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
+  for (int h = 0; h < nh + na; ++h)
+    if (h >= nh || states[h] != HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
   return report;
 }
 

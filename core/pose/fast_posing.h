@@ -27,7 +27,9 @@ struct FastSolveReport {
 
 class FastPosing {
  public:
-  // V, elements, W: the energy mesh (the surface with its triangles, or the bind's tets) and its weights.
+  // V, elements, W: the energy mesh (the surface with its triangles, or the bind's tets) and its weights;
+  // columns past the rig's handles are additional handles (additional_handles.h), always free, solved
+  // into params.solved[num_handles(rig) + e].
   // Fixed transforms come from evaluate_pose(params) without solved entries, position targets from
   // evaluate_handle_parameters; the skeleton's joints are constraints (fast_joints), so solved bones
   // stay connected. params.solved is rewritten to hold exactly the non-fixed handles' solved transforms.

@@ -17,7 +17,8 @@ namespace dfm {
 
 class PoseDynamics {
  public:
-  // V, elements, W: the energy mesh and its weights (as FastPosing::solve). `start`: the pose at rest
+  // V, elements, W: the energy mesh and its weights (as FastPosing::solve; columns past the rig's are
+  // additional handles, additional_handles.h). `start`: the pose at rest
   // at t = 0 (its solved transforms where present). Throws dfm::Error on mismatched sizes or bad options.
   PoseDynamics(const Rig& rig, const Eigen::MatrixXd& V, const Eigen::MatrixXi& elements, const Eigen::MatrixXd& W,
                const std::vector<HandleConstraint>& states, const FastDynamicsOptions& opts, double density,
@@ -33,7 +34,10 @@ class PoseDynamics {
   int steps() const { return steps_; }
 
  private:
-  std::vector<HandleConstraint> states_;
+  std::vector<FastConstraint> constraints(const Rig& rig) const;
+
+  std::vector<HandleConstraint> states_;  // the rig's, then Free for each additional handle
+  int nh_ = 0;                            // the rig's handles
   FastDynamicsOptions opts_;
   std::unique_ptr<FastModel> model_;
   std::unique_ptr<FastMass> mass_;

@@ -56,6 +56,15 @@ void bind_monotone(CommandContext& x, const CommandWords& w) {
   x.doc.set_bind_settings(b);
 }
 
+void bind_additional(CommandContext& x, const CommandWords& w) {
+  const double k = num(w, 1);
+  if (k != std::floor(k) || k < 0 || k > kMaxAdditionalWeights)
+    throw Error("bind-additional: K must be an integer in 0.." + std::to_string(kMaxAdditionalWeights) + ", got '" + w[1] + "'");
+  BindSettings b = x.doc.bind_settings();
+  b.additional_weights = static_cast<int>(k);
+  x.doc.set_bind_settings(b);
+}
+
 }  // namespace
 
 void add_rig_commands(std::vector<Command>& t) {
@@ -131,6 +140,7 @@ void add_rig_commands(std::vector<Command>& t) {
     return d.num_handles() > 0 ? std::string() : std::string("no handles (add a point, bones or a cage)");
   };
   add(t, "bind-monotone", "bind-monotone on|off", 1, 1, {word_arg()}, bind_monotone);
+  add(t, "bind-additional", "bind-additional K", 1, 1, {number_arg()}, bind_additional);
 }
 
 }  // namespace dfm::command_detail

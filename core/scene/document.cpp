@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/rig/additional_handles.h"
 #include "core/scene/document_parts.h"
 #include "core/scene/scene_file.h"
 #include "core/scene/scene_import.h"
@@ -18,7 +19,8 @@ bool Camera::operator==(const Camera& o) const {
   return position == o.position && target == o.target && up == o.up && fov_deg == o.fov_deg && ortho == o.ortho;
 }
 bool BindSettings::operator==(const BindSettings& o) const {
-  return volume == o.volume && max_influences == o.max_influences && monotone == o.monotone;
+  return volume == o.volume && max_influences == o.max_influences && monotone == o.monotone &&
+         additional_weights == o.additional_weights;
 }
 bool BindStats::operator==(const BindStats& o) const {
   return seconds == o.seconds && tet_vertices == o.tet_vertices && tets == o.tets && notes == o.notes;
@@ -65,6 +67,7 @@ void swap_parts(SceneData& a, SceneData& b, unsigned parts) {
     swap(a.weights, b.weights);
     swap(a.replaced_weights, b.replaced_weights);
     swap(a.endpoint_weights, b.endpoint_weights);
+    swap(a.additional_weights, b.additional_weights);
     swap(a.bind_stats, b.bind_stats);
   }
   if (parts & 32u) swap(a.mask, b.mask);
@@ -90,6 +93,7 @@ void copy_parts(const SceneData& from, SceneData& to, unsigned parts) {
     to.weights = from.weights;
     to.replaced_weights = from.replaced_weights;
     to.endpoint_weights = from.endpoint_weights;
+    to.additional_weights = from.additional_weights;
     to.bind_stats = from.bind_stats;
   }
   if (parts & 32u) to.mask = from.mask;
@@ -147,6 +151,10 @@ void Document::rig_edit(const std::string& name, const std::string& merge_target
                         const std::function<void(SceneData&)>& edit) {
   execute(name, kRig | kPose | kKeys | kWeights | kSettings, merge_target, [&](SceneData& s) {
     const int bones = s.rig.skeleton.num_bones();
+    // The additional handles' transforms sit past the rig's (additional_handles.h): new handles would
+    // take their indices, and their weights are cleared below anyway.
+    drop_additional_transforms(s.pose, dfm::num_handles(s.rig));
+    for (SceneKey& k : s.keys) drop_additional_transforms(k.params, dfm::num_handles(s.rig));
     edit(s);
     // Filters follow bone numbers: new bones are appended (no filter); a deletion renumbers, so clears them.
     if (s.rig.skeleton.num_bones() < bones) s.endpoint_filters.clear();
@@ -156,6 +164,7 @@ void Document::rig_edit(const std::string& name, const std::string& merge_target
       s.weights.resize(0, 0);
       s.replaced_weights.resize(0, 0);
       s.endpoint_weights.resize(0, 0);
+      s.additional_weights.resize(0, 0);
       s.bind_stats = {};
       weights_note_ = "rig changed after bind (" + name + "): weights cleared, bind again";
     }
@@ -331,7 +340,8 @@ void Document::clear() {
 
 // ---- bind results and settings ---------------------------------------------------------------------
 
-void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats, const Eigen::MatrixXd& endpoints) {
+void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats, const Eigen::MatrixXd& endpoints,
+                           const Eigen::MatrixXd& additional) {
   if (W.rows() != s_.surface.num_vertices() || W.cols() != num_handles())
     throw Error("weights are " + std::to_string(W.rows()) + " x " + std::to_string(W.cols()) + " but the scene has " +
                 std::to_string(s_.surface.num_vertices()) + " vertices and " + std::to_string(num_handles()) +
@@ -343,11 +353,15 @@ void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats, con
     throw Error("endpoint weights must be #V x #bones (" + std::to_string(W.rows()) + " x " +
                 std::to_string(s_.rig.skeleton.num_bones()) + ") in [0, 1], got " + std::to_string(endpoints.rows()) +
                 " x " + std::to_string(endpoints.cols()));
+  if (additional.size() > 0 && (additional.rows() != W.rows() || !additional.allFinite()))
+    throw Error("additional weights must be #V x k (" + std::to_string(W.rows()) + " rows) and finite, got " +
+                std::to_string(additional.rows()) + " x " + std::to_string(additional.cols()));
   execute("bind", kWeights, "", [&](SceneData& s) {
     const bool same_shape = s.weights.rows() == W.rows() && s.weights.cols() == W.cols();
     s.replaced_weights = same_shape ? std::move(s.weights) : Eigen::MatrixXd();
     s.weights = W;
     s.endpoint_weights = endpoints;
+    s.additional_weights = additional;
     s.bind_stats = stats;
     weights_note_.clear();
   });
@@ -355,6 +369,9 @@ void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats, con
 
 void Document::set_bind_settings(const BindSettings& b) {
   if (b.max_influences < 0) throw Error("max influences must be >= 0");
+  if (b.additional_weights < 0 || b.additional_weights > kMaxAdditionalWeights)
+    throw Error("additional weights must be in 0.." + std::to_string(kMaxAdditionalWeights) + ", got " +
+                std::to_string(b.additional_weights));
   if (b == s_.bind_settings) return;
   execute("bind settings", kSettings, "", [&](SceneData& s) { s.bind_settings = b; });
 }
@@ -389,6 +406,17 @@ const Eigen::MatrixXd& Document::skin_endpoints() const {
   }
   return endpoints_;
 }
+
+const Eigen::MatrixXd& Document::skin_weights() const {
+  if (num_additional() == 0) return s_.weights;
+  if (skin_weights_revision_ != skin_inputs_revision_) {
+    skin_weights_ = with_additional_weights(s_.weights, s_.additional_weights);
+    skin_weights_revision_ = skin_inputs_revision_;
+  }
+  return skin_weights_;
+}
+
+Pose Document::skin_pose(const PoseParams& params) const { return dfm::skin_pose(s_.rig, params, num_additional()); }
 
 void Document::set_inbetweens(int n) {
   if (n < 0 || n > 1000) throw Error("in-betweens must be in 0..1000 (got " + std::to_string(n) + ")");

@@ -48,11 +48,17 @@ struct Camera {
   bool operator==(const Camera& o) const;
 };
 
+// The most additional weight functions a bind makes (BindSettings::additional_weights).
+constexpr int kMaxAdditionalWeights = 100;
+
 // Options the bind is run with (the UI converts these to the bind module's options).
 struct BindSettings {
   VolumeOptions volume;
   int max_influences = 0;  // 0 = keep all; else keep the k largest weights per vertex (skin pruning)
   bool monotone = false;   // monotone weights: no local extrema away from the handles (BbwOptions::monotone)
+  // Additional weight functions (Jacobson 2013, 7.3.3; core/bind/additional_weights.h): k abstract
+  // handles FAST solves and nobody sets, computed with the bind (0: none). See additional_handles.h.
+  int additional_weights = 0;
   bool operator==(const BindSettings& o) const;
 };
 
@@ -134,6 +140,9 @@ struct SceneData {
   // #V x #bones STBS endpoint weights from the bind (core/bind/endpoint_weights.h), or empty: STBS then
   // projects onto each bone (weights not from a bind, scenes saved before).
   Eigen::MatrixXd endpoint_weights;
+  // #V x k additional weights from the bind (BindSettings::additional_weights then), or empty. Their
+  // handles' transforms are PoseParams::solved[num_handles(rig) + e] (core/rig/additional_handles.h).
+  Eigen::MatrixXd additional_weights;
   // Per bone, the curve its endpoint weights pass through (endpoint_filter.h; Fig. 6.9), or fewer
   // entries / empty ones: the identity. A skinning setting, kept across binds.
   std::vector<EndpointFilter> endpoint_filters;
@@ -196,6 +205,13 @@ class Document {
   const Eigen::MatrixXd& replaced_weights() const { return s_.replaced_weights; }
   // The bind's STBS endpoint weights (#V x #bones), or empty: STBS projects onto each bone.
   const Eigen::MatrixXd& endpoint_weights() const { return s_.endpoint_weights; }
+  // The bind's additional weights (#V x num_additional()), or empty.
+  const Eigen::MatrixXd& additional_weights() const { return s_.additional_weights; }
+  int num_additional() const { return has_weights() ? static_cast<int>(s_.additional_weights.cols()) : 0; }
+  // [weights | additional weights]: what skinning and FAST use (cached per change of the weights).
+  const Eigen::MatrixXd& skin_weights() const;
+  // skin_pose (additional_handles.h) of `params`: one transform per rig handle, then per additional one.
+  Pose skin_pose(const PoseParams& params) const;
   const std::vector<EndpointFilter>& endpoint_filters() const { return s_.endpoint_filters; }
   // The endpoint weights skinning uses (#V x #bones): the bind's, or the projection onto each bone,
   // through each bone's filter; empty when there is no filter and no bind's (skin.h then projects).
@@ -295,7 +311,9 @@ class Document {
 
   // The result of a bind (run elsewhere): #V x num_handles, rows should sum to 1.
   // endpoints: the bind's STBS endpoint weights (#V x #bones, in [0, 1]) or empty (the projection).
-  void set_weights(const Eigen::MatrixXd& W, const BindStats& stats, const Eigen::MatrixXd& endpoints = {});
+  // additional: the bind's additional weights (#V x k, finite), or empty.
+  void set_weights(const Eigen::MatrixXd& W, const BindStats& stats, const Eigen::MatrixXd& endpoints = {},
+                   const Eigen::MatrixXd& additional = {});
   void set_bind_settings(const BindSettings& s);
   void set_method(SkinMethod m);
   // Bone `bone`'s endpoint filter (checked by check_endpoint_filter; empty: none). Merges within a gesture.
@@ -459,6 +477,8 @@ class Document {
   std::uint64_t skin_inputs_revision_ = 0;  // ... or the weights or settings (skin_endpoints' cache)
   mutable std::uint64_t endpoints_revision_ = ~0ull;
   mutable Eigen::MatrixXd endpoints_;
+  mutable std::uint64_t skin_weights_revision_ = ~0ull;
+  mutable Eigen::MatrixXd skin_weights_;
   FastSolveReport last_fast_;
   std::unique_ptr<SculptSession> sculpt_;
   struct SculptSolver;  // the factored region choice (document_sculpt.cpp)

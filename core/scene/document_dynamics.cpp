@@ -32,7 +32,7 @@ void Document::step_dynamics_in(SceneData& s) {
     if (dyn_ && in == dyn_inputs_) {
       dyn_->restart(s.rig, s.pose);
     } else {
-      dyn_ = std::make_unique<PoseDynamics>(s.rig, s.surface.V, s.surface.F, s.weights, in.posing.states,
+      dyn_ = std::make_unique<PoseDynamics>(s.rig, s.surface.V, s.surface.F, skin_weights(), in.posing.states,
                                             dynamics_options(s.posing), s.posing.density, s.pose);
       dyn_inputs_ = in;
     }
@@ -84,10 +84,10 @@ int Document::simulate(double fps, double from, double to) {
   }
   const std::vector<HandleConstraint> states = handle_states();
   if (!fast_) fast_ = std::make_unique<FastPosing>();
-  last_fast_ = fast_->solve(s_.rig, s_.surface.V, s_.surface.F, s_.weights, states, s_.posing.iterations, frames[0].params);
+  last_fast_ = fast_->solve(s_.rig, s_.surface.V, s_.surface.F, skin_weights(), states, s_.posing.iterations, frames[0].params);
   PosingSettings p = s_.posing;
   p.dt = 1 / fps;
-  PoseDynamics dyn(s_.rig, s_.surface.V, s_.surface.F, s_.weights, states, dynamics_options(p), p.density,
+  PoseDynamics dyn(s_.rig, s_.surface.V, s_.surface.F, skin_weights(), states, dynamics_options(p), p.density,
                    frames[0].params);
   for (int i = 1; i <= n; ++i) dyn.step(s_.rig, frames[i].params);
 

@@ -179,7 +179,7 @@ void Document::solve_fast(SceneData& s) {
   if (!fast_) fast_ = std::make_unique<FastPosing>();
   const std::vector<HandleConstraint> states =
       static_cast<int>(s.posing.states.size()) == dfm::num_handles(s.rig) ? s.posing.states : default_constraint_states(s.rig);
-  last_fast_ = fast_->solve(s.rig, s.surface.V, s.surface.F, s.weights, states, s.posing.iterations, s.pose);
+  last_fast_ = fast_->solve(s.rig, s.surface.V, s.surface.F, skin_weights(), states, s.posing.iterations, s.pose);
 }
 
 void Document::set_posing(const PosingSettings& p) {

@@ -80,6 +80,7 @@ void Document::install_surface(TriMesh surface, const std::string& path, TetMesh
             s.weights.resize(0, 0);
             s.replaced_weights.resize(0, 0);
             s.endpoint_weights.resize(0, 0);
+            s.additional_weights.resize(0, 0);
             s.bind_stats = {};
             s.mask.resize(0);
             s.rig.regions.clear();

@@ -48,7 +48,7 @@ SkinBinding pose_binding(const Document& doc) {
     throw Error("pose keys need weights: " + (doc.weights_note().empty() ? std::string("not bound") : doc.weights_note()) +
                 "; bind first");
   return make_skin_binding(doc.surface().V, Eigen::MatrixXd(), doc.weights(), doc.rig(),
-                           doc.bind_settings().max_influences, doc.skin_endpoints());
+                           doc.bind_settings().max_influences, doc.skin_endpoints(), doc.additional_weights());
 }
 
 KeyTrack pose_key_track(const Document& doc) {
@@ -74,7 +74,7 @@ PoseParams animation_params(const Document& doc, double t) {
 Pose animation_pose(const Document& doc, double t) { return evaluate_pose(doc.rig(), animation_params(doc, t)); }
 
 Eigen::MatrixXd skin_params(const Document& doc, const SkinBinding& binding, const PoseParams& params) {
-  return skin(doc.method(), binding, evaluate_pose(doc.rig(), params), stbs_handles(doc.rig(), params.bone_twist_stretch)).V;
+  return skin(doc.method(), binding, doc.skin_pose(params), stbs_handles(doc.rig(), params.bone_twist_stretch)).V;
 }
 
 namespace {

@@ -261,7 +261,7 @@ void read_keys(const SceneReader& R, const json& j, long long version, SceneData
     SceneKey k;
     k.time = R.number(R.field(keys[i], "time", c), c + ".time");
     if (!s.keys.empty() && !(k.time > s.keys.back().time)) R.fail("'" + c + ".time' is not after the previous key");
-    k.params = R.params(R.field(keys[i], "params", c), s.rig, c + ".params");
+    k.params = R.params(R.field(keys[i], "params", c), s.rig, c + ".params", s.additional_weights.cols());
     if (keys[i].is_object() && keys[i].contains("mesh")) {
       if (version < 2) R.fail("'" + c + ".mesh' needs scene format version 2 (the file says " + std::to_string(version) + ")");
       read_mesh_key(R, keys[i]["mesh"], c + ".mesh", k);
@@ -350,7 +350,25 @@ void read_bind_settings(const SceneReader& R, const json& j, BindSettings& out) 
       static_cast<int>(R.integer(R.field(bs, "max_influences", "bind_settings"), "bind_settings.max_influences", 0, 1 << 20));
   // Optional: scenes from before monotone weights bind without them.
   out.monotone = bs.contains("monotone") && R.boolean(bs["monotone"], "bind_settings.monotone");
+  // Optional: scenes from before additional weights bind without them.
+  out.additional_weights =
+      bs.contains("additional_weights")
+          ? static_cast<int>(R.integer(bs["additional_weights"], "bind_settings.additional_weights", 0, kMaxAdditionalWeights))
+          : 0;
   read_volume_segmentation(R, bs, out.volume);
+}
+
+// The bind's additional weights (optional: #surface vertices x k, finite), before the weights they
+// belong to are read: the poses' solved transforms may name their handles. read_bind_results checks
+// that the weights are there.
+void read_additional_weights(const SceneReader& R, const json& j, SceneData& s) {
+  if (!j.contains("additional_weights")) return;
+  s.additional_weights = R.f64(j["additional_weights"], "additional_weights");
+  const Eigen::MatrixXd& A = s.additional_weights;
+  if (A.size() > 0 && (A.rows() != s.surface.V.rows() || A.cols() > kMaxAdditionalWeights))
+    R.fail("'additional_weights' is " + std::to_string(A.rows()) + " x " + std::to_string(A.cols()) +
+           ", expected #vertices x k = " + std::to_string(s.surface.V.rows()) + " x (at most " +
+           std::to_string(kMaxAdditionalWeights) + ")");
 }
 
 // The bind's weights (empty, or #surface vertices x #handles) and statistics.
@@ -370,6 +388,8 @@ void read_bind_results(const SceneReader& R, const json& j, SceneData& s) {
              ", expected #vertices x #bones = " + std::to_string(nv) + " x " +
              std::to_string(s.rig.skeleton.num_bones()) + " in [0, 1] beside the weights");
   }
+  if (s.additional_weights.size() > 0 && s.weights.size() == 0)
+    R.fail("'additional_weights' without 'weights': they belong to a bind");
   const json& st = R.field(j, "bind_stats", "scene");
   s.bind_stats.seconds = R.number(R.field(st, "seconds", "bind_stats"), "bind_stats.seconds");
   s.bind_stats.tet_vertices =
@@ -576,12 +596,14 @@ void write_scene(const std::string& json_path, const SceneData& s) {
                         {"robust", robust_name(s.bind_settings.volume.robust)},
                         {"max_influences", s.bind_settings.max_influences},
                         {"monotone", s.bind_settings.monotone},
+                        {"additional_weights", s.bind_settings.additional_weights},
                         {"segmentation", segmentation_name(s.bind_settings.volume.segmentation)},
                         {"cut", {{"gamma", s.bind_settings.volume.cut.gamma},
                                  {"sigma", s.bind_settings.volume.cut.sigma},
                                  {"surface_factor", s.bind_settings.volume.cut.surface_factor}}}};
   j["weights"] = blob.add(s.weights);
   if (s.endpoint_weights.size() > 0) j["endpoint_weights"] = blob.add(s.endpoint_weights);
+  if (s.additional_weights.size() > 0) j["additional_weights"] = blob.add(s.additional_weights);
   j["bind_stats"] = {{"seconds", s.bind_stats.seconds},
                      {"tet_vertices", s.bind_stats.tet_vertices},
                      {"tets", s.bind_stats.tets},
@@ -618,7 +640,8 @@ SceneData read_scene(const std::string& path) {
   read_surface(R, j, s);
   read_tets(R, j, s);
   read_rig(R, j, s.surface.V.rows(), s.rig);
-  s.pose = R.params(R.field(j, "pose", "scene"), s.rig, "pose");
+  read_additional_weights(R, j, s);  // before the poses: their solved transforms may name its handles
+  s.pose = R.params(R.field(j, "pose", "scene"), s.rig, "pose", s.additional_weights.cols());
   read_keys(R, j, version, s);
   read_space_time_edits(R, j, s);
   try {

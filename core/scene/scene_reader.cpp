@@ -159,7 +159,7 @@ void SceneReader::check_indices(const Eigen::MatrixXi& M, long long n, const std
     fail("'" + ctx + "' has an index out of range (must be in [0, " + std::to_string(n) + "))");
 }
 
-PoseParams SceneReader::params(const json& j, const Rig& rig, const std::string& ctx) const {
+PoseParams SceneReader::params(const json& j, const Rig& rig, const std::string& ctx, long long additional) const {
   PoseParams p;
   const long long nb = rig.skeleton.num_bones(), np = num_point_handles(rig), nc = num_cage_vertices(rig),
                   nr = static_cast<long long>(rig.regions.size());
@@ -184,7 +184,7 @@ PoseParams SceneReader::params(const json& j, const Rig& rig, const std::string&
   if (j.contains("solved")) {  // optional: scenes saved before FAST posing have none
     const std::string c = ctx + ".solved";
     const json& a = array(j["solved"], c, -1);
-    const long long nh = num_handles(rig);
+    const long long nh = num_handles(rig) + additional;
     for (size_t i = 0; i < a.size(); ++i) {
       const std::string ci = c + "[" + std::to_string(i) + "]";
       const double h = number(field(a[i], "handle", ci), ci + ".handle");

@@ -44,8 +44,9 @@ class SceneReader {
   // Every entry of M in [0, n).
   void check_indices(const Eigen::MatrixXi& M, long long n, const std::string& ctx) const;
 
-  // Pose parameters sized to rig.
-  PoseParams params(const json& j, const Rig& rig, const std::string& ctx) const;
+  // Pose parameters sized to rig; solved transforms may name the rig's handles and `additional` more
+  // (the additional handles, core/rig/additional_handles.h).
+  PoseParams params(const json& j, const Rig& rig, const std::string& ctx, long long additional = 0) const;
 
  private:
   template <class Scalar>

@@ -18,7 +18,7 @@ namespace {
 
 TriMesh skinned(const Document& doc, const SkinBinding& binding, const PoseParams& params) {
   TriMesh out;
-  SkinResult r = skin(doc.method(), binding, evaluate_pose(doc.rig(), params), stbs_handles(doc.rig(), params.bone_twist_stretch));
+  SkinResult r = skin(doc.method(), binding, doc.skin_pose(params), stbs_handles(doc.rig(), params.bone_twist_stretch));
   out.V = std::move(r.V);
   out.F = doc.surface().F;
   out.N = std::move(r.N);
@@ -28,7 +28,7 @@ TriMesh skinned(const Document& doc, const SkinBinding& binding, const PoseParam
 SkinBinding binding_of(const Document& doc) {
   if (!doc.has_weights()) throw Error("the scene has no weights: " + doc.weights_note() + " (run: bind)");
   return make_skin_binding(doc.surface().V, vertex_normals(doc.surface().V, doc.surface().F), doc.weights(),
-                           doc.rig(), doc.bind_settings().max_influences, doc.skin_endpoints());
+                           doc.rig(), doc.bind_settings().max_influences, doc.skin_endpoints(), doc.additional_weights());
 }
 
 // The frame without an animation (fewer than two keys): the one key (its mesh, or its pose skinned),

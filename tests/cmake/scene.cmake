@@ -32,3 +32,5 @@ dfm_test(test_transfer_weights_script SOURCES test_transfer_weights_script.cpp L
 target_compile_definitions(test_transfer_weights_script PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 # Space-time edits (issue 35): edit-region / edit-drag, the scene round trip, undo, hostile input.
 dfm_test(test_space_time_script SOURCES test_space_time_script.cpp LIBS dfm_scene)
+# Additional weights (Jacobson 2013, 7.3.3) in the document's bind, FAST, skinning and scene file.
+dfm_test(test_additional_weights_document SOURCES test_additional_weights_document.cpp LIBS dfm_scene)
