@@ -139,6 +139,40 @@ TEST_CASE("a bind with additional weights: originals unchanged, FAST solves the 
   CHECK(doc.pose_params().solved.count(nh) == 0);
 }
 
+TEST_CASE("a rebind that changes the additional weights leaves their transforms unsolved in the pose and keys",
+          "[weights][additional]") {
+  Document doc;
+  cigar_document(doc);
+  run_command(doc, {"bind-additional", "4"});
+  run_bind_blocking(doc);
+  bend(doc);
+  doc.set_key(0);
+  const int nh = doc.num_handles();
+  auto extras = [&](const PoseParams& p) {
+    int n = 0;
+    for (const auto& [h, T] : p.solved) n += h >= nh;
+    return n;
+  };
+  REQUIRE(extras(doc.pose_params()) == 4);
+  REQUIRE(extras(doc.keys()[0].params) == 4);
+  // The same bind again: the same weight functions, so their solved transforms still apply.
+  run_bind_blocking(doc);
+  CHECK(extras(doc.pose_params()) == 4);
+  CHECK(extras(doc.keys()[0].params) == 4);
+  // Other functions: transforms solved for the old ones would skin the new ones wrongly; they go, so
+  // the key shows the original bind's skin (zero transforms) until FAST solves again.
+  run_command(doc, {"bind-additional", "2"});
+  run_bind_blocking(doc);
+  REQUIRE(doc.num_additional() == 2);
+  CHECK(extras(doc.pose_params()) == 0);
+  CHECK(extras(doc.keys()[0].params) == 0);
+  CHECK((posed_surface(doc).V - lbs(doc.surface().V, doc.weights(), doc.pose())).cwiseAbs().maxCoeff() < 1e-12);
+  // One undo step: the transforms come back with the old weights.
+  doc.undo();
+  CHECK(doc.num_additional() == 4);
+  CHECK(extras(doc.keys()[0].params) == 4);
+}
+
 TEST_CASE("additional weights in the scene file: bit-exact round trip, old scenes, malformed values",
           "[weights][additional][scene]") {
   test::ScratchDir dir("additional_weights_scene");

@@ -356,8 +356,16 @@ void Document::set_weights(const Eigen::MatrixXd& W, const BindStats& stats, con
   if (additional.size() > 0 && (additional.rows() != W.rows() || !additional.allFinite()))
     throw Error("additional weights must be #V x k (" + std::to_string(W.rows()) + " rows) and finite, got " +
                 std::to_string(additional.rows()) + " x " + std::to_string(additional.cols()));
-  execute("bind", kWeights, "", [&](SceneData& s) {
+  execute("bind", kWeights | kPose | kKeys, "", [&](SceneData& s) {
     const bool same_shape = s.weights.rows() == W.rows() && s.weights.cols() == W.cols();
+    // Solved transforms belong to the weight functions they were solved for: new additional weights
+    // start unsolved (zero, additional_handles.h) in the pose and every key, until FAST solves them.
+    const bool same_additional = s.additional_weights.rows() == additional.rows() &&
+                                 s.additional_weights.cols() == additional.cols() && s.additional_weights == additional;
+    if (!same_additional) {
+      drop_additional_transforms(s.pose, dfm::num_handles(s.rig));
+      for (SceneKey& k : s.keys) drop_additional_transforms(k.params, dfm::num_handles(s.rig));
+    }
     s.replaced_weights = same_shape ? std::move(s.weights) : Eigen::MatrixXd();
     s.weights = W;
     s.endpoint_weights = endpoints;
