@@ -14,6 +14,7 @@
 #include "core/anim/key_distance.h"
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
+#include "core/anim/slice_table.h"
 #include "core/anim/transition.h"
 #include "core/bind/handle_geometry.h"
 #include "core/mesh/io.h"
@@ -78,7 +79,7 @@ void print(const char* what, const Quality& q) {
 TransitionOptions options;
 
 // The documented field's zero set at u (transition.h: aligned keys, no pairs), by marching tetrahedra
-// (six per grid cube, Freudenthal) on a grid whose signed distances d_s, d_t are given: its triangles,
+// (six per grid cube, Freudenthal; slice_table.h's cases) on a grid whose signed distances d_s, d_t are given: its triangles,
 // for the Euler characteristic only (orientation not kept).
 Eigen::MatrixXi zero_set_triangles(const Eigen::Array3i& n, const Eigen::VectorXd& d_s, const Eigen::VectorXd& d_t, double u) {
   const Eigen::VectorXd f = (1 - u) * d_s + u * d_t;
@@ -94,18 +95,17 @@ Eigen::MatrixXi zero_set_triangles(const Eigen::Array3i& n, const Eigen::VectorX
     for (int j = 0; j + 1 < n[1]; ++j)
       for (int k = 0; k + 1 < n[2]; ++k)
         for (const auto& o : order) {
-          int c[3] = {i, j, k}, corner[4] = {id(i, j, k)}, in[4], out[4], ni = 0, no = 0;
+          int c[3] = {i, j, k}, corner[4] = {id(i, j, k)}, index = 0;
           for (int s = 0; s < 3; ++s) ++c[o[s]], corner[s + 1] = id(c[0], c[1], c[2]);
-          for (int q : corner) (f[q] < 0 ? in[ni++] : out[no++]) = q;
-          if (ni == 0 || no == 0) continue;
-          if (ni == 1 || no == 1) {
-            const int a = ni == 1 ? in[0] : out[0];
-            const int* other = ni == 1 ? out : in;
-            tris.push_back({vertex(a, other[0]), vertex(a, other[1]), vertex(a, other[2])});
-          } else {
-            const int q[4] = {vertex(in[0], out[0]), vertex(in[0], out[1]), vertex(in[1], out[1]), vertex(in[1], out[0])};
-            tris.push_back({q[0], q[1], q[2]});
-            tris.push_back({q[0], q[2], q[3]});
+          for (int q = 0; q < 4; ++q) index |= (f[corner[q]] >= 0) << q;
+          const SliceCase& cs = slice_table()[index];
+          for (int t = 0; t < cs.num_triangles; ++t) {
+            Eigen::RowVector3i tri;
+            for (int e = 0; e < 3; ++e) {
+              const auto& edge = kSliceEdges[cs.triangles[t][e]];
+              tri[e] = vertex(corner[edge[0]], corner[edge[1]]);
+            }
+            tris.push_back(tri);
           }
         }
   Eigen::MatrixXi F(static_cast<Eigen::Index>(tris.size()), 3);

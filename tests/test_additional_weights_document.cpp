@@ -66,6 +66,15 @@ void bend(Document& doc) {
   doc.translate_handle(1, Vector3d(-1.0, 1.5, 0));
 }
 
+// The cigar bound with 4 additional weights, bent by FAST and keyed at 0.
+void keyed_bent_cigar(Document& doc) {
+  cigar_document(doc);
+  run_command(doc, {"bind-additional", "4"});
+  run_bind_blocking(doc);
+  bend(doc);
+  doc.set_key(0);
+}
+
 }  // namespace
 
 TEST_CASE("a bind with additional weights: originals unchanged, FAST solves the extras, the skin is their sum",
@@ -142,11 +151,7 @@ TEST_CASE("a bind with additional weights: originals unchanged, FAST solves the 
 TEST_CASE("a rebind that changes the additional weights leaves their transforms unsolved in the pose and keys",
           "[weights][additional]") {
   Document doc;
-  cigar_document(doc);
-  run_command(doc, {"bind-additional", "4"});
-  run_bind_blocking(doc);
-  bend(doc);
-  doc.set_key(0);
+  keyed_bent_cigar(doc);
   const int nh = doc.num_handles();
   auto extras = [&](const PoseParams& p) {
     int n = 0;
@@ -177,11 +182,7 @@ TEST_CASE("additional weights in the scene file: bit-exact round trip, old scene
           "[weights][additional][scene]") {
   test::ScratchDir dir("additional_weights_scene");
   Document doc;
-  cigar_document(doc);
-  run_command(doc, {"bind-additional", "4"});
-  run_bind_blocking(doc);
-  bend(doc);
-  doc.set_key(0);
+  keyed_bent_cigar(doc);
   const std::string path = dir / "cigar.scene.json";
   doc.save_scene(path);
 
