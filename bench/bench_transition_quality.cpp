@@ -1,7 +1,11 @@
 // How transition in-betweens look (issue 30): for each pair of keys, the keys and the slices at
 // t = 0.25, 0.5, 0.75 measured the same way: triangles, the angle between edge-neighbouring
 // triangles' normals (median, 90th, 99th percentile), the share of triangles with a corner under 1,
-// 5 and 10 degrees; then the Euler characteristic over t = 0, 0.05, ..., 1 and the build's stages.
+// 5 and 10 degrees; then the Euler characteristic over t = 0, 0.05, ..., 1 and the build's stages;
+// then the documented field's own zero set on a grid (Euler characteristic over u, and the same
+// measures at u = 0.25, 0.5, 0.75), which tells the field's roughness from the sampling's.
+// Arguments: [all|bunny|torus|spheres|teddy] [layers] [spacing] [grid spacing in lattice spacings,
+// default 0.5].
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,6 +13,7 @@
 #include <map>
 #include <string>
 #include <vector>
+
 
 #include "core/anim/key_alignment.h"
 #include "core/anim/key_distance.h"
@@ -77,11 +82,14 @@ void print(const char* what, const Quality& q) {
 }
 
 TransitionOptions options;
+double grid_factor = 0.5;  // the field's grid spacing, in the middle lattice's
 
 // The documented field's zero set at u (transition.h: aligned keys, no pairs), by marching tetrahedra
-// (six per grid cube, Freudenthal; slice_table.h's cases) on a grid whose signed distances d_s, d_t are given: its triangles,
-// for the Euler characteristic only (orientation not kept).
-Eigen::MatrixXi zero_set_triangles(const Eigen::Array3i& n, const Eigen::VectorXd& d_s, const Eigen::VectorXd& d_t, double u) {
+// (six per grid cube, Freudenthal; slice_table.h's cases) on a grid whose signed distances d_s, d_t
+// are given: its triangles, and with the grid's points G also its vertices V and the triangles
+// oriented toward the positive side (else the orientation is not kept).
+Eigen::MatrixXi zero_set_triangles(const Eigen::Array3i& n, const Eigen::VectorXd& d_s, const Eigen::VectorXd& d_t, double u,
+                                   const Eigen::MatrixXd* G = nullptr, Eigen::MatrixXd* V = nullptr) {
   const Eigen::VectorXd f = (1 - u) * d_s + u * d_t;
   auto id = [&](int i, int j, int k) { return (i * n[1] + j) * n[2] + k; };
   static const int order[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
@@ -105,21 +113,40 @@ Eigen::MatrixXi zero_set_triangles(const Eigen::Array3i& n, const Eigen::VectorX
               const auto& edge = kSliceEdges[cs.triangles[t][e]];
               tri[e] = vertex(corner[edge[0]], corner[edge[1]]);
             }
+            if (G) {  // normals toward the positive side
+              int pos = -1, neg = -1;
+              for (int q = 0; q < 4; ++q) (f[corner[q]] >= 0 ? pos : neg) = corner[q];
+              auto p = [&](int e) {
+                const auto& edge = kSliceEdges[cs.triangles[t][e]];
+                const double s = f[corner[edge[0]]] / (f[corner[edge[0]]] - f[corner[edge[1]]]);
+                return Eigen::RowVector3d((1 - s) * G->row(corner[edge[0]]) + s * G->row(corner[edge[1]]));
+              };
+              const Eigen::RowVector3d nrm = (p(1) - p(0)).cross(p(2) - p(0));
+              if (nrm.dot(G->row(pos) - G->row(neg)) < 0) std::swap(tri[1], tri[2]);
+            }
             tris.push_back(tri);
           }
         }
   Eigen::MatrixXi F(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t t = 0; t < tris.size(); ++t) F.row(static_cast<Eigen::Index>(t)) = tris[t];
+  if (G && V) {
+    V->resize(static_cast<Eigen::Index>(crossing.size()), 3);
+    for (const auto& [e, v] : crossing) {
+      const double s = f[e.first] / (f[e.first] - f[e.second]);
+      V->row(v) = (1 - s) * G->row(e.first) + s * G->row(e.second);
+    }
+  }
   return F;
 }
 
-// The Euler characteristic of the documented field's zero set over u = 0, 0.05, ..., 1 on a grid of
-// half the middle lattice's spacing: where it leaves the keys' range, the spurious topology is the
-// field's, not the triangulation's.
+// The documented field's zero set on a grid of grid_factor times the middle lattice's spacing: its
+// Euler characteristic over u = 0, 0.05, ..., 1 (where it leaves the keys' range, the spurious
+// topology is the field's, not the triangulation's) and its measures at u = 0.25, 0.5, 0.75 (what
+// the field looks like sampled that finely).
 void print_field_euler(const TriMesh& a, const TriMesh& b) {
   const KeyPlacement p = key_placement(solid_moments(a.V, a.F), solid_moments(b.V, b.F));
   const Eigen::MatrixXd bV = options.align ? to_source_frame(p, b.V) : b.V;
-  const double h = 0.5 * options.spacing * std::min(mean_edge_length(a.V, a.F), mean_edge_length(b.V, b.F));
+  const double h = grid_factor * options.spacing * std::min(mean_edge_length(a.V, a.F), mean_edge_length(b.V, b.F));
   const Eigen::RowVector3d lo = a.V.colwise().minCoeff().cwiseMin(bV.colwise().minCoeff()).array() - 2 * h;
   const Eigen::RowVector3d hi = a.V.colwise().maxCoeff().cwiseMax(bV.colwise().maxCoeff()).array() + 2 * h;
   const Eigen::Array3i n = ((hi - lo) / h).array().ceil().cast<int>().transpose() + 1;
@@ -131,6 +158,13 @@ void print_field_euler(const TriMesh& a, const TriMesh& b) {
   std::printf("  the documented field's zero set, grid %.4g:     ", h);
   for (int i = 0; i <= 20; ++i) std::printf(" %d", dfm::test::euler_characteristic(zero_set_triangles(n, d_s, d_t, i / 20.0)));
   std::printf("\n");
+  for (double u : {0.25, 0.5, 0.75}) {
+    Eigen::MatrixXd V;
+    const Eigen::MatrixXi F = zero_set_triangles(n, d_s, d_t, u, &G, &V);
+    char what[32];
+    std::snprintf(what, sizeof what, "u = %.2f", u);
+    print(what, quality(V, F));
+  }
 }
 
 void run(const char* name, const TriMesh& a, const TriMesh& b) {
@@ -162,6 +196,7 @@ int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "all";
   if (argc > 2) options.layers = std::atoi(argv[2]);
   if (argc > 3) options.spacing = std::atof(argv[3]);
+  if (argc > 4) grid_factor = std::atof(argv[4]);
   const std::string dir = DFM_DATA_DIR;
   if (which == "all" || which == "bunny")
     run("bunny to 3holes", dfm::test::into_unit_box(read_surface(dir + "/bunny.off")),
