@@ -20,6 +20,7 @@
 #include "app/editor/paint_tool.h"
 #include "app/editor/pose_tool.h"
 #include "app/editor/sculpt_tool.h"
+#include "app/editor/space_time_tool.h"
 #include "core/scene/command.h"
 #include "core/scene/script.h"
 #include "tests/mock_render_backend.h"
@@ -1145,4 +1146,110 @@ TEST_CASE("scene view: a space-time drag frame keeps the interval's topology and
   REQUIRE(scene.showing_slice());
   REQUIRE(document_manifold(doc).V.col(3) != test_keys_t);
   REQUIRE(scene.vertex_time_count() > times_before);
+}
+
+TEST_CASE("space-time tool: the panel's setup goes on the region line; a Ctrl-drag retimes (the viewport's width the "
+          "window) in one undo step, a refused retime keeps the last accepted one", "[editor][scene_view][space-time]") {
+  Document doc;
+  test::make_keyed(doc);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  ViewSettings vs;
+  doc.set_time(1.0);
+  scene.sync(doc, vs);
+  REQUIRE(scene.showing_slice());
+  view::Camera cam;
+  cam.width = 800, cam.height = 600;
+  view::frame_box(cam, Vector3d(-2, -1, -1), Vector3d(2, 1.6, 1));
+  REQUIRE(camera_forward(cam).z() < -0.9);  // looking at the +z side
+  // A point on the +x end's front at t = 1 (in the lifted part), picked where it shows.
+  const TriMesh frame = posed_surface(doc);
+  const Eigen::RowVector3d front(1.6, 0.3, 0.6);
+  int v = 0;
+  for (int i = 1; i < frame.V.rows(); ++i)
+    if ((frame.V.row(i) - front).norm() < (frame.V.row(v) - front).norm()) v = i;
+  const Eigen::Vector2d at = view::project_to_pixel(cam, frame.V.row(v).transpose()).head<2>();
+
+  editor::SpaceTimeTool tool;
+  tool.set_region(0.25, 0.4, 1.6);
+  tool.set_setup(LaplacianWeights::Equal, 2.0, false);
+  std::vector<CommandWords> lines;
+  const editor::SpaceTimeTool::Run run = [&](const CommandWords& w) {
+    lines.push_back(w);
+    run_command(doc, w);
+    return true;
+  };
+  editor::SpaceTimeTool::Input in;
+  in.hovered = true;
+  in.mouse = at;
+  in.clicked = true, in.new_region = true;
+  CHECK(tool.update(doc, scene, cam, in, run).empty());
+  REQUIRE(lines.size() == 1);
+  REQUIRE(lines[0].size() == 9);
+  CHECK(lines[0][0] == "edit-region");
+  CHECK(lines[0][7] == "weights=equal");
+  CHECK(lines[0][8] == "time-scale=2");
+  REQUIRE(doc.space_time_edits().size() == 1);
+  CHECK(doc.space_time_edits()[0].weights == LaplacianWeights::Equal);
+  CHECK(doc.space_time_edits()[0].time_scale == 2);
+  const int depth = doc.undo_depth();
+  scene.sync(doc, vs);
+
+  // Ctrl-press on the same point, then right 40 pixels: 40 / 800 of the window (1.2) later.
+  in.new_region = false, in.retime = true;
+  CHECK(tool.update(doc, scene, cam, in, run).empty());
+  REQUIRE(tool.dragging());
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[1][0] == "edit-drag");
+  in.clicked = false, in.retime = false;  // Ctrl counts at the press only
+  std::string status;
+  for (int k = 1; k <= 4; ++k) {
+    in.mouse = at + Eigen::Vector2d(10.0 * k, 3.0 * k);  // vertical motion does nothing
+    status = tool.update(doc, scene, cam, in, run);
+    scene.sync(doc, vs);
+    CHECK(status.empty());
+    CHECK(scene.last_error().empty());
+  }
+  const double dt = 40.0 / 800 * 1.2;
+  REQUIRE(doc.space_time_edits().size() == 1);
+  const SpaceTimeEdit e = doc.space_time_edits()[0];
+  CHECK(std::abs(e.retime - dt) < 1e-12);
+  CHECK(e.move == Vector3d::Zero());
+  std::vector<std::string> notes;
+  const AnimationManifold m = document_manifold(doc, nullptr, {}, &notes);
+  CHECK(notes.empty());
+  Document keys_only;
+  test::make_keyed(keys_only);
+  const AnimationManifold k = document_manifold(keys_only);
+  CHECK((m.V.rows() != k.V.rows() || m.V.col(3) != k.V.col(3)));  // the times moved
+
+  // Far right: past the window's end the slab would fold back in time. Refused: the status says so,
+  // the document keeps the last accepted retime and the view replays it without a skipped edit.
+  in.mouse = at + Eigen::Vector2d(600, 0);
+  status = tool.update(doc, scene, cam, in, run);
+  INFO(status);
+  CHECK(status.find("refused") != std::string::npos);
+  CHECK(status.find("folds the manifold in time") != std::string::npos);
+  CHECK(doc.space_time_edits()[0] == e);
+  scene.sync(doc, vs);
+  CHECK(scene.last_error().empty());
+  CHECK(tool.update(doc, scene, cam, in, run).empty());  // the same refusal is said once
+
+  // Release: one undo step for the press and every frame; the lines repeat it with edit-drag's DT.
+  in.released = true;
+  status = tool.update(doc, scene, cam, in, run);
+  CHECK(status.find("space-time retime by") == 0);
+  CHECK_FALSE(tool.dragging());
+  CHECK(doc.undo_depth() == depth + 1);
+  Document replay;
+  test::make_keyed(replay);
+  replay.set_time(1.0);
+  run_command(replay, lines[0]);
+  CommandWords drag = lines[1];
+  drag.push_back(CommandArg(e.retime).word);
+  run_command(replay, drag);
+  CHECK(replay.space_time_edits() == doc.space_time_edits());
+  doc.undo();
+  REQUIRE(doc.space_time_edits().size() == 1);
+  CHECK(doc.space_time_edits()[0].retime == 0);
 }

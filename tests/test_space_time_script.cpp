@@ -7,7 +7,9 @@
 #include <map>
 #include <unistd.h>
 
+#include "core/anim/manifold_edit.h"
 #include "core/anim/manifold_normals.h"
+#include "core/scene/command.h"
 #include "core/scene/key_surfaces.h"
 #include "core/scene/script.h"
 #include "core/scene/space_time_edit.h"
@@ -175,6 +177,22 @@ TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene ke
     CHECK(std::string(err.what()).find("folds the manifold in time") != std::string::npos);
   }
   CHECK(d.undo_depth() == depth);
+  {
+    // The editor's retime drag asks a trial of the replay: it refuses what edit-drag refuses, takes the rest.
+    SpaceTimeEdit e = d.space_time_edits()[0];
+    e.handle = {hp, 1.0};
+    e.move = {0, 0, 0.3};
+    const SpaceTimeRetimeTrial trial(manifold_before_edit(d, 0), e);
+    CHECK(trial.refusal(0.9).find("folds the manifold in time") != std::string::npos);
+    CHECK(trial.refusal(0.1).empty());
+    CHECK(trial.refusal(-0.1).empty());
+    CHECK(trial.refusal(0).empty());
+    // A window from the first layer: no retime at all (the first layer bounds the animation).
+    e.region.t0 = 0;
+    const SpaceTimeRetimeTrial first(manifold_before_edit(d, 0), e);
+    CHECK(first.refusal(0.05).find("first or last layer") != std::string::npos);
+    CHECK(first.refusal(0).empty());
+  }
   std::snprintf(line, sizeof line, "edit-drag %.17g %.17g %.17g 0 0 0.3 0.1\n", hp.x(), hp.y(), hp.z());
   run(d, line);
   REQUIRE(d.space_time_edits().size() == 1);
@@ -194,4 +212,121 @@ TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene ke
   CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
   CHECK(frame_at(e, 1.1).V == later.V);
   fs::remove_all(dir);
+}
+
+TEST_CASE("edit-region's setup words: the edit's weights, time scale and volume, kept by its drags and the scene, "
+          "replayed as the editor with those options drags", "[script][space-time]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_setup_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string sc = (dir / "s.scene.json").string();
+  Document d;
+  make_keyed(d);
+  const TriMesh mid = frame_at(d, 1.2);
+  const Eigen::Vector3d hp = mid.V.row(nearest(mid, {2.0, 0.4, 0})).transpose();
+  const int depth = d.undo_depth();
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "set-time 1.2\nedit-region %.17g %.17g %.17g 1.2 0.8 2 weights=dual time-scale=4 volume\n"
+                "edit-drag %.17g %.17g %.17g 0 0 0.5\n",
+                hp.x(), hp.y(), hp.z(), hp.x(), hp.y(), hp.z());
+  run(d, line);
+  REQUIRE(d.space_time_edits().size() == 1);
+  const SpaceTimeEdit e = d.space_time_edits()[0];
+  CHECK(e.weights == LaplacianWeights::Dual);
+  CHECK(e.time_scale == 4);
+  CHECK(e.preserve_volume);
+  CHECK(d.undo_depth() == depth + 2);
+
+  // The replay is ManifoldEditor with those options on the keys' manifold (what edit-manifold runs),
+  // bit for bit; the default options give another manifold (the words are used, not only stored).
+  Document keys_only;
+  make_keyed(keys_only);
+  const AnimationManifold keys_m = document_manifold(keys_only);
+  auto dragged = [&](const ManifoldEditOptions& o) {
+    ManifoldEditor ed(keys_m, select_edit_region(keys_m, e.region, e.handle), e.handle.point, o);
+    ManifoldDrag drag;
+    drag.translation = e.move;
+    return ed.drag(drag);
+  };
+  ManifoldEditOptions o;
+  o.weights = LaplacianWeights::Dual;
+  o.time_scale = 4;
+  o.preserve_volume = true;
+  std::vector<std::string> notes;
+  const AnimationManifold edited = document_manifold(d, nullptr, {}, &notes);
+  CHECK(notes.empty());
+  CHECK(edited.V == dragged(o));
+  CHECK((edited.V - dragged(ManifoldEditOptions{})).cwiseAbs().maxCoeff() > 1e-3);
+
+  // Another handle appends an edit over the same region with the same setup.
+  std::snprintf(line, sizeof line, "set-time 1.6\nedit-drag %.17g %.17g %.17g 0 0.1 0\n", hp.x(), hp.y(), hp.z());
+  run(d, line);
+  REQUIRE(d.space_time_edits().size() == 2);
+  const SpaceTimeEdit& e2 = d.space_time_edits()[1];
+  CHECK((e2.weights == e.weights && e2.time_scale == e.time_scale && e2.preserve_volume == e.preserve_volume));
+  CHECK(d.space_time_edits()[1].handle.time == 1.6);
+
+  // The scene keeps the setup of both.
+  d.save_scene(sc);
+  Document l;
+  l.load_scene(sc);
+  CHECK(l.space_time_edits() == d.space_time_edits());
+  CHECK(frame_at(l, 1.2).V == frame_at(d, 1.2).V);
+  fs::remove_all(dir);
+
+  // Undo: the second edit, its press... back to no edit.
+  run(d, "undo\nundo\nundo\n");
+  CHECK(d.space_time_edits().empty());
+  CHECK(d.undo_depth() == depth);
+}
+
+TEST_CASE("edit-region's setup words: a bad word is an error naming it, nothing changed", "[script][space-time]") {
+  Document d;
+  make_keyed(d);
+  run(d, "edit-region 2 0 0 1.2 0.8 2 time-scale=0.5\n");  // a good edit first: the bad lines leave it
+  REQUIRE(d.space_time_edits().size() == 1);
+  CHECK(d.space_time_edits()[0].time_scale == 0.5);
+  const std::vector<SpaceTimeEdit> before = d.space_time_edits();
+  const int depth = d.undo_depth();
+  const std::uint64_t revision = d.revision();
+  auto fails = [&](const std::vector<std::string>& extra, const std::string& what) {
+    CommandWords w = command_words("edit-region", {2.0, 0.0, 0.0, 1.2, 0.8, 2.0});
+    w.insert(w.end(), extra.begin(), extra.end());
+    try {
+      run_command(d, w);  // the UI's path: check_command, then the run
+      FAIL("no error for " << w.back());
+    } catch (const Error& err) {
+      INFO(err.what());
+      CHECK(std::string(err.what()).find("edit-region: ") == 0);
+      CHECK(std::string(err.what()).find(what) != std::string::npos);
+    }
+  };
+  fails({"weights=cotan"}, "weights=: unknown Laplacian weights 'cotan'");
+  fails({"weights="}, "weights=: unknown Laplacian weights ''");
+  fails({"time-scale=0"}, "time-scale= must be a number > 0, got '0'");
+  fails({"time-scale=-2"}, "time-scale= must be a number > 0, got '-2'");
+  fails({"time-scale=fast"}, "time-scale= must be a number > 0, got 'fast'");
+  fails({"time-scale=inf"}, "time-scale= must be a number > 0, got 'inf'");
+  fails({"volumes"}, "unknown word 'volumes' (weights=W, time-scale=S, volume)");
+  fails({"volume", "volume"}, "volume given twice");
+  fails({"weights=dual", "weights=equal"}, "weights= given twice");
+  fails({"time-scale=2", "volume", "time-scale=3"}, "time-scale= given twice");
+  fails({"volume", "weights=dual", "time-scale=2", "volume"}, "takes 6..9 argument(s)");
+  // The words are checked before the region: a bad word on a line with a bad region names the word.
+  try {
+    run(d, "edit-region 50 50 50 1 0.8 2 weights=dual vol\n");
+    FAIL("no error");
+  } catch (const Error& err) {
+    CHECK(std::string(err.what()).find("unknown word 'vol'") != std::string::npos);
+  }
+  CHECK(d.space_time_edits() == before);
+  CHECK(d.undo_depth() == depth);
+  CHECK(d.revision() == revision);
+  // The good words in any order.
+  run(d, "edit-region 2 0 0 1.2 0.8 2 volume time-scale=3 weights=primal-boundary\n");
+  REQUIRE(d.space_time_edits().size() == 2);
+  const SpaceTimeEdit& e = d.space_time_edits()[1];
+  CHECK(e.weights == LaplacianWeights::PrimalBoundary);
+  CHECK(e.time_scale == 3);
+  CHECK(e.preserve_volume);
 }

@@ -207,6 +207,7 @@ void Editor::tool_space_time(bool clicked, bool released) {
   in.clicked = clicked;
   in.released = released || !ImGui::IsMouseDown(ImGuiMouseButton_Left);
   in.new_region = ImGui::GetIO().KeyShift;
+  in.retime = ImGui::GetIO().KeyCtrl;  // Alt is the camera's orbit
   in.t_slice = slice_axis_ == SliceAxis::T;
   const std::string s = space_time_tool_.update(doc_, *view_, cam_, in, [this](const CommandWords& w) { return run_ui_command(w); });
   if (!s.empty()) status(s);

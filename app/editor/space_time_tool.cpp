@@ -1,10 +1,13 @@
 #include "app/editor/space_time_tool.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <imgui.h>
 
+#include "core/anim/manifold_laplacian.h"
+#include "core/scene/key_surfaces.h"
 #include "core/view/picking.h"
 #include "render/overlay_geometry.h"
 
@@ -14,7 +17,20 @@ void SpaceTimeTool::follow_document(const Document& doc) {
   const std::vector<SpaceTimeEdit>& edits = doc.space_time_edits();
   if (edits.size() == seen_edits_ || drag_) return;
   seen_edits_ = edits.size();
-  if (!edits.empty()) t0_ = edits.back().region.t0, t1_ = edits.back().region.t1;
+  if (edits.empty()) return;
+  const SpaceTimeEdit& e = edits.back();
+  t0_ = e.region.t0, t1_ = e.region.t1;
+  weights_ = e.weights, time_scale_ = e.time_scale, volume_ = e.preserve_volume;
+}
+
+CommandWords SpaceTimeTool::region_line(const Eigen::Vector3d& p, double diagonal) const {
+  const double r = radius_ * std::max(1e-9, diagonal);
+  CommandWords w = command_words("edit-region", {p.x(), p.y(), p.z(), r, t0_, t1_});
+  // Only what differs from the defaults: a default region's line stays as before.
+  if (weights_ != LaplacianWeights::Reciprocal) w.push_back(std::string("weights=") + laplacian_weights_name(weights_));
+  if (time_scale_ != 1.0) w.push_back("time-scale=" + CommandArg(time_scale_).word);
+  if (volume_) w.push_back("volume");
+  return w;
 }
 
 void SpaceTimeTool::default_window(const Document& doc) {
@@ -39,21 +55,7 @@ std::string SpaceTimeTool::update(Document& doc, SceneView& view, const view::Ca
     if (e.move != Eigen::Vector3d::Zero())
       view.add_overlay_points({gl::overlay_vertex(e.handle.point + e.move, Eigen::Vector4f(0.3f, 0.9f, 1, 1))}, 12.0f);
   }
-  if (drag_) {
-    if (in.released) {
-      doc.end_gesture();
-      const Drag d = *drag_;
-      drag_.reset();
-      const Eigen::Vector3d m = doc.space_time_edits()[d.index].move - d.move0;
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "space-time drag by (%.3g, %.3g, %.3g)", m.x(), m.y(), m.z());
-      return buf;
-    }
-    SpaceTimeEdit e = doc.space_time_edits().at(drag_->index);
-    e.move = drag_->move0 + (view::pixel_on_plane_through(cam, drag_->handle, in.mouse.x(), in.mouse.y()) - drag_->handle);
-    doc.set_space_time_edit(drag_->index, e);  // merges into the drag's one undo step
-    return "";
-  }
+  if (drag_) return update_drag(doc, cam, in);
   if (!in.clicked || !in.hovered) return "";
   if (!in.t_slice) return "the Space-time tool edits in the t-slice view (set the sweep to t)";
   const view::SurfaceHit hit =
@@ -61,8 +63,7 @@ std::string SpaceTimeTool::update(Document& doc, SceneView& view, const view::Ca
   if (!hit.hit()) return "click on the surface";
   const Eigen::Vector3d p = hit.point;
   if (in.new_region || edits.empty()) {
-    const double r = radius_ * std::max(1e-9, view.surface_bounds().diagonal().norm());
-    run(command_words("edit-region", {p.x(), p.y(), p.z(), r, t0_, t1_}));
+    run(region_line(p, view.surface_bounds().diagonal().norm()));
     return "";
   }
   doc.begin_gesture();
@@ -71,8 +72,60 @@ std::string SpaceTimeTool::update(Document& doc, SceneView& view, const view::Ca
     return "";
   }
   const int index = static_cast<int>(doc.space_time_edits().size()) - 1;
-  drag_ = Drag{index, p, doc.space_time_edits()[index].move};
+  const SpaceTimeEdit& e = doc.space_time_edits()[index];
+  Drag d{index, p, e.move};
+  if (in.retime) {
+    // The edit's replay factored once here (the manifold before it rebuilt, as edit-drag's checks do),
+    // so each frame can ask whether the replay takes the value before the document gets it.
+    try {
+      d.trial = std::make_shared<const SpaceTimeRetimeTrial>(manifold_before_edit(doc, index), e);
+    } catch (const std::exception& err) {
+      doc.end_gesture();
+      return std::string("cannot retime this edit: ") + err.what();
+    }
+    d.press_x = in.mouse.x();
+    d.retime0 = e.retime;
+  }
+  drag_ = std::move(d);
   return "";
+}
+
+std::string SpaceTimeTool::update_drag(Document& doc, const view::Camera& cam, const Input& in) {
+  SpaceTimeEdit e = doc.space_time_edits().at(drag_->index);
+  char buf[320];
+  if (in.released) {
+    doc.end_gesture();
+    const Drag d = std::move(*drag_);
+    drag_.reset();
+    if (d.trial) {
+      std::snprintf(buf, sizeof buf, "space-time retime by %.3g s (now %.3g)", e.retime - d.retime0, e.retime);
+      return d.refusal.empty() ? std::string(buf) : std::string(buf) + "; further refused: " + d.refusal;
+    }
+    const Eigen::Vector3d m = e.move - d.move0;
+    std::snprintf(buf, sizeof buf, "space-time drag by (%.3g, %.3g, %.3g)", m.x(), m.y(), m.z());
+    return buf;
+  }
+  if (!drag_->trial) {
+    e.move = drag_->move0 + (view::pixel_on_plane_through(cam, drag_->handle, in.mouse.x(), in.mouse.y()) - drag_->handle);
+    doc.set_space_time_edit(drag_->index, e);  // merges into the drag's one undo step
+    return "";
+  }
+  // In time: the viewport's width is the edit's window.
+  const double want =
+      drag_->retime0 + (in.mouse.x() - drag_->press_x) / std::max(1.0, cam.width) * (e.region.t1 - e.region.t0);
+  if (want == e.retime || want == drag_->refused_at) return "";  // a still mouse tries nothing again
+  const std::string why = drag_->trial->refusal(want);
+  if (why.empty()) {
+    e.retime = want;
+    doc.set_space_time_edit(drag_->index, e);  // merges into the drag's one undo step
+    drag_->refusal.clear();
+    return "";
+  }
+  drag_->refused_at = want;
+  if (why == drag_->refusal) return "";
+  drag_->refusal = why;
+  std::snprintf(buf, sizeof buf, "retime %.3g refused, keeping %.3g: ", want, e.retime);
+  return buf + why;
 }
 
 void SpaceTimeTool::cancel(Document& doc) {
@@ -80,22 +133,61 @@ void SpaceTimeTool::cancel(Document& doc) {
   drag_.reset();
 }
 
+void SpaceTimeTool::draw_setup() {
+  static const LaplacianWeights kAll[] = {LaplacianWeights::Equal, LaplacianWeights::Reciprocal,
+                                          LaplacianWeights::PrimalBoundary, LaplacianWeights::Dual};
+  static const char* kWhat =
+      "The Laplacian's weights (Southern 2008, 4.6.1):\n"
+      "equal: 1 / neighbours (distorts on irregular tetrahedra)\n"
+      "reciprocal: 1 / 4D edge length (the default)\n"
+      "primal-boundary: reciprocal, and at the first and last frames the least-|delta| weights (4.4.1)\n"
+      "dual: the dual graph Laplacian, rows per tetrahedron, ghost tetrahedra at the boundary (4.4.2)";
+  ImGui::Separator();
+  ImGui::TextWrapped("The next region's setup:");
+  // Narrower than the panel's other fields: "Time scale" is the longest label and must show.
+  const float width =
+      ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("Time scale").x - ImGui::GetStyle().ItemInnerSpacing.x;
+  ImGui::SetNextItemWidth(width);
+  if (ImGui::BeginCombo("Weights", laplacian_weights_name(weights_))) {
+    for (LaplacianWeights w : kAll)
+      if (ImGui::Selectable(laplacian_weights_name(w), w == weights_)) weights_ = w;
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", kWhat);
+  double s = time_scale_;
+  ImGui::SetNextItemWidth(width);
+  if (ImGui::InputDouble("Time scale", &s, 0, 0, "%.3g") && std::isfinite(s) && s > 0) time_scale_ = s;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("t's factor in the weights' edge lengths (> 0, default 1): larger keeps each frame's shape\n"
+                      "stiffer against the time edges, so parts past the handle follow it");
+  ImGui::Checkbox("Preserve volume", &volume_);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Each edited time layer keeps its enclosed volume (4.2.2)");
+  ImGui::Separator();
+}
+
 void SpaceTimeTool::draw_options(const Document& doc, const Run& run) {
   default_window(doc);
   ImGui::TextWrapped("Shift-click the surface: a region there over the window. Then drag a point in it: "
-                     "the motion follows over the window, frames outside it stay.");
+                     "the motion follows over the window, frames outside it stay. Ctrl-drag moves the point "
+                     "in time instead (the viewport's width is the window).");
   float r = static_cast<float>(radius_);
   if (ImGui::SliderFloat("Radius", &r, 0.01f, 0.5f, "%.3f")) radius_ = r;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The region's radius, a fraction of the surface's diagonal");
   ImGui::InputDouble("T0", &t0_, 0, 0, "%.3f");
   ImGui::InputDouble("T1", &t1_, 0, 0, "%.3f");
   if (ImGui::Button("Window = current time +- 1/4")) t0_ = t1_ = 0, default_window(doc);
+  draw_setup();
   const std::vector<SpaceTimeEdit>& edits = doc.space_time_edits();
   ImGui::Text("%d edit(s)", static_cast<int>(edits.size()));
   if (!edits.empty()) {
     const SpaceTimeEdit& e = edits.back();
-    ImGui::TextDisabled("last: r %.3g over [%.3g, %.3g], move (%.3g, %.3g, %.3g) at t %.3g", e.region.radius, e.region.t0,
-                        e.region.t1, e.move.x(), e.move.y(), e.move.z(), e.handle.time);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+    ImGui::TextWrapped("last: r %.3g over [%.3g, %.3g], move (%.3g, %.3g, %.3g) at t %.3g, retime %.3g; %s weights, "
+                       "time scale %.3g%s",
+                       e.region.radius, e.region.t0, e.region.t1, e.move.x(), e.move.y(), e.move.z(), e.handle.time,
+                       e.retime, laplacian_weights_name(e.weights), e.time_scale,
+                       e.preserve_volume ? ", volume kept" : "");
+    ImGui::PopStyleColor();
     if (ImGui::Button("Clear edits")) run({"edit-clear"});
   }
 }

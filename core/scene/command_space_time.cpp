@@ -1,7 +1,7 @@
 // The table's space-time edit commands (SCRIPT.md; issue 35): edit-region, edit-drag, edit-clear.
 #include <algorithm>
 
-#include "core/anim/manifold_sequence.h"
+#include "core/anim/manifold_laplacian.h"
 #include "core/scene/command_parts.h"
 #include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
@@ -9,21 +9,40 @@
 namespace dfm::command_detail {
 namespace {
 
-// The keys' manifold with the first `count` edits replayed: what edit `count` is made on.
-AnimationManifold manifold_before(const Document& doc, size_t count) {
-  if (doc.keys().size() < 2) throw Error("a space-time edit needs an animation: key at least two poses");
-  AnimationManifold m = build_manifold_sequence(key_surfaces(doc));
-  const std::vector<SpaceTimeEdit>& all = doc.space_time_edits();
-  apply_space_time_edits(m, std::vector<SpaceTimeEdit>(all.begin(), all.begin() + std::min(count, all.size())));
-  return m;
-}
-
 bool moves(const SpaceTimeEdit& e) {
   return e.move != Eigen::Vector3d::Zero() || e.rotation.coeffs() != Eigen::Quaterniond::Identity().coeffs() ||
          e.retime != 0;
 }
 
-// Starts an edit: the region and window, no move yet (a still edit changes nothing).
+// edit-region's optional words after T0 T1, the edit's setup (cmd_edit_manifold's --weights,
+// --time-scale, --volume): weights=W, time-scale=S, volume; each at most once.
+void read_setup(const CommandWords& w, SpaceTimeEdit& e) {
+  bool weights = false, scale = false, volume = false;
+  for (size_t i = 7; i < w.size(); ++i) {
+    const std::string& o = w[i];
+    if (o.rfind("weights=", 0) == 0) {
+      if (weights) throw Error("weights= given twice");
+      weights = true;
+      try {
+        e.weights = parse_laplacian_weights(o.substr(8));
+      } catch (const Error& err) {
+        throw Error(std::string("weights=: ") + err.what());
+      }
+    } else if (o.rfind("time-scale=", 0) == 0) {
+      if (scale) throw Error("time-scale= given twice");
+      scale = true;
+      if (!parse_number(o.substr(11), e.time_scale) || !(e.time_scale > 0))
+        throw Error("time-scale= must be a number > 0, got '" + o.substr(11) + "'");
+    } else if (o == "volume") {
+      if (volume) throw Error("volume given twice");
+      volume = e.preserve_volume = true;
+    } else {
+      throw Error("unknown word '" + o + "' (weights=W, time-scale=S, volume)");
+    }
+  }
+}
+
+// Starts an edit: the region and window and its setup, no move yet (a still edit changes nothing).
 void edit_region(CommandContext& x, const CommandWords& w) {
   SpaceTimeEdit e;
   e.region.center = {num(w, 1), num(w, 2), num(w, 3)};
@@ -32,8 +51,9 @@ void edit_region(CommandContext& x, const CommandWords& w) {
   e.region.t1 = num(w, 6);
   e.handle.point = e.region.center;
   e.handle.time = std::clamp(x.doc.time(), e.region.t0, e.region.t1);
+  read_setup(w, e);
   check_space_time_edit(e);
-  const AnimationManifold m = manifold_before(x.doc, x.doc.space_time_edits().size());
+  const AnimationManifold m = manifold_before_edit(x.doc, x.doc.space_time_edits().size());
   if (e.region.t1 <= m.times.front() || e.region.t0 >= m.times.back())
     throw Error("the window [" + w[5] + ", " + w[6] + "] is outside the animation [" + std::to_string(m.times.front()) +
                 ", " + std::to_string(m.times.back()) + "]");
@@ -71,7 +91,7 @@ void edit_drag(CommandContext& x, const CommandWords& w) {
   check_space_time_edit(e);
   {
     // A clear error, nothing changed: the region, and a retime that would fold the manifold in time.
-    AnimationManifold m = manifold_before(x.doc, index);
+    AnimationManifold m = manifold_before_edit(x.doc, index);
     select_edit_region(m, e.region, e.handle);
     if (e.retime != 0) apply_space_time_edit(m, e);  // solves once more: only retimes can be refused
   }
@@ -84,7 +104,17 @@ void edit_drag(CommandContext& x, const CommandWords& w) {
 }  // namespace
 
 void add_space_time_commands(std::vector<Command>& t) {
-  Command* c = &add(t, "edit-region", "edit-region CX CY CZ RADIUS T0 T1", 6, 6, {number_arg()}, edit_region);
+  const ArgSpec n = number_arg();
+  Command* c = &add(t, "edit-region", "edit-region CX CY CZ RADIUS T0 T1 [weights=W] [time-scale=S] [volume]", 6, 9,
+                    {n, n, n, n, n, n, arg_checked_by_line(ArgKind::Word)}, edit_region);
+  c->check = [](const CommandWords& w, const std::string& usage) {
+    SpaceTimeEdit e;
+    try {
+      read_setup(w, e);
+    } catch (const Error& err) {
+      throw Error(std::string(err.what()) + "; usage: " + usage);
+    }
+  };
   c->poll = needs_two_keys;
   c = &add(t, "edit-drag", "edit-drag HX HY HZ DX DY DZ [DT]", 6, 7, {number_arg()}, edit_drag);
   c->poll = needs_two_keys;

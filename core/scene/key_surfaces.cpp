@@ -1,5 +1,6 @@
 #include "core/scene/key_surfaces.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -187,6 +188,14 @@ AnimationManifold document_manifold(const Document& doc, SequenceStats* stats,
   AnimationManifold m = build_manifold_sequence(key_surfaces(doc), TransitionOptions{}, stats, progress);
   std::vector<std::string> notes = apply_space_time_edits(m, doc.space_time_edits());
   if (edit_notes) *edit_notes = std::move(notes);
+  return m;
+}
+
+AnimationManifold manifold_before_edit(const Document& doc, size_t count) {
+  if (doc.keys().size() < 2) throw Error("a space-time edit needs an animation: key at least two poses");
+  AnimationManifold m = build_manifold_sequence(key_surfaces(doc));
+  const std::vector<SpaceTimeEdit>& all = doc.space_time_edits();
+  apply_space_time_edits(m, std::vector<SpaceTimeEdit>(all.begin(), all.begin() + std::min(count, all.size())));
   return m;
 }
 

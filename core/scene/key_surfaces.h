@@ -56,4 +56,9 @@ AnimationManifold document_manifold(const Document& doc, SequenceStats* stats = 
                                     const std::function<bool(int, int)>& progress = {},
                                     std::vector<std::string>* edit_notes = nullptr);
 
+// The keys' manifold with only the first `count` space-time edits replayed: what edit `count` is made
+// on (edit-region's and edit-drag's checks, the editor's retime drag). Throws dfm::Error with fewer
+// than two keys.
+AnimationManifold manifold_before_edit(const Document& doc, size_t count);
+
 }  // namespace dfm

@@ -53,6 +53,24 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
 // One edit onto m, without a cache; throws dfm::Error (m unchanged) where the replay would skip it.
 void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e);
 
+// One edit's replay factored once, to try retimes on: the editor's retime drag asks every frame whether
+// the replay would take the value (a refused one left in the document would make the replay skip the
+// whole edit, its move too). The constructor throws dfm::Error where the edit cannot be made on
+// `before` (the manifold before it: manifold_before_edit) at all.
+class SpaceTimeRetimeTrial {
+ public:
+  SpaceTimeRetimeTrial(AnimationManifold before, const SpaceTimeEdit& e);
+  ~SpaceTimeRetimeTrial();
+  // "" when the edit with this retime applies, else why the replay would skip it (a slab folding back
+  // in time, the first or last layer in the region).
+  std::string refusal(double retime) const;
+
+ private:
+  AnimationManifold before_;
+  SpaceTimeEdit edit_;
+  std::unique_ptr<ManifoldEditor> editor_;
+};
+
 // manifold_vertex_normals(edited), bit for bit, from the unedited manifold's vertices and normals:
 // only the rows of vertices sharing a tetrahedron with a moved vertex (base_V row != edited row) are
 // summed again, over their stars (found in the slabs overlapping the edits' windows). What a drag

@@ -52,6 +52,22 @@ void apply_drag(AnimationManifold& m, const ManifoldEditor& editor, const SpaceT
 
 void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e) { apply_drag(m, *make_editor(m, e), e); }
 
+SpaceTimeRetimeTrial::SpaceTimeRetimeTrial(AnimationManifold before, const SpaceTimeEdit& e)
+    : before_(std::move(before)), edit_(e), editor_(make_editor(before_, e)) {}
+SpaceTimeRetimeTrial::~SpaceTimeRetimeTrial() = default;
+
+std::string SpaceTimeRetimeTrial::refusal(double retime) const {
+  SpaceTimeEdit e = edit_;
+  e.retime = retime;
+  AnimationManifold m = before_;
+  try {
+    apply_drag(m, *editor_, e);  // the replay's own step: what it refuses is refused here
+  } catch (const Error& err) {
+    return err.what();
+  }
+  return "";
+}
+
 std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std::vector<SpaceTimeEdit>& edits,
                                                 SpaceTimeEditCache* cache) {
   std::vector<std::string> notes;

@@ -6,5 +6,6 @@ dfm_test(test_scene_view SOURCES test_scene_view.cpp ${PROJECT_SOURCE_DIR}/app/e
          ${PROJECT_SOURCE_DIR}/app/editor/manifold_builder.cpp ${PROJECT_SOURCE_DIR}/app/editor/view_model.cpp
          ${PROJECT_SOURCE_DIR}/app/editor/pose_tool.cpp ${PROJECT_SOURCE_DIR}/app/editor/gizmo.cpp
          ${PROJECT_SOURCE_DIR}/app/editor/paint_tool.cpp ${PROJECT_SOURCE_DIR}/app/editor/sculpt_tool.cpp
+         ${PROJECT_SOURCE_DIR}/app/editor/space_time_tool.cpp
          ${PROJECT_SOURCE_DIR}/render/overlay_geometry.cpp ${PROJECT_SOURCE_DIR}/render/interval_records.cpp
          LIBS dfm_core imgui)
