@@ -1,6 +1,7 @@
 // `deform pose --fast` end to end on hand.mesh with its 20 bones (Jacobson 2013, 7.3.1): with no free
 // handle the output is exactly the plain LBS pose; with free bones the printed energy never increases
 // and ends below the energy of the plain pose.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -143,5 +144,70 @@ TEST_CASE("deform pose --fast --dynamics on the arm: a frame per step, settling 
                               "--sequence", "x"}, dir);
   CHECK(no_fast.exit_code == 2);
   CHECK(no_fast.err.find("--dynamics needs --fast") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("deform bind --additional and pose --fast --additional: the cigar's free extras fill the bend (7.3.3)",
+          "[fast][cli][additional]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_test_fast_additional_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string exe = DFM_DEFORM_EXE, mesh = std::string(DFM_SOURCE_DIR) + "/docs/cigar.obj",
+                    tgf = (dir / "ends.tgf").string(), Q = (dir / "turn.dmat").string(), W = (dir / "W.dmat").string(),
+                    A = (dir / "A.dmat").string();
+  {  // a pinned bone in each end of the cigar (x in [-2.5, 2.5]); the right one turned 90 degrees about z
+    std::ofstream(tgf) << "1 -2.4 0 0\n2 -1.8 0 0\n3 1.8 0 0\n4 2.4 0 0\n#\n1 2\n3 4\n";
+    const double s = std::sqrt(0.5);
+    std::ofstream(Q) << "4 2\n0 0\n0 0\n0 " << s << "\n1 " << s << "\n";  // x, y, z, w columns; bone 2 turned
+  }
+  auto run = [&](const std::vector<std::string>& args) {
+    const test::RunResult r = test::run_program(exe, args, dir);
+    INFO(r.command << "\n" << r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    return r.out;
+  };
+  const std::string bound = run({"bind", mesh, "--skeleton", tgf, "-o", W, "--additional", "6", A});
+  CHECK(bound.find("additional weights, 1226 x 6") != std::string::npos);
+  const TriMesh cigar = read_surface(mesh);
+  const std::vector<std::string> common{"pose", mesh, "--weights", W, "--skeleton", tgf, "--cpu", "--fast", "--iterations", "30"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = common;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  // At rest the extras solve to zero: the bind's own rest shape.
+  run(with({"--additional", A, "-o", (dir / "rest.obj").string()}));
+  CHECK((read_surface((dir / "rest.obj").string()).V - cigar.V).cwiseAbs().maxCoeff() < 1e-9);
+  // Turned: both ends are pinned bones, so without extras FAST has nothing to solve (LBS); with them the
+  // energy falls from that pose's and the middle moves.
+  const std::string lbs_out = run(with({"--pose", Q, "-o", (dir / "lbs.obj").string()}));
+  const std::string extra_out = run(with({"--pose", Q, "--additional", A, "-o", (dir / "extra.obj").string()}));
+  CHECK(extra_out.find("fast: 6 additional handles solved") != std::string::npos);
+  const std::vector<double> e_lbs = printed_energies(lbs_out), e = printed_energies(extra_out);
+  REQUIRE(e.size() == 30);
+  for (size_t i = 1; i < e.size(); ++i) CHECK(e[i] <= e[i - 1] * (1 + 1e-12));
+  INFO("energy: LBS " << e_lbs.back() << ", with 6 additional handles " << e.back());
+  CHECK(e.back() < 0.5 * e_lbs.back());
+  const TriMesh lbs = read_surface((dir / "lbs.obj").string()), extra = read_surface((dir / "extra.obj").string());
+  CHECK((lbs.V - extra.V).rowwise().norm().maxCoeff() > 0.05);
+  // Dynamics takes them too: frames written, settling.
+  fs::create_directories(dir / "seq");
+  const std::string dyn = run(with({"--pose", Q, "--additional", A, "--dynamics", "--frames", "3", "--dt", "0.5", "--sequence",
+                                    (dir / "seq" / "c").string()}));
+  CHECK(fs::exists(dir / "seq" / "c0002.obj"));
+  // Bad input: named, nothing written.
+  const test::RunResult no_fast =
+      test::run_program(exe, {"pose", mesh, "--weights", W, "--skeleton", tgf, "--additional", A, "-o", "x.obj"}, dir);
+  CHECK(no_fast.exit_code == 2);
+  CHECK(no_fast.err.find("--additional needs --fast") != std::string::npos);
+  const std::string bad = (dir / "bad.dmat").string();
+  std::ofstream(bad) << "3 2\n0 0 0 0 0 0\n";
+  const test::RunResult rows = test::run_program(exe, with({"--additional", bad, "-o", "x.obj"}), dir);
+  CHECK(rows.exit_code == 1);
+  CHECK(rows.err.find("bad.dmat") != std::string::npos);
+  CHECK(rows.err.find("one finite row per mesh vertex (1226)") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "x.obj"));
+  const test::RunResult k0 = test::run_program(exe, {"bind", mesh, "--skeleton", tgf, "-o", W, "--additional", "0", A}, dir);
+  CHECK(k0.exit_code == 2);
+  CHECK(k0.err.find("--additional K must be between 1 and 100") != std::string::npos);
   fs::remove_all(dir);
 }

@@ -16,7 +16,7 @@ namespace {
 const char* kUsage =
     "usage: deform bind INPUT [--skeleton S.tgf] [--points P.txt] [--cage C.obj ...] [--tetgen SWITCHES]\n"
     "                   [--segmentation cut|threshold] [--exact-pou | --monotone] [--threads N] -o W.dmat [--tets OUT.mesh]\n"
-    "                   [--endpoints E.dmat]\n"
+    "                   [--endpoints E.dmat] [--additional K A.dmat]\n"
     "  INPUT              surface (.obj .off .ply .stl: tetrahedralized with TetGen) or tet mesh\n"
     "                     (.mesh .node/.ele: used as it is; it must contain every handle's geometry)\n"
     "  --skeleton S.tgf   bones (TGF edge order) and point handles (joints on no bone)\n"
@@ -31,11 +31,15 @@ const char* kUsage =
     "                     bones, cage vertices\n"
     "  --tets OUT.mesh    also save the tet mesh the weights were solved on\n"
     "  --endpoints E.dmat also save the bones' STBS endpoint weights (#input vertices x #bones; Jacobson 2013,\n"
-    "                     6.2.3: from joint weights solved on the same volume), for deform pose --endpoints";
+    "                     6.2.3: from joint weights solved on the same volume), for deform pose --endpoints\n"
+    "  --additional K A.dmat  also solve K additional weight functions (Jacobson 2013, 7.3.3: abstract\n"
+    "                     handles at farthest-point samples of the volume, 1 <= K <= 100) and save them\n"
+    "                     (#input vertices x K), for deform pose --fast --additional";
 
 // What the command line asks for.
 struct Options {
-  std::string input, skeleton, points, tetgen, segmentation, out, tets_out, endpoints_out;
+  std::string input, skeleton, points, tetgen, segmentation, out, tets_out, endpoints_out, additional_out;
+  int additional = 0;
   std::vector<std::string> cages;
   bool exact = false, monotone = false;
   int threads = 2;
@@ -61,6 +65,7 @@ Options parse_options(const dfm::cli::Args& args) {
     else if (a == "-o" || a == "--output") o.out = r.value(a);
     else if (a == "--tets") o.tets_out = r.value(a);
     else if (a == "--endpoints") o.endpoints_out = r.value(a);
+    else if (a == "--additional") o.additional = r.integer(a), o.additional_out = r.value(a);
     else if (!a.empty() && a[0] == '-') throw UsageError("unknown option " + a);
     else if (o.input.empty()) o.input = a;
     else throw UsageError("more than one input: " + o.input + ", " + a);
@@ -68,6 +73,8 @@ Options parse_options(const dfm::cli::Args& args) {
   if (o.input.empty()) throw UsageError("no input mesh");
   if (o.out.empty()) throw UsageError("no output: give -o W.dmat");
   if (o.threads < 1) throw UsageError("--threads must be >= 1");
+  if (!o.additional_out.empty() && (o.additional < 1 || o.additional > 100))
+    throw UsageError("--additional K must be between 1 and 100, got " + std::to_string(o.additional));
   if (o.exact && o.monotone)
     throw UsageError("--monotone and --exact-pou do not combine (--monotone already sums to 1 exactly)");
   if (!o.segmentation.empty() && o.segmentation != "cut" && o.segmentation != "threshold")
@@ -126,6 +133,7 @@ int run(const dfm::cli::Args& args) {
   opts.bbw.threads = o.threads;
   if (!o.tetgen.empty()) opts.volume.tetgen_switches = o.tetgen;
   if (o.segmentation == "threshold") opts.volume.segmentation = dfm::VolumeOptions::Segmentation::Threshold;
+  opts.additional_weights = o.additional;
   const bool tet_input = dfm::is_tet_mesh_path(o.input);
   dfm::TriMesh surface;
   dfm::TetMesh tets;
@@ -150,6 +158,11 @@ int run(const dfm::cli::Args& args) {
     dfm::write_dmat(o.endpoints_out, res.endpoint_weights);
     std::cout << "wrote " << o.endpoints_out << " (endpoint weights, " << res.endpoint_weights.rows() << " x "
               << res.endpoint_weights.cols() << ", " << res.report.endpoint_seconds << " s)\n";
+  }
+  if (!o.additional_out.empty()) {
+    dfm::write_dmat(o.additional_out, res.additional_weights);
+    std::cout << "wrote " << o.additional_out << " (additional weights, " << res.additional_weights.rows() << " x "
+              << res.additional_weights.cols() << ", " << res.report.additional_seconds << " s)\n";
   }
   return 0;
 }

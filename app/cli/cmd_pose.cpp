@@ -13,6 +13,7 @@
 #include "core/pose/fast_model.h"
 #include "core/pose/fast_rig.h"
 #include "core/pose/fast_solver.h"
+#include "core/rig/additional_handles.h"
 #include "core/rig/pose_io.h"
 #include "core/rig/pose_params.h"
 #include "core/rig/rig_io.h"
@@ -29,7 +30,8 @@ namespace {
 const char* kUsage =
     "usage: deform pose SCENE.scene.json --at T [--method lbs|dqs|stbs|stbs-dqs] -o OUT.obj|.ply|.off|.stl\n"
     "       deform pose INPUT --weights W.dmat [--skeleton S.tgf --pose Q.dmat [--twist-stretch TS.dmat]\n"
-    "                   [--endpoints E.dmat]] [--points P.txt] [--points-pose T.txt] [--fast [--free H,H,...] [--iterations N]]\n"
+    "                   [--endpoints E.dmat]] [--points P.txt] [--points-pose T.txt]\n"
+    "                   [--fast [--free H,H,...] [--iterations N] [--additional A.dmat]]\n"
     "                   [--method lbs|dqs|stbs|stbs-dqs] [-k 4|8] [--cpu] -o OUT.obj|.ply|.off|.stl\n"
     "       deform pose INPUT --weights W.dmat ... --fast --dynamics --frames N --dt H [--damping D] [--density R]\n"
     "                   --sequence PREFIX [-o LAST.obj]\n"
@@ -53,6 +55,9 @@ const char* kUsage =
     "                     tet-mesh INPUT. Prints 'fast: iteration I energy E' per iteration\n"
     "  --free H,H,...     handles solved entirely: 0-based indices or names ('point 2', 'bone 3')\n"
     "  --iterations N     local-global iterations (default 20; with --dynamics per time step, default 4)\n"
+    "  --additional A.dmat  additional weights (deform bind --additional): one more handle per column, always\n"
+    "                     free, whose transforms FAST solves and the skin adds (Jacobson 2013, 7.3.3), so two\n"
+    "                     constrained handles no longer pinch what lies between them\n"
     "  --dynamics         FAST with dynamics (Jacobson 2013, 7.7): from rest, the constraints jump to their\n"
     "                     --pose / --points-pose at step 0 (a step input) and the solved handles follow with\n"
     "                     mass and damping; N steps of H seconds, frame i (the state after step i + 1) saved\n"
@@ -95,10 +100,20 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 // FAST from the pose the files give: its fixed handles and position targets, free handles warm-started
 // at that pose; prints the stages and one line per iteration.
+// The rig's FAST constraints (default_fast_constraints) and one free one per additional handle.
+std::vector<dfm::FastConstraint> fast_constraints(const dfm::Rig& rig, const std::vector<int>& free, int additional) {
+  std::vector<dfm::FastConstraint> c = dfm::default_fast_constraints(rig, free);
+  c.resize(c.size() + additional, {dfm::HandleConstraint::Free, Eigen::Vector3d::Zero()});
+  return c;
+}
+
+// W: the rig's weights and the additional ones ([W | A]); pose: one transform per column (the additional
+// handles' zero: additional_handles.h).
 void solve_fast(const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig, const std::vector<int>& free,
                 int iterations, dfm::Pose& pose) {
   const dfm::FastModel model = dfm::fast_model(in.V, in.T.rows() ? in.T : in.F, W);
-  const std::vector<dfm::FastConstraint> constraints = dfm::default_fast_constraints(rig, free);
+  const std::vector<dfm::FastConstraint> constraints =
+      fast_constraints(rig, free, static_cast<int>(W.cols()) - dfm::num_handles(rig));
   dfm::FastSolver solver(model, constraints, dfm::fast_joints(rig));  // solved bones stay on their joints
   solver.set_targets(pose, dfm::fast_targets(constraints, pose));
   std::printf("fast: %s energy, %d handles (%d free), %d rotation clusters; precompute %.3f s (clusters %.3f s, "
@@ -118,7 +133,8 @@ void solve_fast(const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig, 
 
 // What the command line asks for.
 struct Options {
-  std::string input, out, weights, skeleton, pose_file, twist_stretch, endpoints, points, points_pose, free_list;
+  std::string input, out, weights, skeleton, pose_file, twist_stretch, endpoints, points, points_pose, free_list,
+      additional;
   dfm::SkinMethod method = dfm::SkinMethod::LBS;
   int k = 0;  // 0: every weight
   int iterations = 20;
@@ -152,6 +168,7 @@ Options parse_options(const dfm::cli::Args& args) {
     else if (f == "--points") o.points = a.value(f);
     else if (f == "--fast") o.fast = true;
     else if (f == "--free") o.free_list = a.value(f);
+    else if (f == "--additional") o.additional = a.value(f);
     else if (f == "--iterations") o.iterations = a.integer(f), o.iterations_given = true;
     else if (f == "--dynamics") o.dynamics = true;
     else if (f == "--frames") o.frames = a.integer(f);
@@ -189,6 +206,8 @@ Options parse_options(const dfm::cli::Args& args) {
   if (!o.pose_file.empty() && o.skeleton.empty()) throw UsageError("--pose needs --skeleton");
   if (!o.twist_stretch.empty() && o.skeleton.empty()) throw UsageError("--twist-stretch needs --skeleton");
   if (!o.fast && (!o.free_list.empty())) throw UsageError("--free needs --fast");
+  if (!o.fast && !o.additional.empty())
+    throw UsageError("--additional needs --fast (only FAST sets the additional handles' transforms)");
   if (o.iterations < 1) throw UsageError("--iterations must be >= 1");
   try {
     o.method = dfm::parse_skin_method(method_name);
@@ -216,9 +235,21 @@ dfm::Rig read_rig(const Options& o, const Input& in, Eigen::MatrixXd& W) {
   return rig;
 }
 
-// The pose files' parameters, and with --fast the free handles solved.
-dfm::Pose posed_handles(const Options& o, const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig,
-                        dfm::PoseParams& params) {
+// --additional's weights (#V x a), or none.
+Eigen::MatrixXd read_additional(const Options& o, const Input& in) {
+  if (o.additional.empty()) return {};
+  const Eigen::MatrixXd A = dfm::read_dmat(o.additional);
+  if (A.rows() != in.V.rows() || A.cols() < 1 || !A.allFinite())
+    throw dfm::file_error(o.additional, 0, "is " + std::to_string(A.rows()) + " x " + std::to_string(A.cols()) +
+                                               " but additional weights need one finite row per mesh vertex (" +
+                                               std::to_string(in.V.rows()) + ") and at least one column");
+  return A;
+}
+
+// The pose files' parameters, and with --fast the free handles solved (and the additional ones, A's
+// columns: the pose then holds their transforms past the rig's).
+dfm::Pose posed_handles(const Options& o, const Input& in, const Eigen::MatrixXd& W, const Eigen::MatrixXd& A,
+                        const dfm::Rig& rig, dfm::PoseParams& params) {
   params = dfm::rest_pose_params(rig);
   if (!o.pose_file.empty()) params.bone_rotation = dfm::read_bone_rotations(o.pose_file, rig.skeleton.num_bones());
   if (!o.twist_stretch.empty())
@@ -229,38 +260,45 @@ dfm::Pose posed_handles(const Options& o, const Input& in, const Eigen::MatrixXd
   if (!o.fast) return pose;
   if (o.method != dfm::SkinMethod::LBS) throw dfm::cli::UsageError("--fast solves for linear blend skinning: use --method lbs");
   const std::vector<int> free = dfm::parse_handle_list(rig, o.free_list);
-  solve_fast(in, W, rig, free, o.iterations, pose);
+  const int na = static_cast<int>(A.cols());
+  pose.transforms.resize(pose.transforms.size() + na, dfm::zero_transform());
+  solve_fast(in, dfm::with_additional_weights(W, A), rig, free, o.iterations, pose);
   // The solved transforms through evaluate_pose: a pinned bone below a solved one follows it.
-  const std::vector<dfm::FastConstraint> states = dfm::default_fast_constraints(rig, free);
-  for (int h = 0; h < dfm::num_handles(rig); ++h)
+  const std::vector<dfm::FastConstraint> states = fast_constraints(rig, free, na);
+  for (int h = 0; h < static_cast<int>(states.size()); ++h)
     if (states[h].state != dfm::HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
-  return dfm::evaluate_pose(rig, params);
+  if (na > 0) std::printf("fast: %d additional handles solved (their weights: %s)\n", na, o.additional.c_str());
+  return dfm::skin_pose(rig, params, na);
 }
 
 // --dynamics: from rest, the files' pose as a step input at step 0; each step's solved transforms
 // through evaluate_pose (a pinned bone below a solved one follows it) and skinned on the CPU.
-int simulate(const Options& o, const Input& in, const Eigen::MatrixXd& W, const dfm::Rig& rig) {
+int simulate(const Options& o, const Input& in, const Eigen::MatrixXd& W, const Eigen::MatrixXd& A, const dfm::Rig& rig) {
   if (o.method != dfm::SkinMethod::LBS) throw dfm::cli::UsageError("--fast solves for linear blend skinning: use --method lbs");
   dfm::PoseParams params;
   Options statics = o;
   statics.fast = false;
-  const dfm::Pose target_pose = posed_handles(statics, in, W, rig, params);
+  const int nh = dfm::num_handles(rig), na = static_cast<int>(A.cols());
+  dfm::Pose target_pose = posed_handles(statics, in, W, A, rig, params);
+  target_pose.transforms.resize(nh + na, dfm::zero_transform());
   const std::vector<int> free = dfm::parse_handle_list(rig, o.free_list);
-  const std::vector<dfm::FastConstraint> constraints = dfm::default_fast_constraints(rig, free);
+  const std::vector<dfm::FastConstraint> constraints = fast_constraints(rig, free, na);
   const std::vector<Eigen::Vector3d> targets = dfm::fast_targets(constraints, target_pose);
   const Eigen::MatrixXi& elements = in.T.rows() ? in.T : in.F;
-  const dfm::FastModel model = dfm::fast_model(in.V, elements, W);
-  const dfm::FastMass mass = dfm::fast_mass(in.V, elements, W, o.density);
+  const Eigen::MatrixXd WA = dfm::with_additional_weights(W, A);
+  const dfm::FastModel model = dfm::fast_model(in.V, elements, WA);
+  const dfm::FastMass mass = dfm::fast_mass(in.V, elements, WA, o.density);
   dfm::FastDynamicsOptions opts;
   opts.dt = o.dt;
   opts.damping = o.damping;
   opts.iterations = o.iterations;
-  const int nh = dfm::num_handles(rig);
-  dfm::FastDynamics dyn(model, mass, constraints, dfm::fast_joints(rig), opts, dfm::identity_pose(nh));
+  dfm::Pose start = dfm::identity_pose(nh);
+  start.transforms.resize(nh + na, dfm::zero_transform());
+  dfm::FastDynamics dyn(model, mass, constraints, dfm::fast_joints(rig), opts, start);
   std::printf("dynamics: %d steps of %g s, damping %g/s, density %g, %d iterations per step, %d handles (%d free), "
               "mass %.6g\n",
               o.frames, o.dt, o.damping, o.density, o.iterations, nh, static_cast<int>(free.size()), mass.total);
-  const dfm::SkinBinding binding = dfm::make_skin_binding(in.V, dfm::vertex_normals(in.V, in.F), W, rig, 0);
+  const dfm::SkinBinding binding = dfm::make_skin_binding(in.V, dfm::vertex_normals(in.V, in.F), W, rig, 0, {}, A);
   const dfm::FrameNaming naming = dfm::frame_naming(o.sequence);
   dfm::TriMesh frame;
   frame.F = in.F;
@@ -270,9 +308,9 @@ int simulate(const Options& o, const Input& in, const Eigen::MatrixXd& W, const 
     const auto t0 = std::chrono::steady_clock::now();
     dyn.step(pose, targets);
     stepping += seconds_since(t0);
-    for (int h = 0; h < nh; ++h)
+    for (int h = 0; h < nh + na; ++h)
       if (constraints[h].state != dfm::HandleConstraint::Fixed) params.solved[h] = pose.transforms[h];
-    const dfm::SkinResult posed = dfm::skin(o.method, binding, dfm::evaluate_pose(rig, params), {});
+    const dfm::SkinResult posed = dfm::skin(o.method, binding, dfm::skin_pose(rig, params, na), {});
     frame.V = posed.V;
     frame.N = posed.N;
     const std::string path = dfm::frame_path(naming, i);
@@ -331,9 +369,10 @@ int run(const dfm::cli::Args& args) {
   const Input in = read_input(o.input);
   Eigen::MatrixXd W;
   const dfm::Rig rig = read_rig(o, in, W);
-  if (o.dynamics) return simulate(o, in, W, rig);
+  const Eigen::MatrixXd A = read_additional(o, in);
+  if (o.dynamics) return simulate(o, in, W, A, rig);
   dfm::PoseParams params;
-  const dfm::Pose pose = posed_handles(o, in, W, rig, params);
+  const dfm::Pose pose = posed_handles(o, in, W, A, rig, params);
   const auto stbs = dfm::stbs_handles(rig, params.bone_twist_stretch);
   const Eigen::MatrixXd N = dfm::vertex_normals(in.V, in.F);
   Eigen::MatrixXd E;
@@ -346,14 +385,15 @@ int run(const dfm::cli::Args& args) {
   } else if (dfm::is_stbs(o.method) && rig.skeleton.num_bones() > 0) {
     std::printf("pose: STBS endpoint weights by projection onto each bone (no --endpoints from the bind)\n");
   }
-  const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, o.k, E);
+  const dfm::SkinBinding kept = dfm::make_skin_binding(in.V, N, W, rig, o.k, E, A);
 
   std::string where;
   const auto t0 = std::chrono::steady_clock::now();
   const dfm::SkinResult posed = skin_anywhere(o, kept, pose, stbs, where);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const double trunc =
-      o.k > 0 ? dfm::truncation_error(o.method, dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0, E), kept, pose, stbs)
+      o.k > 0 ? dfm::truncation_error(o.method, dfm::make_skin_binding(in.V, Eigen::MatrixXd(), W, rig, 0, E, A), kept, pose,
+                                  stbs)
               : 0.0;
   const double diag = (in.V.colwise().maxCoeff() - in.V.colwise().minCoeff()).norm();
 
