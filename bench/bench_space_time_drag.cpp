@@ -193,6 +193,7 @@ int main() {
   doc.end_gesture();
   if (edited_normals[frames % 2] != manifold_vertex_normals(edited[frames % 2]))
     return std::printf("the last frame's normals are not manifold_vertex_normals'\n"), 1;
+  std::printf("normals plan: %zu affected vertices, %zu tetrahedra\n", cache.plan_affected.size(), cache.plan_tets.size());
   std::printf("plain posing frame (rotate + CPU skin): median %.2f ms\n", median(pose_ms));
   std::printf("space-time drag, first frame (select + factor + replay + normals + upload + interval): %.1f ms\n", first_ms);
   std::printf("the document's set_space_time_edit: median %.3f ms (in both)\n", median(edit_ms));

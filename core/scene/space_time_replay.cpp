@@ -4,6 +4,7 @@
 #include "core/scene/space_time_edit.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "core/anim/manifold_normals.h"
 #include "core/anim/manifold_retime.h"
@@ -69,7 +70,8 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
         if (cache->entries.size() <= i) cache->entries.resize(i + 1);
         std::unique_ptr<SpaceTimeEditCache::Entry>& c = cache->entries[i];
         // Reused only on the very same vertices: an earlier edit or a key change rebuilds it.
-        if (!c || !c->setup.same_setup(e) || c->input.rows() != m.V.rows() || c->input != m.V) {
+        if (!c || !c->setup.same_setup(e) || c->input.rows() != m.V.rows() ||
+            std::memcmp(c->input.data(), m.V.data(), sizeof(double) * m.V.size()) != 0) {  // bits: 4x Eigen's !=
           c = std::make_unique<SpaceTimeEditCache::Entry>();
           cache->plan_rows.clear();  // the normals' plan too: it may be another manifold (new keys)
           c->editor = make_editor(m, e);  // throws before the entry is usable: left with no editor
@@ -157,22 +159,35 @@ void edited_vertex_normals(const AnimationManifold& m, const MatrixX4dRow& base_
     }
     cache.plan_tets.clear();
     cache.plan_slots.clear();
+    cache.plan_sums.clear();
+    cache.plan_moves.clear();
+    cache.plan_normals.clear();
     for (int k = 0; k < m.num_tets(); ++k) {
       const std::array<int, 4> s{slot[m.T(k, 0)], slot[m.T(k, 1)], slot[m.T(k, 2)], slot[m.T(k, 3)]};
       if (s[0] < 0 && s[1] < 0 && s[2] < 0 && s[3] < 0) continue;
       cache.plan_tets.push_back(k);
       cache.plan_slots.push_back(s);
+      std::array<int, 4> sums{};
+      for (int c = 0; c < 4; ++c) sums[c] = tet_normal_sums(m, k, c);  // t does not change without a retime
+      cache.plan_sums.push_back(sums);
+      const bool moves = written[m.T(k, 0)] || written[m.T(k, 1)] || written[m.T(k, 2)] || written[m.T(k, 3)];
+      cache.plan_moves.push_back(moves);
+      cache.plan_normals.push_back(moves ? Eigen::RowVector4d::Zero() : Eigen::RowVector4d(tet_normal4(m, k).transpose()));
     }
     cache.plan_rows = cache.written;
   }
   // Each affected vertex's star in increasing tetrahedron order, like manifold_vertex_normals: the
   // same bits (an affected vertex whose star did not move gets its base normal again).
-  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(cache.plan_affected.size(), 8);
+  Eigen::Matrix<double, Eigen::Dynamic, 8, Eigen::RowMajor> sum = decltype(sum)::Zero(cache.plan_affected.size(), 8);
   for (size_t i = 0; i < cache.plan_tets.size(); ++i) {
-    const int k = cache.plan_tets[i];
-    const Eigen::RowVector4d n = tet_normal4(m, k).transpose();
-    for (int c = 0; c < 4; ++c)
-      if (const int a = cache.plan_slots[i][c]; a >= 0) add_tet_normal(m, k, c, n, sum, a);
+    const Eigen::RowVector4d n =
+        cache.plan_moves[i] ? Eigen::RowVector4d(tet_normal4(m, cache.plan_tets[i]).transpose()) : cache.plan_normals[i];
+    for (int c = 0; c < 4; ++c) {
+      const int a = cache.plan_slots[i][c];
+      if (a < 0) continue;
+      if (cache.plan_sums[i][c] & 1) sum.row(a).head<4>() += n;
+      if (cache.plan_sums[i][c] & 2) sum.row(a).tail<4>() += n;
+    }
   }
   for (size_t a = 0; a < cache.plan_affected.size(); ++a) N.row(cache.plan_affected[a]) = vertex_normal4(sum.row(a)).transpose();
 }
