@@ -51,7 +51,7 @@ class SpaceTimeEditCache {
   // edited_vertex_normals' plan for the rows plan_rows: plan_affected, the vertices sharing a
   // tetrahedron with one of them; plan_tets, their stars' tetrahedra in increasing order, with each
   // corner's index in plan_affected (-1: not affected) in plan_slots and its tet_normal_sums in
-  // plan_sums; plan_moves, whether a corner is a plan row (else plan_normals holds its tet_normal4).
+  // plan_sums; plan_moves, whether the tetrahedron has a plan row (else plan_normals holds its tet_normal4).
   std::vector<int> plan_rows, plan_affected, plan_tets;
   std::vector<std::array<int, 4>> plan_slots, plan_sums;
   std::vector<char> plan_moves;

@@ -56,7 +56,10 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
                                                 SpaceTimeEditCache* cache) {
   std::vector<std::string> notes;
   if (cache && cache->entries.size() > edits.size()) cache->entries.resize(edits.size());
-  if (cache) cache->written.clear(), cache->written_valid = true;
+  if (cache) {
+    cache->written.clear();
+    cache->written_valid = true;
+  }
   for (size_t i = 0; i < edits.size(); ++i) {
     const SpaceTimeEdit& e = edits[i];
     // A still edit (edit-region before its drag) changes nothing: no region to select or factor.
