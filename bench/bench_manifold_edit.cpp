@@ -1,5 +1,6 @@
 // Space-time Laplacian editing (issue 35; core/anim/manifold_edit.h): initialise (region, Laplacian rows,
-// reach field, CHOLMOD factorisation) and per-drag (back substitution) times, next to Southern 2008's
+// reach field, CHOLMOD factorisation) and per-drag (back substitution; a drag without a turn or
+// volume preservation: the reach times its translation) times, next to Southern 2008's
 // Fig. 4.12 (a ~2,500-vertex block: initialise 0.11 s with equal weights, 0.27 s dual graph Laplacian;
 // deform 0.01 s).
 // Models: (1) a block tube of 500 surface vertices standing over 5 layers (2,500 manifold vertices), its

@@ -1073,8 +1073,9 @@ TEST_CASE("manifold builder: the document's space-time edits replayed onto the v
   ManifoldBuilder b;
   REQUIRE(b.update(doc));
   const MatrixX4dRow keys_V = b.manifold().V;
+  const MatrixX4iRow keys_T = b.manifold().T;
   SpaceTimeEdit e;
-  e.region = {Vector3d(2, 0, 0), 1.2, 0.8, 2};
+  e.region = {Vector3d(2, 0, 0), 1.2, 0.8, 1.9};  // short of the last key: a retime may move it
   e.handle = {Vector3d(2, 0, 0), 1.2};
   doc.set_time(1.2);
   const TriMesh mid = posed_surface(doc);
@@ -1086,7 +1087,9 @@ TEST_CASE("manifold builder: the document's space-time edits replayed onto the v
   doc.add_space_time_edit(e);
   b.update(doc);
   REQUIRE(b.manifold().V == keys_V);  // a still edit changes nothing
-  for (int f = 1; f <= 3; ++f) {
+  std::shared_ptr<const AnimationManifold> held;  // a frame the view (or its prefetch worker) still reads
+  MatrixX4dRow held_V;
+  for (int f = 1; f <= 5; ++f) {
     e.move = Vector3d(0, 0, 0.1 * f);
     doc.set_space_time_edit(0, e);
     REQUIRE(b.update(doc));
@@ -1094,9 +1097,27 @@ TEST_CASE("manifold builder: the document's space-time edits replayed onto the v
     // The same bits as the saves' manifold (document_manifold replays without the cache).
     REQUIRE(b.manifold().V == document_manifold(doc).V);
     REQUIRE(*b.normals() == manifold_vertex_normals(b.manifold()));  // the window's rows recomputed only
+    REQUIRE(b.positions_only());  // the first drag frame too: the still edit showed the keys' manifold
+    REQUIRE(b.manifold().T == keys_T);
+    // The builder rewrites manifolds in turn, never one somebody still holds.
+    if (held) REQUIRE(held->V == held_V);
+    if (f == 2) held = b.shared_manifold(), held_V = held->V;
   }
+  REQUIRE(held->V != b.manifold().V);
+  // A retime makes new slabs: not positions only, and none after it either (other tetrahedra before).
+  e.retime = 0.05;
+  doc.set_space_time_edit(0, e);
+  REQUIRE(b.update(doc));
+  REQUIRE_FALSE(b.positions_only());
+  REQUIRE(b.manifold().V == document_manifold(doc).V);
+  e.retime = 0;
+  doc.set_space_time_edit(0, e);
+  REQUIRE(b.update(doc));
+  REQUIRE_FALSE(b.positions_only());
+  REQUIRE(b.manifold().V == document_manifold(doc).V);
+  REQUIRE(b.manifold().T == keys_T);
   doc.end_gesture();
-  REQUIRE(doc.undo_name() == "space-time edit");  // add + three drag frames: one step
+  REQUIRE(doc.undo_name() == "space-time edit");  // add + the drag frames: one step
   REQUIRE((b.manifold().V - keys_V).cwiseAbs().maxCoeff() > 0.2);
   doc.undo();
   REQUIRE(b.update(doc));

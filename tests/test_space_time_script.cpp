@@ -330,3 +330,56 @@ TEST_CASE("edit-region's setup words: a bad word is an error naming it, nothing 
   CHECK(e.time_scale == 3);
   CHECK(e.preserve_volume);
 }
+
+TEST_CASE("a drag's frames through the cache: only the regions' rows written, the normals bit for bit, the same as "
+          "a replay without it", "[script][space-time]") {
+  Document d;
+  make_keyed(d);
+  const AnimationManifold base = document_manifold(d);
+  const Eigen::MatrixXd base_normals = manifold_vertex_normals(base);
+  const TriMesh mid = frame_at(d, 1.0);
+  auto edit_at = [&](const Eigen::Vector3d& p, double radius) {
+    SpaceTimeEdit e;
+    e.region = {mid.V.row(nearest(mid, p)).transpose(), radius, 0.4, 1.6};
+    e.handle = {e.region.center, 1.0};
+    return e;
+  };
+  std::vector<SpaceTimeEdit> edits = {edit_at({2.0, 0.4, 0}, 1.2)};
+  // Frames: a drag, a retime (new slabs: the plan is not used), a second edit elsewhere, a turn.
+  SpaceTimeEditCache cache;
+  AnimationManifold buffers[2] = {base, base};  // the builder's two in turn
+  Eigen::MatrixXd normals[2];
+  bool reusable[2] = {true, true};
+  for (int f = 0; f < 12; ++f) {
+    edits[0].move = Eigen::Vector3d(0.02 * f, 0.3 - 0.01 * f, 0.05);
+    if (f == 4) edits.push_back(edit_at({-2.0, 0, 0}, 0.8)), edits[1].move = {0, 0.2, 0};
+    edits[0].retime = f == 2 ? 0.1 : 0.0;
+    if (f == 9) edits[1].rotation = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX());
+    INFO("frame " << f);
+    AnimationManifold& m = buffers[f % 2];
+    if (reusable[f % 2])
+      m.V = base.V;
+    else
+      m = base;
+    const auto notes = apply_space_time_edits(m, edits, &cache);
+    INFO((notes.empty() ? "" : notes[0]));
+    REQUIRE(notes.empty());
+    reusable[f % 2] = cache.written_valid;
+    AnimationManifold fresh = base;
+    apply_space_time_edits(fresh, edits);
+    CHECK(m.V == fresh.V);
+    CHECK(m.T == fresh.T);
+    CHECK(cache.written_valid == (f != 2));
+    if (cache.written_valid) {
+      std::vector<char> written(base.num_vertices(), 0);
+      for (int v : cache.written) written[v] = 1;
+      int moved_outside = 0, moved = 0;
+      for (int v = 0; v < base.num_vertices(); ++v)
+        (written[v] ? moved : moved_outside) += m.V.row(v) != base.V.row(v);
+      CHECK(moved_outside == 0);
+      CHECK(moved > 0);
+    }
+    edited_vertex_normals(m, base.V, base_normals, edits, cache, normals[f % 2]);
+    CHECK(normals[f % 2] == manifold_vertex_normals(m));
+  }
+}

@@ -183,6 +183,7 @@ bool ManifoldBuilder::update(const Document& doc) {
     }
   }
   const bool replayed = replay(doc);
+  if (!replayed) positions_only_ = false;
   return has_ && (built_sig_ != before || !had || replayed);
 }
 
@@ -193,16 +194,35 @@ bool ManifoldBuilder::replay(const Document& doc) {
   const auto t0 = std::chrono::steady_clock::now();
   if (replayed_serial_ != base_serial_)
     base_normals_ = std::make_shared<const Eigen::MatrixXd>(manifold_vertex_normals(*base_));
+  const std::uint64_t shown_before = shown_topology_;
   if (edits.empty()) {
     manifold_ = base_;
     normals_ = base_normals_;
     edit_notes_.clear();
+    shown_topology_ = base_serial_;
   } else {
-    auto m = std::make_shared<AnimationManifold>(*base_);
-    edit_notes_ = apply_space_time_edits(*m, edits, cache_.get());
-    normals_ = std::make_shared<const Eigen::MatrixXd>(edited_vertex_normals(*m, base_->V, *base_normals_, edits));
-    manifold_ = std::move(m);
+    // The pair nobody else holds (the view and its prefetch worker may still read the other one);
+    // after seeing a count of 1 nobody can take a new reference, the fence orders their last reads.
+    Edited* e = nullptr;
+    for (Edited& c : edited_)
+      if (c.manifold.use_count() <= 1 && c.normals.use_count() <= 1) e = &c;
+    if (!e) e = edited_[0].manifold == manifold_ ? &edited_[1] : &edited_[0];
+    std::atomic_thread_fence(std::memory_order_acquire);
+    if (e->manifold.use_count() == 1 && e->base_serial == base_serial_) {
+      e->manifold->V = base_->V;
+    } else {
+      e->manifold = std::make_shared<AnimationManifold>(*base_);
+    }
+    if (e->normals.use_count() != 1) e->normals = std::make_shared<Eigen::MatrixXd>();
+    e->base_serial = ~0ull;  // until the replay says which rows it wrote
+    edit_notes_ = apply_space_time_edits(*e->manifold, edits, cache_.get());
+    e->base_serial = cache_->written_valid ? base_serial_ : ~0ull;
+    edited_vertex_normals(*e->manifold, base_->V, *base_normals_, edits, *cache_, *e->normals);
+    manifold_ = e->manifold;
+    normals_ = e->normals;
+    shown_topology_ = e->base_serial;
   }
+  positions_only_ = shown_topology_ != ~0ull && shown_topology_ == shown_before;
   applied_ = edits;
   replayed_serial_ = base_serial_;
   replay_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -6,7 +6,7 @@
 // priority while the window keeps drawing, with progress text. An edit during a build cancels it
 // (between slabs) and the newer keys build next. The document's space-time edits are replayed onto the
 // built manifold (core/scene/space_time_edit.h) with their factorisations cached: a drag that changes
-// only an edit's move is a back substitution, not a rebuild.
+// only an edit's move rewrites the regions' rows, not a rebuild.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -37,8 +37,12 @@ class ManifoldBuilder {
   std::shared_ptr<const Eigen::MatrixXd> normals() const { return normals_; }
   // The space-time edits the replay skipped (stale: their region is empty now), one line each.
   const std::vector<std::string>& edit_notes() const { return edit_notes_; }
-  // Milliseconds the last replay of the edits took (copy + back substitutions, or a factorisation).
+  // Milliseconds the last replay of the edits took (the regions' rows and their normals, or a
+  // factorisation).
   double replay_ms() const { return replay_ms_; }
+  // The last new manifold() differs from the one before it in x, y, z only (a drag frame without a
+  // retime): the same tetrahedra, times and t, so every interval is cut as before.
+  bool positions_only() const { return positions_only_; }
   // The manifold matches the document's keys (false while a build runs or after one failed).
   bool has_manifold() const { return has_; }
   const AnimationManifold& manifold() const { return *manifold_; }
@@ -67,6 +71,16 @@ class ManifoldBuilder {
   std::uint64_t base_serial_ = 0, replayed_serial_ = ~0ull;
   std::vector<SpaceTimeEdit> applied_;
   std::unique_ptr<SpaceTimeEditCache> cache_;
+  // Two edited manifolds and normals in turn: a drag frame rewrites the pair the view has let go of
+  // (V copied from base_ into its storage when it has base_'s tetrahedra) instead of copying base_.
+  struct Edited {
+    std::shared_ptr<AnimationManifold> manifold;
+    std::shared_ptr<Eigen::MatrixXd> normals;
+    std::uint64_t base_serial = ~0ull;  // has base_'s tetrahedra and times when base_serial_ (no retime)
+  };
+  Edited edited_[2];
+  std::uint64_t shown_topology_ = ~0ull;  // manifold_'s tetrahedra and times: a base serial, or ~0 (its own)
+  bool positions_only_ = false;
   std::vector<std::string> edit_notes_;
   double replay_ms_ = 0;
   KeyTrack track_;

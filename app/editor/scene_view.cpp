@@ -201,8 +201,9 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       // A space-time drag frame (or any change that keeps the tetrahedra and every t) cuts each interval
       // the same way: the cached topologies stay, their positions re-upload when shown, and the GPU
       // slicer takes the new positions and normals only.
-      const bool same_cut = d.cut && d.cut->times == m.times && d.cut->T.rows() == m.T.rows() &&
-                            d.cut->V.rows() == m.V.rows() && d.cut->V.col(3) == m.V.col(3) && d.cut->T == m.T;
+      const bool same_cut = d.cut && (d.builder.positions_only() ||
+                                      (d.cut->times == m.times && d.cut->T.rows() == m.T.rows() && d.cut->V.rows() == m.V.rows() &&
+                                       d.cut->V.col(3) == m.V.col(3) && d.cut->T == m.T));
       d.cut = d.builder.shared_manifold();
       if (same_cut)
         d.slice->upload_vertices(m, *d.normals4);

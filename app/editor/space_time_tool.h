@@ -5,7 +5,7 @@
 // near it and drag: that point is the handle, moved in the view plane, and the region follows
 // smoothly in space and over the window. The press is an edit-drag line (the same checks a script
 // gets), each frame of the drag sets the edit's move in the document (the manifold builder replays it
-// by a back substitution on its cached factorisation), the whole drag one undo step. A Ctrl-drag (Alt
+// onto the region's rows from the editor it cached), the whole drag one undo step. A Ctrl-drag (Alt
 // orbits) retimes instead: the handle moves in time, the viewport's width the edit's window, and a
 // value the replay refuses (manifold_retime.h) is not set: the last accepted one stays, the refusal
 // is the status line. The panel's weights, time scale and volume are the next region's setup.

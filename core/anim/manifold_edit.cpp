@@ -174,9 +174,16 @@ const EditRegion& ManifoldEditor::selection() const { return impl_->sel; }
 const Eigen::VectorXd& ManifoldEditor::reach() const { return impl_->reach; }
 
 MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
+  MatrixX4dRow out = impl_->V;
+  drag_onto(d, out);
+  return out;
+}
+
+void ManifoldEditor::drag_onto(const ManifoldDrag& d, MatrixX4dRow& out) const {
   const Impl& s = *impl_;
   const std::vector<int>& region = s.sel.region;
   const int nr = static_cast<int>(region.size());
+  if (out.rows() != s.V.rows()) throw Error("space-time edit: the vertices are not the edited manifold's");
   if (!d.translation.allFinite() || !d.rotation.allFinite())
     throw Error("space-time edit: the drag's translation or rotation is not finite");
   if (!(d.rotation.transpose() * d.rotation).isApprox(Eigen::Matrix3d::Identity(), 1e-9) || d.rotation.determinant() < 0)
@@ -184,7 +191,7 @@ MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
   if (!std::isfinite(d.retime)) throw Error("space-time edit: the drag's retime is not finite");
   if (d.retime != 0 && !s.retime_refusal.empty()) throw Error("space-time edit: cannot retime: " + s.retime_refusal);
   const bool turns = d.rotation != Eigen::Matrix3d::Identity();
-  MatrixX4dRow out = s.V;
+  for (int v : region) out.row(v) = s.V.row(v);
 
   // The handle's targets (exact: written directly, not through the solve).
   Eigen::MatrixXd dH(s.sel.handle.size(), 3);
@@ -198,29 +205,30 @@ MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
     dH.row(h) = (target - p).transpose();
   }
 
-  // 4.2.1: each detail turns by its share s_i of the handle's rotation.
-  const int nrows = static_cast<int>(s.rows.size());
-  std::vector<Eigen::Matrix3d> R(nrows, Eigen::Matrix3d::Identity());
-  if (turns && s.options.turn_details) {
-    const Eigen::AngleAxisd aa(d.rotation);
-    for (int r = 0; r < nrows; ++r) {
-      double share = 0;
-      for (int slot : s.rows[r].turn) share += s.reach[slot];
-      share /= s.rows[r].turn_div;
-      R[r] = Eigen::AngleAxisd(std::clamp(share, 0.0, 1.0) * aa.angle(), aa.axis()).toRotationMatrix();
+  if (!turns && s.layers.empty() && s.options.linear_translation) {
+    // No turn: the details are unchanged (b = 0) and every handle moves by the translation, so the
+    // solve is the reach's (the handle at 1, the anchors at 0) times the translation.
+    for (int r = 0; r < nr; ++r)
+      if (s.free_of_region[r] >= 0) out.row(region[r]).head<3>() += s.reach[r] * d.translation.transpose();
+  } else {
+    // 4.2.1: each detail turns by its share s_i of the handle's rotation.
+    const int nrows = static_cast<int>(s.rows.size());
+    std::vector<Eigen::Matrix3d> R(nrows, Eigen::Matrix3d::Identity());
+    if (turns && s.options.turn_details) {
+      const Eigen::AngleAxisd aa(d.rotation);
+      for (int r = 0; r < nrows; ++r) {
+        double share = 0;
+        for (int slot : s.rows[r].turn) share += s.reach[slot];
+        share /= s.rows[r].turn_div;
+        R[r] = Eigen::AngleAxisd(std::clamp(share, 0.0, 1.0) * aa.angle(), aa.axis()).toRotationMatrix();
+      }
     }
-  }
-  auto details = [&] {
     Eigen::MatrixXd b(nrows, 3);
     for (int r = 0; r < nrows; ++r) b.row(r) = ((R[r] - Eigen::Matrix3d::Identity()) * s.delta.row(r).transpose()).transpose();
-    return b;
-  };
-  auto place = [&](const Eigen::MatrixXd& dF) {
+    const Eigen::MatrixXd dF = s.solve(dH, b);
     for (size_t f = 0; f < s.free_vertex.size(); ++f) out.row(s.free_vertex[f]).head<3>() += dF.row(f);
-  };
-  place(s.solve(dH, details()));
-
-  if (!s.layers.empty()) restore_layer_volumes(s.layers, out);
+    if (!s.layers.empty()) restore_layer_volumes(s.layers, out);
+  }
 
   // Retime: t solves like x, y, z with no detail change, so its displacement is the reach times the
   // handle's (the handle lands on t + retime exactly, the anchors keep theirs).
@@ -228,9 +236,13 @@ MatrixX4dRow ManifoldEditor::drag(const ManifoldDrag& d) const {
     for (int r = 0; r < nr; ++r)
       out(region[r], 3) = s.handle_of_region[r] >= 0 ? s.V(region[r], 3) + d.retime
                                                      : s.V(region[r], 3) + d.retime * s.reach[r];
-    check_time_edges(out, s.time_edges);
+    try {
+      check_time_edges(out, s.time_edges);
+    } catch (const Error&) {
+      for (int v : region) out.row(v) = s.V.row(v);
+      throw;
+    }
   }
-  return out;
 }
 
 }  // namespace dfm

@@ -27,7 +27,10 @@
 // by 4 s (1 - s) so the anchors and the handle stay where they are.
 //
 // 4.6.1's structure: the constructor is initialise (one factorisation of L_F^T L_F per region), drag is
-// a back substitution (three right-hand sides, x, y, z).
+// a back substitution (three right-hand sides, x, y, z). A drag without a turn or volume preservation
+// needs none: its details are unchanged (b = 0) and every handle vertex moves by the translation, so
+// the solve is linear in it, d_F = reach_F translation^T (the reach's system, solved at initialise).
+// It equals the back substitution up to rounding (tests/test_manifold_edit.cpp bounds the difference).
 #include <memory>
 #include <vector>
 
@@ -47,6 +50,9 @@ struct ManifoldEditOptions {
   bool turn_details = true;     // 4.2.1: rotate the differential coordinates with the handle (false:
                                 // translation-only Laplacian editing, which shears details; for comparison)
   bool preserve_volume = false;  // 4.2.2: keep each region layer's enclosed volume
+  // A drag with no turn and no volume preservation moves the free vertices by the reach times the
+  // translation instead of a back substitution (false: always the back substitution; for comparison).
+  bool linear_translation = true;
 };
 
 struct ManifoldDrag {
@@ -75,6 +81,11 @@ class ManifoldEditor {
   // identity, else at rotation (v - pivot) + pivot + translation. Throws dfm::Error (nothing changed) for
   // a non-finite drag or a rotation that is not orthonormal with determinant 1.
   MatrixX4dRow drag(const ManifoldDrag& drag) const;
+  // drag() written into V (#V x 4), whose rows outside the region must be the rows the editor was
+  // initialised on; its region rows may hold anything (an earlier drag's). Writes only the region rows,
+  // so a frame costs the region, not the manifold. Throws as drag() does, with V unchanged outside the
+  // region and the region rows the original ones (a refused retime) or untouched (anything else).
+  void drag_onto(const ManifoldDrag& drag, MatrixX4dRow& V) const;
 
   const EditRegion& selection() const;
   // The reach field s per region vertex (selection().region order): 1 on the handle, 0 at the anchors.

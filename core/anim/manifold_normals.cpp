@@ -25,18 +25,20 @@ Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k) {
   return N;
 }
 
-void add_tet_normal(const AnimationManifold& m, int k, int c, const Eigen::RowVector4d& n, Eigen::MatrixXd& sum, int row) {
+int tet_normal_sums(const AnimationManifold& m, int k, int c) {
   const int v = m.T(k, c);
-  auto r = sum.row(row);
   const bool ends = m.num_layers() >= 2;
-  if (!ends || (m.V(v, 3) != m.times.front() && m.V(v, 3) != m.times.back())) {
-    r.head<4>() += n;
-    return;
-  }
+  if (!ends || (m.V(v, 3) != m.times.front() && m.V(v, 3) != m.times.back())) return 1;
   int in_plane = 0;
   for (int d = 0; d < 4; ++d) in_plane += m.V(m.T(k, d), 3) == m.V(v, 3);
-  if (in_plane >= 3) r.head<4>() += n;
-  r.tail<4>() += n;
+  return in_plane >= 3 ? 3 : 2;
+}
+
+void add_tet_normal(const AnimationManifold& m, int k, int c, const Eigen::RowVector4d& n, Eigen::MatrixXd& sum, int row) {
+  const int sums = tet_normal_sums(m, k, c);
+  auto r = sum.row(row);
+  if (sums & 1) r.head<4>() += n;
+  if (sums & 2) r.tail<4>() += n;
 }
 
 void accumulate_tet_normals(const AnimationManifold& m, int first_tet, int last_tet, int vertex_offset,

@@ -33,6 +33,9 @@ void accumulate_tet_normals(const AnimationManifold& m, int first_tet, int last_
 // accumulate_tet_normals for one corner: adds n (tet_normal4 of tetrahedron k) to row `row` of sum as
 // corner c's vertex sees it. Summing a vertex's tetrahedra in increasing k gives the same bits.
 void add_tet_normal(const AnimationManifold& m, int k, int c, const Eigen::RowVector4d& n, Eigen::MatrixXd& sum, int row);
+// Which of the row's sums add_tet_normal adds to: 1 columns 0-3, 2 columns 4-7, 3 both. Depends on t
+// only (a caller summing the same stars again while only x, y, z move can keep it).
+int tet_normal_sums(const AnimationManifold& m, int k, int c);
 
 // sum / |sum|, or zero when sum is zero (a vertex in no tetrahedron, or cancelling facets).
 Eigen::Vector4d unit_or_zero(const Eigen::Vector4d& sum);

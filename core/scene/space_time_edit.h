@@ -3,6 +3,7 @@
 // itself, stored in the scene and replayed in order onto the manifold built from the keys, so the
 // viewport, save-posed and save-frames all see them. Each edit is a region (a ball over a time
 // window), a handle (a point at a time) and its move (core/anim/manifold_edit.h).
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,14 +35,27 @@ struct SpaceTimeEdit {
 // scale > 0); throws dfm::Error saying what is wrong.
 void check_space_time_edit(const SpaceTimeEdit& e);
 
-// ManifoldEditors kept between replays: a drag that changes only the last edit's move re-solves by a
-// back substitution (4.6.1) instead of factoring again. Not part of the document.
+// ManifoldEditors kept between replays: a drag that changes only an edit's move is not factored again
+// (4.6.1): a translation moves the region by its reach, a turn is a back substitution. Each replay
+// writes only the regions' rows. Not part of the document.
 class SpaceTimeEditCache {
  public:
   SpaceTimeEditCache();
   ~SpaceTimeEditCache();
   struct Entry;
   std::vector<std::unique_ptr<Entry>> entries;  // one per edit, in order
+  // The rows the last apply_space_time_edits wrote (sorted); every other row is as it was given.
+  // Not valid after a retime (its slabs are merged: new rows).
+  std::vector<int> written;
+  bool written_valid = false;
+  // edited_vertex_normals' plan for the rows plan_rows: plan_affected, the vertices sharing a
+  // tetrahedron with one of them; plan_tets, their stars' tetrahedra in increasing order, with each
+  // corner's index in plan_affected (-1: not affected) in plan_slots and its tet_normal_sums in
+  // plan_sums; plan_moves, whether the tetrahedron has a plan row (else plan_normals holds its tet_normal4).
+  std::vector<int> plan_rows, plan_affected, plan_tets;
+  std::vector<std::array<int, 4>> plan_slots, plan_sums;
+  std::vector<char> plan_moves;
+  std::vector<Eigen::RowVector4d> plan_normals;
 };
 
 // Applies `edits` in order to m.V. An edit whose region no longer selects anything (the keys changed:
@@ -77,5 +91,12 @@ class SpaceTimeRetimeTrial {
 // frame's view needs without a full pass.
 Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& edited, const MatrixX4dRow& base_V,
                                       const Eigen::MatrixXd& base_normals, const std::vector<SpaceTimeEdit>& edits);
+// The same into N (its storage reused), for `edited` = base_V's manifold after
+// apply_space_time_edits(edited, edits, &cache): only the stars around the rows the replay wrote are
+// summed again, found once per set of regions instead of per frame (a drag frame's normals). Falls back
+// to the call above after a retime.
+void edited_vertex_normals(const AnimationManifold& edited, const MatrixX4dRow& base_V,
+                           const Eigen::MatrixXd& base_normals, const std::vector<SpaceTimeEdit>& edits,
+                           SpaceTimeEditCache& cache, Eigen::MatrixXd& N);
 
 }  // namespace dfm

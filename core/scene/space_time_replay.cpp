@@ -4,6 +4,7 @@
 #include "core/scene/space_time_edit.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "core/anim/manifold_normals.h"
 #include "core/anim/manifold_retime.h"
@@ -37,14 +38,13 @@ void apply_drag(AnimationManifold& m, const ManifoldEditor& editor, const SpaceT
   d.rotation = e.rotation.toRotationMatrix();
   if (e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) d.rotation = Eigen::Matrix3d::Identity();
   d.retime = e.retime;
-  MatrixX4dRow V = editor.drag(d);
   if (e.retime != 0) {
     AnimationManifold retimed = m;
-    retimed.V = std::move(V);
+    retimed.V = editor.drag(d);
     merge_retimed_slabs(retimed);
     m = std::move(retimed);
   } else {
-    m.V = std::move(V);
+    editor.drag_onto(d, m.V);  // m.V is the editor's input: only the region's rows change
   }
 }
 
@@ -72,6 +72,10 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
                                                 SpaceTimeEditCache* cache) {
   std::vector<std::string> notes;
   if (cache && cache->entries.size() > edits.size()) cache->entries.resize(edits.size());
+  if (cache) {
+    cache->written.clear();
+    cache->written_valid = true;
+  }
   for (size_t i = 0; i < edits.size(); ++i) {
     const SpaceTimeEdit& e = edits[i];
     // A still edit (edit-region before its drag) changes nothing: no region to select or factor.
@@ -85,8 +89,10 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
         if (cache->entries.size() <= i) cache->entries.resize(i + 1);
         std::unique_ptr<SpaceTimeEditCache::Entry>& c = cache->entries[i];
         // Reused only on the very same vertices: an earlier edit or a key change rebuilds it.
-        if (!c || !c->setup.same_setup(e) || c->input.rows() != m.V.rows() || c->input != m.V) {
+        if (!c || !c->setup.same_setup(e) || c->input.rows() != m.V.rows() ||
+            std::memcmp(c->input.data(), m.V.data(), sizeof(double) * m.V.size()) != 0) {  // bits: 4x Eigen's !=
           c = std::make_unique<SpaceTimeEditCache::Entry>();
+          cache->plan_rows.clear();  // the normals' plan too: it may be another manifold (new keys)
           c->editor = make_editor(m, e);  // throws before the entry is usable: left with no editor
           c->setup = e;
           c->input = m.V;
@@ -97,10 +103,19 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
         editor = own.get();
       }
       apply_drag(m, *editor, e);
+      if (cache) {
+        cache->written_valid &= e.retime == 0;
+        const std::vector<int>& region = editor->selection().region;
+        cache->written.insert(cache->written.end(), region.begin(), region.end());
+      }
     } catch (const Error& err) {
       if (cache && cache->entries.size() > i) cache->entries[i].reset();
       notes.push_back("space-time edit " + std::to_string(i + 1) + " skipped: " + err.what());
     }
+  }
+  if (cache) {
+    std::sort(cache->written.begin(), cache->written.end());
+    cache->written.erase(std::unique(cache->written.begin(), cache->written.end()), cache->written.end());
   }
   return notes;
 }
@@ -139,6 +154,61 @@ Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& m, const MatrixX4
   }
   for (size_t a = 0; a < affected.size(); ++a) N.row(affected[a]) = vertex_normal4(sum.row(a)).transpose();
   return N;
+}
+
+void edited_vertex_normals(const AnimationManifold& m, const MatrixX4dRow& base_V, const Eigen::MatrixXd& base_normals,
+                           const std::vector<SpaceTimeEdit>& edits, SpaceTimeEditCache& cache, Eigen::MatrixXd& N) {
+  if (!cache.written_valid || base_V.rows() != m.V.rows() || base_normals.rows() != m.V.rows()) {
+    N = edited_vertex_normals(m, base_V, base_normals, edits);
+    return;
+  }
+  N = base_normals;
+  if (cache.written.empty()) return;
+  const int nv = m.num_vertices();
+  if (cache.plan_rows != cache.written) {
+    // Affected: a vertex sharing a tetrahedron with a written row; its whole star is summed again.
+    std::vector<char> written(nv, 0);
+    for (int v : cache.written) written[v] = 1;
+    std::vector<int> slot(nv, -1);
+    cache.plan_affected.clear();
+    for (int k = 0; k < m.num_tets(); ++k) {
+      if (!written[m.T(k, 0)] && !written[m.T(k, 1)] && !written[m.T(k, 2)] && !written[m.T(k, 3)]) continue;
+      for (int c = 0; c < 4; ++c)
+        if (slot[m.T(k, c)] < 0) slot[m.T(k, c)] = static_cast<int>(cache.plan_affected.size()), cache.plan_affected.push_back(m.T(k, c));
+    }
+    cache.plan_tets.clear();
+    cache.plan_slots.clear();
+    cache.plan_sums.clear();
+    cache.plan_moves.clear();
+    cache.plan_normals.clear();
+    for (int k = 0; k < m.num_tets(); ++k) {
+      const std::array<int, 4> s{slot[m.T(k, 0)], slot[m.T(k, 1)], slot[m.T(k, 2)], slot[m.T(k, 3)]};
+      if (s[0] < 0 && s[1] < 0 && s[2] < 0 && s[3] < 0) continue;
+      cache.plan_tets.push_back(k);
+      cache.plan_slots.push_back(s);
+      std::array<int, 4> sums{};
+      for (int c = 0; c < 4; ++c) sums[c] = tet_normal_sums(m, k, c);  // t does not change without a retime
+      cache.plan_sums.push_back(sums);
+      const bool moves = written[m.T(k, 0)] || written[m.T(k, 1)] || written[m.T(k, 2)] || written[m.T(k, 3)];
+      cache.plan_moves.push_back(moves);
+      cache.plan_normals.push_back(moves ? Eigen::RowVector4d::Zero() : Eigen::RowVector4d(tet_normal4(m, k).transpose()));
+    }
+    cache.plan_rows = cache.written;
+  }
+  // Each affected vertex's star in increasing tetrahedron order, like manifold_vertex_normals: the
+  // same bits (an affected vertex whose star did not move gets its base normal again).
+  Eigen::Matrix<double, Eigen::Dynamic, 8, Eigen::RowMajor> sum = decltype(sum)::Zero(cache.plan_affected.size(), 8);
+  for (size_t i = 0; i < cache.plan_tets.size(); ++i) {
+    const Eigen::RowVector4d n =
+        cache.plan_moves[i] ? Eigen::RowVector4d(tet_normal4(m, cache.plan_tets[i]).transpose()) : cache.plan_normals[i];
+    for (int c = 0; c < 4; ++c) {
+      const int a = cache.plan_slots[i][c];
+      if (a < 0) continue;
+      if (cache.plan_sums[i][c] & 1) sum.row(a).head<4>() += n;
+      if (cache.plan_sums[i][c] & 2) sum.row(a).tail<4>() += n;
+    }
+  }
+  for (size_t a = 0; a < cache.plan_affected.size(); ++a) N.row(cache.plan_affected[a]) = vertex_normal4(sum.row(a)).transpose();
 }
 
 }  // namespace dfm
