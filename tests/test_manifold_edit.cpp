@@ -22,6 +22,7 @@
 #include "core/anim/slice.h"
 #include "core/mesh/io.h"
 #include "core/util/error.h"
+#include "tests/ellipsoid_test_mesh.h"
 #include "tests/test_support.h"
 
 using namespace dfm;
@@ -730,35 +731,16 @@ MatrixX4dRow dense_drag(const AnimationManifold& M, const EditRegion& sel, const
 
 // An ellipsoid (x half-axis 2) over 7 layers at t = 0..6, its +x end rising with t.
 AnimationManifold bending_ellipsoid() {
-  std::vector<Eigen::Vector3d> V = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<Eigen::Vector3i> F = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int level = 0; level < 3; ++level) {
-    std::map<std::pair<int, int>, int> mid;
-    auto midpoint = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      if (const auto it = mid.find(key); it != mid.end()) return it->second;
-      V.push_back((V[a] + V[b]).normalized());
-      return mid[key] = static_cast<int>(V.size()) - 1;
-    };
-    std::vector<Eigen::Vector3i> G;
-    for (const Eigen::Vector3i& f : F) {
-      const int a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
-      G.insert(G.end(), {{f[0], a, c}, {a, f[1], b}, {c, b, f[2]}, {a, b, c}});
-    }
-    F = std::move(G);
-  }
-  Eigen::MatrixXi Fm(F.size(), 3);
-  for (size_t i = 0; i < F.size(); ++i) Fm.row(i) = F[i].transpose();
+  const TriMesh e = test::ellipsoid();
   std::vector<Eigen::MatrixXd> layers;
   std::vector<double> times;
   for (int k = 0; k < 7; ++k) {
-    Eigen::MatrixXd L(V.size(), 3);
-    for (size_t i = 0; i < V.size(); ++i)
-      L.row(i) = Eigen::RowVector3d(2 * V[i].x(), V[i].y() + 0.05 * k * smoothstep(V[i].x()), V[i].z());
+    Eigen::MatrixXd L = e.V;
+    for (int i = 0; i < L.rows(); ++i) L(i, 1) += 0.05 * k * smoothstep(e.V(i, 0) / 2);
     layers.push_back(L);
     times.push_back(k);
   }
-  return build_manifold(layers, Fm, times);
+  return build_manifold(layers, e.F, times);
 }
 
 double max_abs(const MatrixX4dRow& a, const MatrixX4dRow& b) { return (a - b).cwiseAbs().maxCoeff(); }
