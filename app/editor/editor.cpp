@@ -404,6 +404,7 @@ int Editor::run() {
   if (!opts_.script.empty()) run_script_file();
   if (frame_selection_after_script_) frame_selection();
   if (opts_.play_frames > 0) play_benchmark(opts_.play_frames);
+  if (opts_.drag_frames > 0) drag_benchmark(opts_.drag_frames);
   if (!opts_.screenshot.empty()) wait_for_manifold(), wait_for_shape_space(), save_screenshot(opts_.screenshot);
   if (opts_.quit || should_quit_) return 0;
 

@@ -45,6 +45,7 @@ struct EditorOptions {
   bool quit = false;       // --quit
   std::string ui;          // --ui key=value,...: initial tool / view state (screenshots, tests)
   int play_frames = 0;     // --play-frames N: play the timeline N frames, print frame times
+  int drag_frames = 0;     // --drag-frames N: drag the last space-time edit N frames against posing
   int width = 1280, height = 800;
   std::string bind_screenshot;  // --bind-screenshot F.png: a PNG of the window while a script's bind runs
   int msaa = -1;           // --msaa N: multisample count (-1: 4, or 0 on a software renderer)
@@ -119,6 +120,8 @@ class Editor {
   };
   bool next_job_frame(JobFrameClock& clock);
   void play_benchmark(int frames);
+  void drag_benchmark(int frames);
+  double posed_frames(int frames, bool reskin, FrameStages* st);
   void print_mid_frame();
   void apply_ui_options(const std::string& spec);
   // editor_input.cpp

@@ -1,4 +1,5 @@
-// Batch and test entry points of the editor: --play-frames (playback against posing, by stage), --ui
+// Batch and test entry points of the editor: --play-frames (playback against posing, by stage),
+// --drag-frames (a space-time drag against posing), --ui
 // (initial tool and view state), and waiting for the Shape space panel's worker before a screenshot.
 // A script's bind with its frames is batch_runner.h's.
 #include "app/editor/editor.h"
@@ -6,9 +7,10 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include <cstdlib>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -32,6 +34,30 @@ void Editor::print_mid_frame() {
   std::printf("play-frames: at t = %.3f the frame shows %d vertices, %d triangles (%s)\n", mid, view_->display_vertex_count(),
               view_->display_face_count(), view_->showing_slice() ? "manifold slice" : "skinned");
   std::fflush(stdout);
+}
+
+// Mean milliseconds of `frames` frames of the current pose, each drawn and finished, after three
+// warm-up frames; reskin: the pose is skinned again every frame (posing), else only redrawn (still).
+// Stage sums over the measured frames go to *st.
+double Editor::posed_frames(int frames, bool reskin, FrameStages* st) {
+  std::vector<double> t;
+  profile_stages_ = true;
+  for (int i = 0; i < frames + 3; ++i) {
+    const double t0 = glfwGetTime();
+    if (reskin) view_->show_pose();
+    render_frame();
+    glFinish();
+    present_frame();
+    glfwPollEvents();
+    if (i >= 3) {
+      t.push_back(1000.0 * (glfwGetTime() - t0));
+      st->ui += stages_.ui, st->sync += stages_.sync, st->scene += stages_.scene, st->imgui += stages_.imgui;
+    }
+  }
+  profile_stages_ = false;
+  double sum = 0;
+  for (double m : t) sum += m;
+  return t.empty() ? 0.0 : sum / double(t.size());
 }
 
 void Editor::play_benchmark(int frames) {
@@ -79,28 +105,8 @@ void Editor::play_benchmark(int frames) {
   // The baseline in the same process: as many frames of the current pose, not playing. Posing skins
   // the pose again every frame (what an edit or a drag costs); a still frame only redraws it.
   view_->show_pose();
-  auto posed_frames = [&](bool reskin, FrameStages* st) {
-    std::vector<double> t;
-    profile_stages_ = true;
-    for (int i = 0; i < frames + 3; ++i) {
-      const double t0 = glfwGetTime();
-      if (reskin) view_->show_pose();
-      render_frame();
-      glFinish();
-      present_frame();
-      glfwPollEvents();
-      if (i >= 3) {
-        t.push_back(1000.0 * (glfwGetTime() - t0));
-        st->ui += stages_.ui, st->sync += stages_.sync, st->scene += stages_.scene, st->imgui += stages_.imgui;
-      }
-    }
-    profile_stages_ = false;
-    double sum = 0;
-    for (double m : t) sum += m;
-    return t.empty() ? 0.0 : sum / double(t.size());
-  };
   FrameStages posed_st, still_st;
-  const double pmean = posed_frames(true, &posed_st), still = posed_frames(false, &still_st);
+  const double pmean = posed_frames(frames, true, &posed_st), still = posed_frames(frames, false, &still_st);
   if (!view_->showing_slice() && pmean > 0) {
     const double pn = frames;
     std::printf("play-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
@@ -113,6 +119,64 @@ void Editor::play_benchmark(int frames) {
   }
   std::fflush(stdout);
   print_mid_frame();
+}
+
+// Drags the document's last space-time edit for `frames` frames, as the Space-time tool's drag does
+// (the edit's move set in one gesture, the manifold's slice at the handle's time redrawn), each frame
+// drawn and finished, then as many posed frames in the same process (issue 35: "a drag redraws at the
+// rate of plain posing"). The move sweeps a circle of 5% of the surface's diagonal; the drag is undone.
+void Editor::drag_benchmark(int frames) {
+  wait_for_manifold();
+  if (doc_.space_time_edits().empty()) {
+    std::printf("drag-frames: no space-time edit to drag (a script's edit-region and edit-drag make one)\n");
+    std::fflush(stdout);
+    return;
+  }
+  const int index = static_cast<int>(doc_.space_time_edits().size()) - 1;
+  const SpaceTimeEdit e0 = doc_.space_time_edits()[index];
+  doc_.set_time(e0.handle.time);
+  const Eigen::AlignedBox3d box = view_->surface_bounds();
+  const double r = 0.05 * (box.isEmpty() ? 1.0 : box.diagonal().norm());
+  std::vector<double> ms;
+  FrameStages sum_st;
+  int shown = 0;
+  doc_.begin_gesture();
+  profile_stages_ = true;
+  for (int i = 0; i < frames + 3; ++i) {
+    const double t0 = glfwGetTime();
+    SpaceTimeEdit e = e0;
+    const double a = 2 * M_PI * (i + 1) / std::max(1, frames);
+    e.move += r * Eigen::Vector3d(std::sin(a), 1 - std::cos(a), 0);
+    doc_.set_space_time_edit(index, e);
+    tick(0);
+    render_frame();
+    glFinish();
+    present_frame();
+    glfwPollEvents();
+    if (i >= 3) {
+      ms.push_back(1000.0 * (glfwGetTime() - t0));
+      sum_st.ui += stages_.ui, sum_st.sync += stages_.sync, sum_st.scene += stages_.scene, sum_st.imgui += stages_.imgui;
+      shown += view_->showing_slice() && view_->display_vertex_count() > 0;
+    }
+  }
+  profile_stages_ = false;
+  doc_.end_gesture();
+  doc_.undo();
+  const double n = double(ms.size());
+  double sum = 0;
+  for (double m : ms) sum += m;
+  std::sort(ms.begin(), ms.end());
+  std::printf("drag-frames: %d frames (%d showed the edited slice), mean %.2f ms, median %.2f ms, p95 %.2f ms, max %.2f ms\n",
+              int(ms.size()), shown, sum / n, ms[ms.size() / 2], ms[std::min(ms.size() - 1, size_t(0.95 * ms.size()))],
+              ms.back());
+  std::printf("drag-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
+              sum_st.ui / n, sum_st.sync / n, sum_st.scene / n, sum_st.imgui / n);
+  FrameStages posed_st;
+  const double pmean = posed_frames(frames, true, &posed_st);
+  std::printf("drag-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
+              posed_st.ui / n, posed_st.sync / n, posed_st.scene / n, posed_st.imgui / n);
+  std::printf("drag-frames: drag mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, pmean > 0 ? sum / n / pmean : 0.0);
+  std::fflush(stdout);
 }
 
 // As wait_for_manifold: frames while the panel's ARAP shape is on the worker (a frame when its

@@ -17,7 +17,7 @@ namespace {
 void usage(std::FILE* out) {
   std::fprintf(out,
                "usage: deform-editor [FILE] [--script S.txt] [--screenshot OUT.png] [--quit] [--size WxH] [--ui K=V,...]\n"
-               "                     [--play-frames N] [--msaa N] [--bind-screenshot F.png]\n"
+               "                     [--play-frames N] [--drag-frames N] [--msaa N] [--bind-screenshot F.png]\n"
                "  FILE              a scene (.scene.json), a surface (.obj .off .ply .stl) or tet mesh (.mesh)\n"
                "  --script S.txt    run editor commands (see README.md) after loading\n"
                "  --screenshot F    write a PNG of the window after the script\n"
@@ -30,6 +30,7 @@ void usage(std::FILE* out) {
                "                    cursor=XxY (mouse held there), frame=all|selection|X:Y:Z:R,\n"
                "                    panels=view:bind:weights:transform:posing (the right panel's open sections)\n"
                "  --play-frames N   play the timeline for N frames and print frame times (benchmark)\n"
+               "  --drag-frames N   drag the last space-time edit N frames, print frame times against posing\n"
                "  --bind-screenshot F  write a PNG of the window while the script's bind runs (progress bar)\n"
                "  --msaa N          multisample anti-aliasing samples, 0..8 (default 4; 0 on llvmpipe)\n"
                "Without a display, run it under a virtual X server:\n"
@@ -66,6 +67,8 @@ int main(int argc, char** argv) {
       opts.screenshot = value("--screenshot");
     } else if (a == "--play-frames") {
       opts.play_frames = std::atoi(value("--play-frames").c_str());
+    } else if (a == "--drag-frames") {
+      opts.drag_frames = std::atoi(value("--drag-frames").c_str());
     } else if (a == "--bind-screenshot") {
       opts.bind_screenshot = value("--bind-screenshot");
     } else if (a == "--msaa") {
