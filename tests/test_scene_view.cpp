@@ -1151,14 +1151,33 @@ TEST_CASE("scene view: a space-time drag frame keeps the interval's topology and
     REQUIRE(scene.slice_from_cache());
     // No new topology (the tetrahedra and times are the keys'), the positions are the edit's.
     REQUIRE(scene.intervals_built() == built);
-    REQUIRE(gpu.slicers[0]->uploads == 1);  // the tetrahedra once; each frame its vertices
-    REQUIRE(gpu.slicers[0]->vertex_uploads == f);
+    REQUIRE(gpu.slicers[0]->uploads == 1);  // the tetrahedra once
+    REQUIRE(gpu.slicers[0]->vertex_uploads == 0);  // the general pass is not drawn: not uploaded
     const TriMesh want = manifold_frame(document_manifold(doc), 1.2).mesh;
     const Eigen::MatrixXd& shown = scene.display_vertices();
     REQUIRE(shown.rows() == want.V.rows());
     REQUIRE((shown - want.V).cwiseAbs().maxCoeff() < 1e-6);  // read back as floats; the drag moves 0.1-0.3
   }
   doc.end_gesture();
+  // The sweep (the general pass) then takes the drag's last positions, once, and shows the edited manifold.
+  s.slice_axis = SliceAxis::X;
+  const AnimationManifold m = document_manifold(doc);
+  const double lo = m.V.col(0).minCoeff(), hi = m.V.col(0).maxCoeff();
+  for (double x : {1.6, 1.85}) {  // through the region (its centre at x = 2, the tip)
+    const double f = (x - lo) / (hi - lo);
+    s.sweep_value = f;
+    scene.sync(doc, s);
+    const ManifoldSlice want = slice_manifold(m, SliceAxis::X, lo + f * (hi - lo));
+    REQUIRE(want.mesh.num_faces() > 0);
+    REQUIRE(scene.display_face_count() == want.mesh.num_faces());
+    Eigen::RowVector3d corners = Eigen::RowVector3d::Zero();  // the soup's corners, summed
+    for (int t = 0; t < want.mesh.num_faces(); ++t)
+      for (int c = 0; c < 3; ++c) corners += want.mesh.V.row(want.mesh.F(t, c));
+    REQUIRE((scene.display_vertices().colwise().sum() - corners).norm() < 1e-5 * want.mesh.num_faces());
+    REQUIRE(gpu.slicers[0]->uploads == 1);
+    REQUIRE(gpu.slicers[0]->vertex_uploads == 1);
+  }
+  s.slice_axis = SliceAxis::T;
   // A retime changes the times: the intervals are cut again (more distinct vertex times).
   const int times_before = scene.vertex_time_count();
   e.retime = 0.05;

@@ -50,6 +50,9 @@ struct SceneView::Deformer {
   // The animation manifold (its signature covers key times, poses and meshes, weights, method).
   ManifoldBuilder builder;
   std::unique_ptr<gl::ManifoldSlicer> slice;
+  // The general pass's positions predate the manifold (a drag frame drawn from the interval cache):
+  // uploaded when that pass next slices, so a drag frame converts and uploads only the shown interval.
+  bool slice_stale = false;
   std::shared_ptr<const Eigen::MatrixXd> normals4;  // the manifold's unit 4D vertex normals
   IntervalCachePolicy interval_policy{4};
   std::vector<std::unique_ptr<gl::IntervalSlicer>> interval_slots;  // one per policy slot
@@ -199,16 +202,14 @@ void SceneView::update_surface(const Document& doc, const ViewSettings& s) {
       const AnimationManifold& m = d.builder.manifold();
       d.normals4 = d.builder.normals();
       // A space-time drag frame (or any change that keeps the tetrahedra and every t) cuts each interval
-      // the same way: the cached topologies stay, their positions re-upload when shown, and the GPU
-      // slicer takes the new positions and normals only.
+      // the same way: the cached topologies stay, their positions re-upload when shown, and the general
+      // slicer takes the new positions and normals only, when it next slices.
       const bool same_cut = d.cut && (d.builder.positions_only() ||
                                       (d.cut->times == m.times && d.cut->T.rows() == m.T.rows() && d.cut->V.rows() == m.V.rows() &&
                                        d.cut->V.col(3) == m.V.col(3) && d.cut->T == m.T));
       d.cut = d.builder.shared_manifold();
-      if (same_cut)
-        d.slice->upload_vertices(m, *d.normals4);
-      else
-        d.slice->upload(m, *d.normals4);
+      if (!same_cut) d.slice->upload(m, *d.normals4);
+      d.slice_stale = same_cut;
       if (same_cut) {
         d.slot_stale.assign(d.interval_slots.size(), true);
         d.prefetch.reset(d.cut, d.normals4, d.interval_policy.times());
@@ -346,6 +347,8 @@ void SceneView::show_slice(const Document& doc, const ViewSettings& s) {
     display_faces_ = static_cast<int>(slot.faces().rows());
     d.shown_slot = route.slot;
   } else {
+    if (d.slice_stale) d.slice->upload_vertices(m, *d.normals4);
+    d.slice_stale = false;
     const int tris = d.slice->slice(axis, value);
     gpu_.show_geometry(d.slice->output());
     display_closed_ = false;  // a triangle soup: no edges to check
