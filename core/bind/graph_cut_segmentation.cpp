@@ -4,9 +4,12 @@
 #include <cmath>
 #include <string>
 
-// GCC 12 reports false maybe-uninitialized warnings inside Boost Graph's edge iterators.
+// GCC 12 reports false maybe-uninitialized warnings inside Boost Graph's edge iterators (clang has
+// no such warning).
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
 
@@ -111,4 +114,6 @@ std::vector<char> graph_cut_segmentation(const Eigen::VectorXd& w, const Eigen::
 }
 
 }  // namespace dfm
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
+#endif
