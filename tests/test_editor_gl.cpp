@@ -244,6 +244,7 @@ TEST_CASE("--drag-frames drags the last space-time edit and prints frame times a
   INFO(r.output);
   REQUIRE(r.code == 0);
   REQUIRE(r.output.find("drag-frames: 12 frames (12 showed the edited slice)") != std::string::npos);
+  REQUIRE(r.output.find("drag-frames: the edited slice redrawn still: mean ") != std::string::npos);
   std::smatch m;
   REQUIRE(std::regex_search(r.output, m, std::regex("drag-frames: drag mean ([0-9.]+) ms; posed mean ([0-9.]+) ms; ratio ([0-9.]+)")));
   CHECK(std::stod(m[1]) > 0.0);

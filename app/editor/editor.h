@@ -121,7 +121,7 @@ class Editor {
   bool next_job_frame(JobFrameClock& clock);
   void play_benchmark(int frames);
   void drag_benchmark(int frames);
-  double posed_frames(int frames, bool reskin, FrameStages* st);
+  double timed_frames(int frames, bool reskin, FrameStages* st);
   void print_mid_frame();
   void apply_ui_options(const std::string& spec);
   // editor_input.cpp

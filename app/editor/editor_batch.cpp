@@ -36,10 +36,10 @@ void Editor::print_mid_frame() {
   std::fflush(stdout);
 }
 
-// Mean milliseconds of `frames` frames of the current pose, each drawn and finished, after three
-// warm-up frames; reskin: the pose is skinned again every frame (posing), else only redrawn (still).
-// Stage sums over the measured frames go to *st.
-double Editor::posed_frames(int frames, bool reskin, FrameStages* st) {
+// Mean milliseconds of `frames` frames, each drawn and finished, after three warm-up frames; reskin:
+// the current pose is skinned again and shown every frame (posing), else the view is only redrawn
+// (still). Stage sums over the measured frames go to *st.
+double Editor::timed_frames(int frames, bool reskin, FrameStages* st) {
   std::vector<double> t;
   profile_stages_ = true;
   for (int i = 0; i < frames + 3; ++i) {
@@ -106,7 +106,7 @@ void Editor::play_benchmark(int frames) {
   // the pose again every frame (what an edit or a drag costs); a still frame only redraws it.
   view_->show_pose();
   FrameStages posed_st, still_st;
-  const double pmean = posed_frames(frames, true, &posed_st), still = posed_frames(frames, false, &still_st);
+  const double pmean = timed_frames(frames, true, &posed_st), still = timed_frames(frames, false, &still_st);
   if (!view_->showing_slice() && pmean > 0) {
     const double pn = frames;
     std::printf("play-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
@@ -123,8 +123,9 @@ void Editor::play_benchmark(int frames) {
 
 // Drags the document's last space-time edit for `frames` frames, as the Space-time tool's drag does
 // (the edit's move set in one gesture, the manifold's slice at the handle's time redrawn), each frame
-// drawn and finished, then as many posed frames in the same process (issue 35: "a drag redraws at the
-// rate of plain posing"). The move sweeps a circle of 5% of the surface's diagonal; the drag is undone.
+// drawn and finished, then as many frames of the edited slice standing still and of posing, in the
+// same process (issue 35: "a drag redraws at the rate of plain posing"). The move sweeps a circle of 5%
+// of the surface's diagonal; the drag is undone.
 void Editor::drag_benchmark(int frames) {
   wait_for_manifold();
   if (doc_.space_time_edits().empty()) {
@@ -161,6 +162,8 @@ void Editor::drag_benchmark(int frames) {
   }
   profile_stages_ = false;
   doc_.end_gesture();
+  FrameStages still_st;
+  const double still = timed_frames(frames, false, &still_st);  // the edited slice, nothing changing
   doc_.undo();
   const double n = double(ms.size());
   double sum = 0;
@@ -171,8 +174,10 @@ void Editor::drag_benchmark(int frames) {
               ms.back());
   std::printf("drag-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
               sum_st.ui / n, sum_st.sync / n, sum_st.scene / n, sum_st.imgui / n);
+  std::printf("drag-frames: the edited slice redrawn still: mean %.2f ms (deform %.2f ms, scene draw %.2f ms)\n", still,
+              still_st.sync / n, still_st.scene / n);
   FrameStages posed_st;
-  const double pmean = posed_frames(frames, true, &posed_st);
+  const double pmean = timed_frames(frames, true, &posed_st);
   std::printf("drag-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
               posed_st.ui / n, posed_st.sync / n, posed_st.scene / n, posed_st.imgui / n);
   std::printf("drag-frames: drag mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, pmean > 0 ? sum / n / pmean : 0.0);
