@@ -5,7 +5,7 @@
 // then the documented field's own zero set on a grid (Euler characteristic over u, and the same
 // measures at u = 0.25, 0.5, 0.75), which tells the field's roughness from the sampling's.
 // Arguments: [all|bunny|torus|spheres|teddy] [layers] [spacing] [grid spacing in lattice spacings,
-// default 0.5].
+// default 0.5] [relax rounds (TransitionOptions::relax_rounds; 0 for the unsmoothed level set)].
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -197,6 +197,7 @@ int main(int argc, char** argv) {
   if (argc > 2) options.layers = std::atoi(argv[2]);
   if (argc > 3) options.spacing = std::atof(argv[3]);
   if (argc > 4) grid_factor = std::atof(argv[4]);
+  if (argc > 5) options.relax_rounds = std::atoi(argv[5]);
   const std::string dir = DFM_DATA_DIR;
   if (which == "all" || which == "bunny")
     run("bunny to 3holes", dfm::test::into_unit_box(read_surface(dir + "/bunny.off")),

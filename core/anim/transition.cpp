@@ -24,6 +24,7 @@
 #include "core/anim/key_plane.h"
 #include "core/anim/key_time_seal.h"
 #include "core/anim/layer_extrusion.h"
+#include "core/anim/level_set_relax.h"
 #include "core/anim/space_warp.h"
 #include "core/anim/transition_points.h"
 #include "core/anim/surface_checks.h"
@@ -126,6 +127,7 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   target += o.target;
   middle_points += o.middle_points;
   sealed += o.sealed;
+  relaxed += o.relaxed;
   simplices += o.simplices;
   tets += o.tets;
   conform_seconds += o.conform_seconds;
@@ -347,6 +349,18 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   std::vector<double> layer_times;
   for (double x : u) layer_times.push_back(t0 + x * (t1 - t0));
   layer_times.back() = t1;
+  if (o.relax_rounds > 0) {
+    // Only from the first middle layer to the last: the keys' planes and their Delaunay joins stay.
+    std::vector<char> movable(iso.V.rows());
+    for (Eigen::Index v = 0; v < iso.V.rows(); ++v)
+      movable[v] = iso.V(v, 3) >= layer_times[1] && iso.V(v, 3) <= layer_times[o.layers];
+    LevelSetRelaxOptions r;
+    r.rounds = o.relax_rounds;
+    r.radius = 0.8 * h_mid;  // within a lattice cell: wider fits reach past the two edges' ring
+    r.max_move = 0.5 * h_mid;
+    r.time_scale = h_mid * o.layers / (t1 - t0);  // a layer interval as long as a lattice spacing
+    st.relaxed = relax_level_set(iso.V, iso.T, movable, r).moved;
+  }
   AnimationManifold M = into_slabs(iso, layer_times);
   st.extract_seconds = seconds_since(t);
 
