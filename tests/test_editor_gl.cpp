@@ -47,6 +47,14 @@ std::string tmp(const std::string& name) {
   return (d / name).string();
 }
 
+// The mesh as an OBJ file with x scaled by sx (this test links no mesh writer).
+void write_obj_stretched(const std::string& path, const dfm::TriMesh& m, double sx) {
+  std::ofstream o(path);
+  o.precision(17);
+  for (int i = 0; i < m.V.rows(); ++i) o << "v " << sx * m.V(i, 0) << " " << m.V(i, 1) << " " << m.V(i, 2) << "\n";
+  for (int f = 0; f < m.F.rows(); ++f) o << "f " << m.F(f, 0) + 1 << " " << m.F(f, 1) + 1 << " " << m.F(f, 2) + 1 << "\n";
+}
+
 // Statistics of the 3D viewport (the window minus the panels): the fraction of pixels that are the
 // warm lit mesh, and the spread of their brightness (shading varies across a lit surface).
 struct Coverage {
@@ -229,12 +237,8 @@ TEST_CASE("scrubbing onto a layer time shows the mesh; playback never shows an e
 TEST_CASE("--drag-frames drags the last space-time edit and prints frame times against posing", "[editor][gl]") {
   const dfm::TriMesh sphere = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.6, 3);
   const std::string a = tmp("drag_sphere.obj"), b = tmp("drag_wide.obj"), script = tmp("drag.txt");
-  for (const auto& [path, sx] : {std::pair<std::string, double>{a, 1.0}, {b, 1.5}}) {
-    std::ofstream o(path);
-    o.precision(17);
-    for (int i = 0; i < sphere.V.rows(); ++i) o << "v " << sx * sphere.V(i, 0) << " " << sphere.V(i, 1) << " " << sphere.V(i, 2) << "\n";
-    for (int f = 0; f < sphere.F.rows(); ++f) o << "f " << sphere.F(f, 0) + 1 << " " << sphere.F(f, 1) + 1 << " " << sphere.F(f, 2) + 1 << "\n";
-  }
+  for (const auto& [path, sx] : {std::pair<std::string, double>{a, 1.0}, {b, 1.5}})
+    write_obj_stretched(path, sphere, sx);
   {
     std::ofstream s(script);
     s << "key-mesh " << a << " 0\nkey-mesh " << b << " 1\nkey-mesh " << a << " 2\nset-time 1\n"
@@ -259,12 +263,8 @@ TEST_CASE("--drag-frames drags the last space-time edit and prints frame times a
 TEST_CASE("the Shape space panel shows the shape at the pad's cursor in the viewport", "[editor][gl]") {
   const dfm::TriMesh sphere = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.6, 2);
   const std::string a = tmp("ss_sphere.obj"), b = tmp("ss_wide.obj"), script = tmp("ss.txt");
-  for (const auto& [path, sx] : {std::pair<std::string, double>{a, 1.0}, {b, 1.8}}) {
-    std::ofstream o(path);
-    o.precision(17);
-    for (int i = 0; i < sphere.V.rows(); ++i) o << "v " << sx * sphere.V(i, 0) << " " << sphere.V(i, 1) << " " << sphere.V(i, 2) << "\n";
-    for (int f = 0; f < sphere.F.rows(); ++f) o << "f " << sphere.F(f, 0) + 1 << " " << sphere.F(f, 1) + 1 << " " << sphere.F(f, 2) + 1 << "\n";
-  }
+  for (const auto& [path, sx] : {std::pair<std::string, double>{a, 1.0}, {b, 1.8}})
+    write_obj_stretched(path, sphere, sx);
   double fraction[3];
   for (int run_i = 0; run_i < 3; ++run_i) {
     const std::string png = tmp("ss" + std::to_string(run_i) + ".png");

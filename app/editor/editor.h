@@ -5,6 +5,7 @@
 // (run_ui_command), as a script does; panels read the document.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -121,7 +122,17 @@ class Editor {
   bool next_job_frame(JobFrameClock& clock);
   void play_benchmark(int frames);
   void drag_benchmark(int frames);
-  double timed_frames(int frames, bool reskin, FrameStages* st);
+  // Frame times of a batch benchmark (--play-frames, --drag-frames) and their stage sums.
+  struct FrameTimes {
+    std::vector<double> ms;  // one per measured frame
+    FrameStages sum;
+    double mean() const;
+    FrameStages mean_stages() const;
+    std::string summary() const;  // mean, median, p95, max
+  };
+  FrameTimes timed_frames(int frames, const std::function<void(int)>& before,
+                          const std::function<void(bool)>& after = {});
+  FrameTimes posed_frames(int frames, bool reskin);
   void print_mid_frame();
   void apply_ui_options(const std::string& spec);
   // editor_input.cpp

@@ -36,84 +36,94 @@ void Editor::print_mid_frame() {
   std::fflush(stdout);
 }
 
-// Mean milliseconds of `frames` frames, each drawn and finished, after three warm-up frames; reskin:
-// the current pose is skinned again and shown every frame (posing), else the view is only redrawn
-// (still). Stage sums over the measured frames go to *st.
-double Editor::timed_frames(int frames, bool reskin, FrameStages* st) {
-  std::vector<double> t;
+double Editor::FrameTimes::mean() const {
+  double sum = 0;
+  for (double m : ms) sum += m;
+  return ms.empty() ? 0.0 : sum / double(ms.size());
+}
+
+Editor::FrameStages Editor::FrameTimes::mean_stages() const {
+  const double n = std::max<double>(1, double(ms.size()));
+  return {sum.ui / n, sum.sync / n, sum.scene / n, sum.imgui / n};
+}
+
+std::string Editor::FrameTimes::summary() const {
+  if (ms.empty()) return "no frames";
+  std::vector<double> s = ms;
+  std::sort(s.begin(), s.end());
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "mean %.2f ms, median %.2f ms, p95 %.2f ms, max %.2f ms", mean(), s[s.size() / 2],
+                s[std::min(s.size() - 1, size_t(0.95 * s.size()))], s.back());
+  return buf;
+}
+
+// Each frame: before(i), drawn, finished (glFinish), swapped, events polled, after(measured). The
+// first three frames compile shaders and upload, so they are not measured.
+Editor::FrameTimes Editor::timed_frames(int frames, const std::function<void(int)>& before,
+                                        const std::function<void(bool)>& after) {
+  FrameTimes times;
   profile_stages_ = true;
   for (int i = 0; i < frames + 3; ++i) {
     const double t0 = glfwGetTime();
-    if (reskin) view_->show_pose();
+    before(i);
     render_frame();
     glFinish();
     present_frame();
     glfwPollEvents();
-    if (i >= 3) {
-      t.push_back(1000.0 * (glfwGetTime() - t0));
-      st->ui += stages_.ui, st->sync += stages_.sync, st->scene += stages_.scene, st->imgui += stages_.imgui;
+    const bool measured = i >= 3;
+    if (measured) {
+      times.ms.push_back(1000.0 * (glfwGetTime() - t0));
+      FrameStages& st = times.sum;
+      st.ui += stages_.ui, st.sync += stages_.sync, st.scene += stages_.scene, st.imgui += stages_.imgui;
     }
+    if (after) after(measured);
   }
   profile_stages_ = false;
-  double sum = 0;
-  for (double m : t) sum += m;
-  return t.empty() ? 0.0 : sum / double(t.size());
+  return times;
+}
+
+// Posing: the current pose skinned again and shown every frame; still: the view only redrawn.
+Editor::FrameTimes Editor::posed_frames(int frames, bool reskin) {
+  return timed_frames(frames, [&](int) {
+    if (reskin) view_->show_pose();
+  });
 }
 
 void Editor::play_benchmark(int frames) {
   wait_for_manifold();  // a transition plays once it is built, as an artist would see it
   playing_ = true;
   loop_ = true;
-  profile_stages_ = true;
-  std::vector<double> ms;
-  FrameStages sum_st;
   int empty = 0, cached = 0;
   double first_empty_t = 0;
   const int built0 = view_->intervals_built();
   const double build_ms0 = view_->interval_build_ms();
-  for (int i = 0; i < frames + 3; ++i) {
-    const double t0 = glfwGetTime();
-    tick(1.0 / 30.0);
-    render_frame();
-    glFinish();
-    present_frame();
-    glfwPollEvents();
-    const double now = glfwGetTime();
-    if (i >= 3) {  // the first frames compile shaders and upload
-      ms.push_back(1000.0 * (now - t0));
-      cached += view_->slice_from_cache();
-      sum_st.ui += stages_.ui, sum_st.sync += stages_.sync, sum_st.scene += stages_.scene, sum_st.imgui += stages_.imgui;
-    }
+  const FrameTimes play = timed_frames(frames, [&](int) { tick(1.0 / 30.0); }, [&](bool measured) {
+    cached += measured && view_->slice_from_cache();
     if (view_->display_vertex_count() == 0 && doc_.surface().num_vertices() > 0 && empty++ == 0) first_empty_t = doc_.time();
-  }
+  });
   playing_ = false;
-  profile_stages_ = false;
-  std::sort(ms.begin(), ms.end());
-  double sum = 0;
-  for (double m : ms) sum += m;
-  const double n = double(ms.size());
-  std::printf("play-frames: %d frames, %d vertices shown (%s), mean %.2f ms, median %.2f ms, p95 %.2f ms, max %.2f ms\n",
-              int(ms.size()), view_->display_vertex_count(), view_->showing_slice() ? "manifold slice" : "skinned",
-              sum / n, ms[ms.size() / 2], ms[std::min(ms.size() - 1, size_t(0.95 * ms.size()))], ms.back());
-  std::printf("play-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
-              sum_st.ui / n, sum_st.sync / n, sum_st.scene / n, sum_st.imgui / n);
+  const FrameStages st = play.mean_stages();
+  std::printf("play-frames: %d frames, %d vertices shown (%s), %s\n", int(play.ms.size()), view_->display_vertex_count(),
+              view_->showing_slice() ? "manifold slice" : "skinned", play.summary().c_str());
+  std::printf("play-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n", st.ui,
+              st.sync, st.scene, st.imgui);
   std::printf("play-frames: %d of %d frames drawn from the interval cache, %d interval topologies built in %.1f ms "
               "(%d distinct vertex times)\n",
-              cached, int(ms.size()), view_->intervals_built() - built0, view_->interval_build_ms() - build_ms0,
+              cached, int(play.ms.size()), view_->intervals_built() - built0, view_->interval_build_ms() - build_ms0,
               view_->vertex_time_count());
   if (empty) std::printf("play-frames: %d frames showed no vertices (first at t=%.6g)\n", empty, first_empty_t);
   // The baseline in the same process: as many frames of the current pose, not playing. Posing skins
   // the pose again every frame (what an edit or a drag costs); a still frame only redraws it.
   view_->show_pose();
-  FrameStages posed_st, still_st;
-  const double pmean = timed_frames(frames, true, &posed_st), still = timed_frames(frames, false, &still_st);
-  if (!view_->showing_slice() && pmean > 0) {
-    const double pn = frames;
+  const FrameTimes posed = posed_frames(frames, true), still = posed_frames(frames, false);
+  if (!view_->showing_slice() && posed.mean() > 0) {
+    const FrameStages p = posed.mean_stages(), q = still.mean_stages();
     std::printf("play-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
-                posed_st.ui / pn, posed_st.sync / pn, posed_st.scene / pn, posed_st.imgui / pn);
+                p.ui, p.sync, p.scene, p.imgui);
     std::printf("play-frames: still posed frame (not skinned again) mean %.2f ms (deform %.2f ms, scene draw %.2f ms)\n",
-                still, still_st.sync / pn, still_st.scene / pn);
-    std::printf("play-frames: playback mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, sum / n / pmean);
+                still.mean(), q.sync, q.scene);
+    std::printf("play-frames: playback mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", play.mean(), posed.mean(),
+                play.mean() / posed.mean());
   } else {
     std::printf("play-frames: no posed baseline (the scene has no skinned pose to show)\n");
   }
@@ -138,49 +148,30 @@ void Editor::drag_benchmark(int frames) {
   doc_.set_time(e0.handle.time);
   const Eigen::AlignedBox3d box = view_->surface_bounds();
   const double r = 0.05 * (box.isEmpty() ? 1.0 : box.diagonal().norm());
-  std::vector<double> ms;
-  FrameStages sum_st;
   int shown = 0;
   doc_.begin_gesture();
-  profile_stages_ = true;
-  for (int i = 0; i < frames + 3; ++i) {
-    const double t0 = glfwGetTime();
+  const FrameTimes drag = timed_frames(frames, [&](int i) {
     SpaceTimeEdit e = e0;
     const double a = 2 * M_PI * (i + 1) / std::max(1, frames);
     e.move += r * Eigen::Vector3d(std::sin(a), 1 - std::cos(a), 0);
     doc_.set_space_time_edit(index, e);
     tick(0);
-    render_frame();
-    glFinish();
-    present_frame();
-    glfwPollEvents();
-    if (i >= 3) {
-      ms.push_back(1000.0 * (glfwGetTime() - t0));
-      sum_st.ui += stages_.ui, sum_st.sync += stages_.sync, sum_st.scene += stages_.scene, sum_st.imgui += stages_.imgui;
-      shown += view_->showing_slice() && view_->display_vertex_count() > 0;
-    }
-  }
-  profile_stages_ = false;
+  }, [&](bool measured) { shown += measured && view_->showing_slice() && view_->display_vertex_count() > 0; });
   doc_.end_gesture();
-  FrameStages still_st;
-  const double still = timed_frames(frames, false, &still_st);  // the edited slice, nothing changing
+  const FrameTimes still = posed_frames(frames, false);  // the edited slice, nothing changing
   doc_.undo();
-  const double n = double(ms.size());
-  double sum = 0;
-  for (double m : ms) sum += m;
-  std::sort(ms.begin(), ms.end());
-  std::printf("drag-frames: %d frames (%d showed the edited slice), mean %.2f ms, median %.2f ms, p95 %.2f ms, max %.2f ms\n",
-              int(ms.size()), shown, sum / n, ms[ms.size() / 2], ms[std::min(ms.size() - 1, size_t(0.95 * ms.size()))],
-              ms.back());
-  std::printf("drag-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
-              sum_st.ui / n, sum_st.sync / n, sum_st.scene / n, sum_st.imgui / n);
-  std::printf("drag-frames: the edited slice redrawn still: mean %.2f ms (deform %.2f ms, scene draw %.2f ms)\n", still,
-              still_st.sync / n, still_st.scene / n);
-  FrameStages posed_st;
-  const double pmean = timed_frames(frames, true, &posed_st);
+  const FrameStages d = drag.mean_stages(), q = still.mean_stages();
+  std::printf("drag-frames: %d frames (%d showed the edited slice), %s\n", int(drag.ms.size()), shown, drag.summary().c_str());
+  std::printf("drag-frames: mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n", d.ui,
+              d.sync, d.scene, d.imgui);
+  std::printf("drag-frames: the edited slice redrawn still: mean %.2f ms (deform %.2f ms, scene draw %.2f ms)\n",
+              still.mean(), q.sync, q.scene);
+  const FrameTimes posed = posed_frames(frames, true);
+  const FrameStages p = posed.mean_stages();
   std::printf("drag-frames: posed mean per stage: ui %.2f ms, deform %.2f ms, scene draw %.2f ms, imgui draw %.2f ms\n",
-              posed_st.ui / n, posed_st.sync / n, posed_st.scene / n, posed_st.imgui / n);
-  std::printf("drag-frames: drag mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", sum / n, pmean, pmean > 0 ? sum / n / pmean : 0.0);
+              p.ui, p.sync, p.scene, p.imgui);
+  std::printf("drag-frames: drag mean %.2f ms; posed mean %.2f ms; ratio %.2f\n", drag.mean(), posed.mean(),
+              posed.mean() > 0 ? drag.mean() / posed.mean() : 0.0);
   std::fflush(stdout);
 }
 

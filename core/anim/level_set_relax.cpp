@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include "core/anim/manifold_normals.h"
 #include "core/bind/parallel_for.h"
 #include "core/util/error.h"
 
@@ -14,19 +15,14 @@ namespace dfm {
 
 namespace {
 
-// The 4D normal of tetrahedron t (<N, w> = det[w, p1 - p0, p2 - p0, p3 - p0], manifold.h), t scaled.
+// The 4D normal of tetrahedron t (manifold_normals.h's tet_normal4), t scaled.
 Eigen::Vector4d normal4(const MatrixX4dRow& V, const int* t, double time_scale) {
-  Eigen::Matrix<double, 3, 4> E;
-  for (int k = 0; k < 3; ++k) E.row(k) = V.row(t[k + 1]) - V.row(t[0]);
-  E.col(3) *= time_scale;
-  Eigen::Vector4d n;
-  for (int i = 0; i < 4; ++i) {
-    Eigen::Matrix3d M;
-    for (int c = 0, j = 0; c < 4; ++c)
-      if (c != i) M.col(j++) = E.col(c);
-    n[i] = (i % 2 ? -1 : 1) * M.determinant();
+  Eigen::Vector4d e[3];
+  for (int k = 0; k < 3; ++k) {
+    e[k] = (V.row(t[k + 1]) - V.row(t[0])).transpose();
+    e[k][3] *= time_scale;
   }
-  return n;
+  return cross4(e[0], e[1], e[2]);
 }
 
 // Whether a tetrahedron with normal n before has turned over with normal m after: in 4D, or in the

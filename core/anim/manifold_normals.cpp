@@ -10,8 +10,11 @@ namespace dfm {
 
 Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k) {
   const Eigen::Vector4d p0 = m.V.row(m.T(k, 0)).transpose();
-  const Eigen::Vector4d e1 = m.V.row(m.T(k, 1)).transpose() - p0, e2 = m.V.row(m.T(k, 2)).transpose() - p0,
-                        e3 = m.V.row(m.T(k, 3)).transpose() - p0;
+  return cross4(m.V.row(m.T(k, 1)).transpose() - p0, m.V.row(m.T(k, 2)).transpose() - p0,
+                m.V.row(m.T(k, 3)).transpose() - p0);
+}
+
+Eigen::Vector4d cross4(const Eigen::Vector4d& e1, const Eigen::Vector4d& e2, const Eigen::Vector4d& e3) {
   // Cofactor expansion of det[w, e1, e2, e3] along its first column w.
   Eigen::Vector4d N;
   for (int j = 0; j < 4; ++j) {

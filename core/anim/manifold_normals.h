@@ -19,6 +19,8 @@ namespace dfm {
 
 // The unnormalised 4D normal of tetrahedron k.
 Eigen::Vector4d tet_normal4(const AnimationManifold& m, int k);
+// The generalized cross product of three 4D edge vectors: <N, w> = det[w, e1, e2, e3].
+Eigen::Vector4d cross4(const Eigen::Vector4d& e1, const Eigen::Vector4d& e2, const Eigen::Vector4d& e3);
 
 // Adds tet_normal4 of every tetrahedron in rows [first_tet, last_tet) of m.T to row (v - vertex_offset)
 // of sum (8 columns, rows already there), for each of its vertices v: columns 0-3 the sum the normal
