@@ -1,8 +1,11 @@
 // `deform edit-manifold` end to end (issue 35): the edit lands in the written file, the times are
 // printed, and hostile input exits 1 naming the file without writing anything.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <array>
+#include <map>
 
 #include <catch2/catch.hpp>
 
@@ -152,4 +155,75 @@ TEST_CASE("deform edit-manifold --retime: the handle moves in t exactly, a fold 
   CHECK(fold.exit_code == 1);
   CHECK(fold.err.find("folds the manifold in time") != std::string::npos);
   CHECK(!std::filesystem::exists(out));
+}
+
+TEST_CASE("deform edit-manifold --refine: refines the layer mesh where the pull stretched, the handle exact, with --retime",
+          "[cli]") {
+  ScratchDir s("cli_edit_manifold_refine");
+  const AnimationManifold M = sheet_manifold();
+  const int n = M.prism_slabs.front().count;
+  const std::string in = (s.dir / "sheet.tet4").string(), out = (s.dir / "refined.tet4").string();
+  write_manifold(in, M);
+  const Eigen::Vector3d C(1.0, 0.5, 0), H(1.0, 0.5, 0), move(0.0, 0.0, 0.5);
+  const double R = 0.6;
+  auto args = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = {"edit-manifold", in, "--region", "1.0", "0.5", "0", "0.6", "1", "3", "--handle", "1.0",
+                                  "0.5", "0", "2", "--move", "0", "0", "0.5", "--refine", "-o", out};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  const RunResult r = run_deform(s, args({}));
+  INFO(describe_run(r));
+  REQUIRE(r.exit_code == 0);
+  const size_t at = r.out.find("refine: ");
+  REQUIRE(at != std::string::npos);
+  int added = 0, rounds = 0;
+  REQUIRE(std::sscanf(r.out.c_str() + at, "refine: %d vertices added to each layer in %d rounds", &added, &rounds) == 2);
+  CHECK(added > 0);
+  CHECK(rounds == 1);
+  const AnimationManifold E = read_manifold(out);
+  const int rn = n + added;
+  REQUIRE(E.num_vertices() == 5 * rn);  // every layer refined alike
+  for (const PrismSlab& p : E.prism_slabs) CHECK(p.is_prism());
+  // Each layer's vertices by position (x, y, t bit for bit): the original vertices are all there, where
+  // the edit put them (the handle moved exactly, the rest of the sheet outside the region unmoved).
+  std::map<std::array<double, 3>, Eigen::RowVector4d> by_place;
+  for (int v = 0; v < E.num_vertices(); ++v) by_place[{E.V(v, 0), E.V(v, 1), E.V(v, 3)}] = E.V.row(v);
+  int handle = 0;
+  for (int layer = 0; layer < 5; ++layer)
+    for (int v = 0; v < n; ++v) {
+      const Eigen::RowVector4d a = M.V.row(layer * n + v);
+      const Eigen::Vector3d p = a.head<3>().transpose();
+      const auto it = by_place.find({a[0], a[1], a[3]});
+      REQUIRE(it != by_place.end());
+      const Eigen::RowVector4d b = it->second;
+      if (layer == 2 && (p - H).norm() <= R / 4) {  // the handle rule, by brute force
+        ++handle;
+        for (int c = 0; c < 3; ++c) REQUIRE(b[c] == a[c] + move[c]);
+      } else if ((p - C).norm() > R || layer != 2) {  // outside the region (layers 1 and 3 anchor it)
+        REQUIRE((b.array() == a.array()).all());
+      }
+    }
+  REQUIRE(handle > 5);
+  // The sheet stays in its plane wherever the edit did not move it (every layer but 2); the new vertices
+  // lie near the region.
+  auto far = [&](const AnimationManifold& X) {
+    int count = 0;
+    for (int v = 0; v < X.num_vertices(); ++v) count += (Eigen::Vector3d(X.V(v, 0), X.V(v, 1), 0) - C).norm() > R + 0.3;
+    return count;
+  };
+  for (int v = 0; v < E.num_vertices(); ++v)
+    if (E.V(v, 3) != 2) CHECK(E.V(v, 2) == 0);
+  CHECK(far(E) == far(M));
+  // With a retime: the handle's time moves too, and the slabs around it merge.
+  std::filesystem::remove(out);
+  const RunResult rt = run_deform(s, args({"--retime", "0.1"}));
+  INFO(describe_run(rt));
+  REQUIRE(rt.exit_code == 0);
+  const AnimationManifold T = read_manifold(out);
+  CHECK(T.num_vertices() == 5 * rn);
+  CHECK(T.num_layers() == 4);
+  double latest = 0;
+  for (int v = 2 * rn; v < 3 * rn; ++v) latest = std::max(latest, T.V(v, 3));
+  CHECK(latest == Approx(2.1).epsilon(1e-12));
 }

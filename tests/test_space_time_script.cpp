@@ -15,6 +15,7 @@
 #include "core/scene/space_time_edit.h"
 #include "core/util/error.h"
 #include "tests/space_time_test_scene.h"
+#include "tests/transition_test_meshes.h"
 
 using namespace dfm;
 using dfm::test::make_keyed;
@@ -112,6 +113,62 @@ TEST_CASE("a scene round trip keeps the space-time edit and replays it; edit-cle
   run(e, "edit-clear\n");
   CHECK(e.space_time_edits().empty());
   CHECK(frame_at(e, 1.2).V == mid.V);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("edit-refine (4.5.1): the edit made again on a finer layer mesh, undoable, kept by the scene; a drag "
+          "unrefines it", "[script][space-time]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_refine_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string sc = (dir / "r.scene.json").string();
+  Document d;
+  make_keyed(d);
+  const TriMesh before0 = frame_at(d, 0), mid = frame_at(d, 1.2);
+  const int h = nearest(mid, {2.0, 0.4, 0});
+  const Eigen::Vector3d hp = mid.V.row(h).transpose();
+  REQUIRE_THROWS_WITH(run(d, "edit-refine\n"), Catch::Contains("no space-time edit to refine"));
+  char line[256];
+  std::snprintf(line, sizeof line, "set-time 1.2\nedit-region %.17g %.17g %.17g 1.2 0.8 2\nedit-drag %.17g %.17g %.17g 0 0 1.5\n",
+                hp.x(), hp.y(), hp.z(), hp.x(), hp.y(), hp.z());
+  run(d, line);
+  const TriMesh edited = frame_at(d, 1.2);
+  const int depth = d.undo_depth();
+  run(d, "edit-refine\n");
+  CHECK(d.undo_depth() == depth + 1);
+  REQUIRE(d.space_time_edits().size() == 1);
+  CHECK(d.space_time_edits()[0].refine);
+  const TriMesh refined = frame_at(d, 1.2);
+  const Eigen::Index n = mid.V.rows();
+  REQUIRE(refined.V.rows() > n);
+  CHECK(refined.V.row(nearest(refined, edited.V.row(h).transpose())) == edited.V.row(h));  // the handle, exactly
+  CHECK(dfm::test::euler_characteristic(refined.F) == dfm::test::euler_characteristic(mid.F));
+  // Outside the window: the original vertices bit for bit, the new ones on the unmoved surface's edges.
+  const TriMesh refined0 = frame_at(d, 0);
+  CHECK(refined0.V.rows() == refined.V.rows());
+  for (Eigen::Index v = 0; v < n; ++v) CHECK(refined0.V.row(nearest(refined0, before0.V.row(v).transpose())) == before0.V.row(v));
+  {
+    Document keys_only;
+    make_keyed(keys_only);
+    const AnimationManifold base = document_manifold(keys_only), edited_m = document_manifold(d);
+    CHECK(edited_vertex_normals(edited_m, base.V, manifold_vertex_normals(base), d.space_time_edits()) ==
+          manifold_vertex_normals(edited_m));
+  }
+  REQUIRE_THROWS_WITH(run(d, "edit-refine\n"), Catch::Contains("refined already"));
+  // The scene keeps it and replays the same frame.
+  d.save_scene(sc);
+  Document e;
+  e.load_scene(sc);
+  REQUIRE(e.space_time_edits().size() == 1);
+  CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
+  CHECK(frame_at(e, 1.2).V == refined.V);
+  // Undo: the unrefined edit, bit for bit. A new drag of the edit is made unrefined.
+  run(d, "undo\n");
+  CHECK(frame_at(d, 1.2).V == edited.V);
+  run(d, "edit-refine\n");
+  std::snprintf(line, sizeof line, "set-time 1.2\nedit-drag %.17g %.17g %.17g 0 0 0.1\n", hp.x(), hp.y(), hp.z());
+  run(d, line);
+  CHECK(!d.space_time_edits()[0].refine);
+  CHECK(frame_at(d, 1.2).V.rows() == n);
   fs::remove_all(dir);
 }
 

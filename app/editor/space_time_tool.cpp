@@ -183,11 +183,21 @@ void SpaceTimeTool::draw_options(const Document& doc, const Run& run) {
     const SpaceTimeEdit& e = edits.back();
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::TextWrapped("last: r %.3g over [%.3g, %.3g], move (%.3g, %.3g, %.3g) at t %.3g, retime %.3g; %s weights, "
-                       "time scale %.3g%s",
+                       "time scale %.3g%s%s",
                        e.region.radius, e.region.t0, e.region.t1, e.move.x(), e.move.y(), e.move.z(), e.handle.time,
                        e.retime, laplacian_weights_name(e.weights), e.time_scale,
-                       e.preserve_volume ? ", volume kept" : "");
+                       e.preserve_volume ? ", volume kept" : "", e.refine ? ", refined" : "");
     ImGui::PopStyleColor();
+    const bool moved = e.move != Eigen::Vector3d::Zero() || e.retime != 0 ||
+                       e.rotation.coeffs() != Eigen::Quaterniond::Identity().coeffs();
+    ImGui::BeginDisabled(!moved || e.refine);
+    if (ImGui::Button("Refine stretched")) run({"edit-refine"});
+    ImGui::EndDisabled();
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+      ImGui::SetTooltip("Southern 4.5.1: the layer triangles the last edit stretched past twice the mean edge\n"
+                        "length, and two rings round them, split 1:4 in every layer; the edit is made again on\n"
+                        "the finer mesh. A new drag of the edit goes back to the unrefined mesh.");
+    ImGui::SameLine();
     if (ImGui::Button("Clear edits")) run({"edit-clear"});
   }
 }

@@ -1,4 +1,5 @@
-// The table's space-time edit commands (SCRIPT.md; issue 35): edit-region, edit-drag, edit-clear.
+// The table's space-time edit commands (SCRIPT.md; issue 35): edit-region, edit-drag, edit-refine,
+// edit-clear.
 #include <algorithm>
 
 #include "core/anim/manifold_laplacian.h"
@@ -88,6 +89,7 @@ void edit_drag(CommandContext& x, const CommandWords& w) {
     e.rotation = Eigen::Quaterniond::Identity();
     ++index;
   }
+  e.refine = false;  // a drag is made on the unrefined mesh; edit-refine again after it
   check_space_time_edit(e);
   {
     // A clear error, nothing changed: the region, and a retime that would fold the manifold in time.
@@ -99,6 +101,19 @@ void edit_drag(CommandContext& x, const CommandWords& w) {
     x.doc.add_space_time_edit(e);
   else
     x.doc.set_space_time_edit(index, e);
+}
+
+// Refines what the last edit stretched (Southern 4.5.1; core/anim/manifold_refine.h): the edit is made
+// again on a finer layer mesh. Made here once, so a manifold it cannot refine is a clear error.
+void edit_refine(CommandContext& x, const CommandWords&) {
+  const std::vector<SpaceTimeEdit>& edits = x.doc.space_time_edits();
+  if (edits.empty() || !moves(edits.back())) throw Error("no space-time edit to refine: drag one first (edit-drag)");
+  SpaceTimeEdit e = edits.back();
+  if (e.refine) throw Error("the last space-time edit is refined already");
+  e.refine = true;
+  AnimationManifold m = manifold_before_edit(x.doc, edits.size() - 1);
+  apply_space_time_edit(m, e);
+  x.doc.set_space_time_edit(static_cast<int>(edits.size()) - 1, e);
 }
 
 }  // namespace
@@ -117,6 +132,8 @@ void add_space_time_commands(std::vector<Command>& t) {
   };
   c->poll = needs_two_keys;
   c = &add(t, "edit-drag", "edit-drag HX HY HZ DX DY DZ [DT]", 6, 7, {number_arg()}, edit_drag);
+  c->poll = needs_two_keys;
+  c = &add(t, "edit-refine", "edit-refine", 0, 0, {}, edit_refine);
   c->poll = needs_two_keys;
   add(t, "edit-clear", "edit-clear", 0, 0, {}, [](CommandContext& x, const CommandWords&) { x.doc.clear_space_time_edits(); });
 }

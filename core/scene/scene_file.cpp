@@ -476,7 +476,8 @@ json space_time_edits_json(const std::vector<SpaceTimeEdit>& edits) {
                    {"retime", e.retime},
                    {"weights", laplacian_weights_name(e.weights)},
                    {"time_scale", e.time_scale},
-                   {"volume", e.preserve_volume}});
+                   {"volume", e.preserve_volume},
+                   {"refine", e.refine}});
   return out;
 }
 
@@ -502,6 +503,7 @@ void read_space_time_edits(const SceneReader& R, const json& j, SceneData& s) {
     }
     e.time_scale = R.number(R.field(a[i], "time_scale", c), c + ".time_scale");
     e.preserve_volume = R.boolean(R.field(a[i], "volume", c), c + ".volume");
+    if (a[i].contains("refine")) e.refine = R.boolean(a[i]["refine"], c + ".refine");  // absent before 4.5
     try {
       check_space_time_edit(e);
     } catch (const Error& err) {

@@ -13,7 +13,8 @@ bool SpaceTimeEdit::same_setup(const SpaceTimeEdit& o) const {
 }
 
 bool SpaceTimeEdit::operator==(const SpaceTimeEdit& o) const {
-  return same_setup(o) && move == o.move && rotation.coeffs() == o.rotation.coeffs() && retime == o.retime;
+  return same_setup(o) && move == o.move && rotation.coeffs() == o.rotation.coeffs() && retime == o.retime &&
+         refine == o.refine;
 }
 
 void check_space_time_edit(const SpaceTimeEdit& e) {

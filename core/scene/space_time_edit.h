@@ -26,8 +26,12 @@ struct SpaceTimeEdit {
   LaplacianWeights weights = LaplacianWeights::Reciprocal;
   double time_scale = 1.0;
   bool preserve_volume = false;
+  // Refine what the edit stretches (manifold_refine.h, Southern 4.5.1): the replay makes the edit with
+  // edit_refined, whose layers have more vertices (scenes before it have none: false).
+  bool refine = false;
   bool operator==(const SpaceTimeEdit& o) const;
-  // Everything but the move, rotation and retime: edits with the same setup share one factorisation.
+  // Everything but the move, rotation, retime and refinement: edits with the same setup share one
+  // factorisation (a refined edit is factored on its refined manifold, without the cache).
   bool same_setup(const SpaceTimeEdit& o) const;
 };
 

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/anim/manifold_normals.h"
+#include "core/anim/manifold_refine.h"
 #include "core/anim/manifold_retime.h"
 #include "core/util/error.h"
 
@@ -23,21 +24,35 @@ SpaceTimeEditCache::~SpaceTimeEditCache() = default;
 
 namespace {
 
-std::unique_ptr<ManifoldEditor> make_editor(const AnimationManifold& m, const SpaceTimeEdit& e) {
+ManifoldEditOptions edit_options(const SpaceTimeEdit& e) {
   ManifoldEditOptions o;
   o.weights = e.weights;
   o.time_scale = e.time_scale;
   o.preserve_volume = e.preserve_volume;
-  return std::make_unique<ManifoldEditor>(m, select_edit_region(m, e.region, e.handle), e.handle.point, o);
+  return o;
 }
 
-// The edit's drag onto m (a retime's slabs merged on a copy: a refusal leaves m as it was).
-void apply_drag(AnimationManifold& m, const ManifoldEditor& editor, const SpaceTimeEdit& e) {
+std::unique_ptr<ManifoldEditor> make_editor(const AnimationManifold& m, const SpaceTimeEdit& e) {
+  return std::make_unique<ManifoldEditor>(m, select_edit_region(m, e.region, e.handle), e.handle.point, edit_options(e));
+}
+
+ManifoldDrag edit_drag(const SpaceTimeEdit& e) {
   ManifoldDrag d;
   d.translation = e.move;
   d.rotation = e.rotation.toRotationMatrix();
   if (e.rotation.coeffs() == Eigen::Quaterniond::Identity().coeffs()) d.rotation = Eigen::Matrix3d::Identity();
   d.retime = e.retime;
+  return d;
+}
+
+// A refined edit: made again on its refined manifold (m unchanged on an error).
+void apply_refined(AnimationManifold& m, const SpaceTimeEdit& e) {
+  m = edit_refined(m, e.region, e.handle, edit_options(e), edit_drag(e));
+}
+
+// The edit's drag onto m (a retime's slabs merged on a copy: a refusal leaves m as it was).
+void apply_drag(AnimationManifold& m, const ManifoldEditor& editor, const SpaceTimeEdit& e) {
+  const ManifoldDrag d = edit_drag(e);
   if (e.retime != 0) {
     AnimationManifold retimed = m;
     retimed.V = editor.drag(d);
@@ -50,7 +65,12 @@ void apply_drag(AnimationManifold& m, const ManifoldEditor& editor, const SpaceT
 
 }  // namespace
 
-void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e) { apply_drag(m, *make_editor(m, e), e); }
+void apply_space_time_edit(AnimationManifold& m, const SpaceTimeEdit& e) {
+  if (e.refine)
+    apply_refined(m, e);
+  else
+    apply_drag(m, *make_editor(m, e), e);
+}
 
 SpaceTimeRetimeTrial::SpaceTimeRetimeTrial(AnimationManifold before, const SpaceTimeEdit& e)
     : before_(std::move(before)), edit_(e), editor_(make_editor(before_, e)) {}
@@ -61,7 +81,10 @@ std::string SpaceTimeRetimeTrial::refusal(double retime) const {
   e.retime = retime;
   AnimationManifold m = before_;
   try {
-    apply_drag(m, *editor_, e);  // the replay's own step: what it refuses is refused here
+    if (e.refine)
+      apply_refined(m, e);
+    else
+      apply_drag(m, *editor_, e);  // the replay's own step: what it refuses is refused here
   } catch (const Error& err) {
     return err.what();
   }
@@ -83,6 +106,13 @@ std::vector<std::string> apply_space_time_edits(AnimationManifold& m, const std:
         e.retime == 0)
       continue;
     try {
+      if (e.refine) {
+        // New vertices and prisms: no cached factorisation, and the rows written are all new.
+        if (cache && cache->entries.size() > i) cache->entries[i].reset();
+        apply_refined(m, e);
+        if (cache) cache->written_valid = false;
+        continue;
+      }
       const ManifoldEditor* editor = nullptr;
       std::unique_ptr<ManifoldEditor> own;
       if (cache) {
@@ -130,7 +160,8 @@ Eigen::MatrixXd edited_vertex_normals(const AnimationManifold& m, const MatrixX4
     for (int s = 0; s < m.num_slabs(); ++s)
       if (m.times[s + 1] >= e.region.t0 && m.times[s] <= e.region.t1)
         first = std::min(first, m.slab_offsets[s]), last = std::max(last, m.slab_offsets[s + 1]);
-  if (first >= last || base_V.rows() != m.V.rows()) return N;
+  if (base_V.rows() != m.V.rows()) return manifold_vertex_normals(m);  // a refined edit's new vertices
+  if (first >= last) return N;
   const int nv = m.num_vertices();
   std::vector<char> moved(nv, 0);
   bool any = false;
