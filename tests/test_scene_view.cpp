@@ -1293,3 +1293,70 @@ TEST_CASE("space-time tool: the panel's setup goes on the region line; a Ctrl-dr
   REQUIRE(doc.space_time_edits().size() == 1);
   CHECK(doc.space_time_edits()[0].retime == 0);
 }
+
+TEST_CASE("space-time tool: a Shift stroke brushes the region (a ball each half radius, one undo step with the region)",
+          "[editor][scene_view][space-time]") {
+  Document doc;
+  test::make_keyed(doc);
+  MockRenderBackend gpu;
+  SceneView scene(gpu);
+  ViewSettings vs;
+  doc.set_time(1.0);
+  scene.sync(doc, vs);
+  REQUIRE(scene.showing_slice());
+  view::Camera cam;
+  cam.width = 800, cam.height = 600;
+  view::frame_box(cam, Vector3d(-2, -1, -1), Vector3d(2, 1.6, 1));
+  // Two points on the bar's front at t = 1, picked where they show: the stroke goes from one to the other.
+  const TriMesh frame = posed_surface(doc);
+  auto pixel_near = [&](const Eigen::RowVector3d& p) {
+    int v = 0;
+    for (int i = 1; i < frame.V.rows(); ++i)
+      if ((frame.V.row(i) - p).norm() < (frame.V.row(v) - p).norm()) v = i;
+    return Eigen::Vector2d(view::project_to_pixel(cam, frame.V.row(v).transpose()).head<2>());
+  };
+  const Eigen::Vector2d from = pixel_near({-1.2, 0.0, 0.6}), to = pixel_near({0.8, 0.0, 0.6});
+  editor::SpaceTimeTool tool;
+  tool.set_region(0.05, 0.4, 1.6);
+  std::vector<CommandWords> lines;
+  const editor::SpaceTimeTool::Run run = [&](const CommandWords& w) {
+    lines.push_back(w);
+    run_command(doc, w);
+    return true;
+  };
+  const int depth = doc.undo_depth();
+  editor::SpaceTimeTool::Input in;
+  in.hovered = true;
+  in.mouse = from;
+  in.clicked = true, in.new_region = true;
+  CHECK(tool.update(doc, scene, cam, in, run).empty());
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0][0] == "edit-region");
+  CHECK(tool.dragging());  // the stroke holds the view (no orbit)
+  in.clicked = false;
+  for (int k = 1; k <= 20; ++k) {
+    in.mouse = from + (to - from) * (k / 20.0);
+    CHECK(tool.update(doc, scene, cam, in, run).empty());
+  }
+  in.released = true;
+  const std::string status = tool.update(doc, scene, cam, in, run);
+  CHECK(!tool.dragging());
+  REQUIRE(doc.space_time_edits().size() == 1);
+  const EditRegionSpec& r = doc.space_time_edits()[0].region;
+  INFO(status << "; " << lines.size() << " lines");
+  CHECK(status.find("space-time region: " + std::to_string(r.dabs.size() + 1) + " ball(s)") == 0);
+  // About one ball each half radius along the 2.0-long stroke (more where the stroke's pixels run ahead).
+  CHECK(r.dabs.size() >= 2.0 / r.radius - 2);
+  CHECK(lines.size() == r.dabs.size() + 1);
+  for (size_t i = 1; i < lines.size(); ++i) CHECK(lines[i][0] == "edit-brush");
+  // Consecutive balls half a radius to a radius apart: the brushed region has no gap.
+  Eigen::Vector3d last = r.center;
+  for (const Eigen::Vector3d& d : r.dabs) {
+    CHECK((d - last).norm() > 0.5 * r.radius);
+    CHECK((d - last).norm() < r.radius);
+    last = d;
+  }
+  CHECK(doc.undo_depth() == depth + 1);  // the region and its stroke: one step
+  doc.undo();
+  CHECK(doc.space_time_edits().empty());
+}

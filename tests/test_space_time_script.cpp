@@ -172,6 +172,56 @@ TEST_CASE("edit-refine (4.5.1): the edit made again on a finer layer mesh, undoa
   fs::remove_all(dir);
 }
 
+TEST_CASE("edit-brush: more balls of the region's radius before its drag; the drag moves what they hold; the scene "
+          "keeps them", "[script][space-time]") {
+  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_brush_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string sc = (dir / "b.scene.json").string();
+  Document d;
+  make_keyed(d);
+  const TriMesh mid = frame_at(d, 1.2);
+  const int h = nearest(mid, {2.0, 0.4, 0}), far = nearest(mid, {1.1, 0.4, 0});
+  const Eigen::Vector3d hp = mid.V.row(h).transpose(), fp = mid.V.row(far).transpose();
+  // Outside a ball of radius 0.6 round the handle; the brushed ball overlaps it (one region).
+  REQUIRE((fp - hp).norm() > 0.7);
+  REQUIRE((fp - hp).norm() < 1.1);
+  char line[400];
+  std::snprintf(line, sizeof line, "set-time 1.2\nedit-region %.17g %.17g %.17g 0.6 0.8 2\nedit-brush %.17g %.17g %.17g\n",
+                hp.x(), hp.y(), hp.z(), fp.x(), fp.y(), fp.z());
+  run(d, line);
+  REQUIRE(d.space_time_edits().size() == 1);
+  REQUIRE(d.space_time_edits()[0].region.dabs.size() == 1);
+  std::snprintf(line, sizeof line, "edit-drag %.17g %.17g %.17g 0 0 0.5\n", hp.x(), hp.y(), hp.z());
+  run(d, line);
+  const TriMesh edited = frame_at(d, 1.2);
+  CHECK((edited.V.row(h).transpose() - (hp + Eigen::Vector3d(0, 0, 0.5))).norm() < 1e-9);
+  CHECK(edited.V.row(far) != mid.V.row(far));  // the brushed ball's vertex moved with the region
+  // Without the brushed ball, that vertex stays (it is outside the region).
+  {
+    Document plain;
+    make_keyed(plain);
+    std::snprintf(line, sizeof line, "set-time 1.2\nedit-region %.17g %.17g %.17g 0.6 0.8 2\nedit-drag %.17g %.17g %.17g 0 0 0.5\n",
+                  hp.x(), hp.y(), hp.z(), hp.x(), hp.y(), hp.z());
+    run(plain, line);
+    CHECK(frame_at(plain, 1.2).V.row(far) == mid.V.row(far));
+  }
+  d.save_scene(sc);
+  Document e;
+  e.load_scene(sc);
+  REQUIRE(e.space_time_edits().size() == 1);
+  CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
+  CHECK(frame_at(e, 1.2).V == edited.V);
+  // Errors, nothing changed: brushing a dragged edit, a ball holding no vertex, no edit at all.
+  REQUIRE_THROWS_WITH(run(d, "edit-brush 2 0 0\n"), Catch::Contains("has been dragged"));
+  run(d, "edit-clear\n");
+  REQUIRE_THROWS_WITH(run(d, "edit-brush 2 0 0\n"), Catch::Contains("start one with edit-region"));
+  std::snprintf(line, sizeof line, "edit-region %.17g %.17g %.17g 0.6 0.8 2\n", hp.x(), hp.y(), hp.z());
+  run(d, line);
+  REQUIRE_THROWS_WITH(run(d, "edit-brush 40 40 40\n"), Catch::Contains("holds no vertex"));
+  CHECK(d.space_time_edits().back().region.dabs.empty());
+  fs::remove_all(dir);
+}
+
 TEST_CASE("space-time edits: hostile input is a clear error and changes nothing; a stale edit is reported",
           "[script][space-time]") {
   Document d;

@@ -51,11 +51,17 @@ std::string SpaceTimeTool::update(Document& doc, SceneView& view, const view::Ca
     const bool in_window = doc.time() >= e.region.t0 && doc.time() <= e.region.t1;
     const Eigen::Vector4f col = in_window ? Eigen::Vector4f(0.75f, 0.45f, 1, 0.9f) : Eigen::Vector4f(0.6f, 0.6f, 0.6f, 0.5f);
     view.add_overlay_lines(gl::circle_lines(e.region.center, facing, e.region.radius, col, 64), 2.0f);
+    for (const Eigen::Vector3d& d : e.region.dabs)
+      view.add_overlay_lines(gl::circle_lines(d, facing, e.region.radius, col, 64), 2.0f);
     view.add_overlay_points({gl::overlay_vertex(e.region.center, Eigen::Vector4f(0.75f, 0.45f, 1, 1))}, 8.0f);
     if (e.move != Eigen::Vector3d::Zero())
       view.add_overlay_points({gl::overlay_vertex(e.handle.point + e.move, Eigen::Vector4f(0.3f, 0.9f, 1, 1))}, 12.0f);
   }
   if (drag_) return update_drag(doc, cam, in);
+  if (brushing_) {
+    const std::string s = update_stroke(doc, view, cam, in, run);
+    if (brushing_ || !in.clicked) return s;  // a press whose release was missed ends the stroke and counts
+  }
   if (!in.clicked || !in.hovered) return "";
   if (!in.t_slice) return "the Space-time tool edits in the t-slice view (set the sweep to t)";
   const view::SurfaceHit hit =
@@ -63,7 +69,9 @@ std::string SpaceTimeTool::update(Document& doc, SceneView& view, const view::Ca
   if (!hit.hit()) return "click on the surface";
   const Eigen::Vector3d p = hit.point;
   if (in.new_region || edits.empty()) {
-    run(region_line(p, view.surface_bounds().diagonal().norm()));
+    doc.begin_gesture();
+    brushing_ = run(region_line(p, view.surface_bounds().diagonal().norm()));
+    if (!brushing_) doc.end_gesture();
     return "";
   }
   doc.begin_gesture();
@@ -87,6 +95,30 @@ std::string SpaceTimeTool::update(Document& doc, SceneView& view, const view::Ca
     d.retime0 = e.retime;
   }
   drag_ = std::move(d);
+  return "";
+}
+
+std::string SpaceTimeTool::update_stroke(Document& doc, SceneView& view, const view::Camera& cam, const Input& in,
+                                         const Run& run) {
+  if (doc.space_time_edits().empty()) {  // undone under the stroke
+    doc.end_gesture();
+    brushing_ = false;
+    return "";
+  }
+  const EditRegionSpec& r = doc.space_time_edits().back().region;
+  if (in.released || in.clicked) {
+    doc.end_gesture();
+    brushing_ = false;
+    char buf[120];
+    std::snprintf(buf, sizeof buf, "space-time region: %d ball(s) of radius %.3g", static_cast<int>(r.dabs.size()) + 1, r.radius);
+    return buf;
+  }
+  const view::SurfaceHit hit =
+      view::pick_surface(view::pixel_ray(cam, in.mouse.x(), in.mouse.y()), view.display_vertices(), view.display_faces());
+  if (!hit.hit()) return "";
+  // A new dab once the stroke has left the last one by half a radius.
+  const Eigen::Vector3d last = r.dabs.empty() ? r.center : r.dabs.back();
+  if ((hit.point - last).norm() > 0.5 * r.radius) run(command_words("edit-brush", {hit.point.x(), hit.point.y(), hit.point.z()}));
   return "";
 }
 
@@ -129,8 +161,9 @@ std::string SpaceTimeTool::update_drag(Document& doc, const view::Camera& cam, c
 }
 
 void SpaceTimeTool::cancel(Document& doc) {
-  if (drag_) doc.end_gesture();
+  if (drag_ || brushing_) doc.end_gesture();
   drag_.reset();
+  brushing_ = false;
 }
 
 void SpaceTimeTool::draw_setup() {
@@ -167,9 +200,10 @@ void SpaceTimeTool::draw_setup() {
 
 void SpaceTimeTool::draw_options(const Document& doc, const Run& run) {
   default_window(doc);
-  ImGui::TextWrapped("Shift-click the surface: a region there over the window. Then drag a point in it: "
-                     "the motion follows over the window, frames outside it stay. Ctrl-drag moves the point "
-                     "in time instead (the viewport's width is the window).");
+  ImGui::TextWrapped("Shift-click the surface: a region there over the window; keep the button down and "
+                     "move to brush more of it. Then drag a point in it: the motion follows over the window, "
+                     "frames outside it stay. Ctrl-drag moves the point in time instead (the viewport's width "
+                     "is the window).");
   float r = static_cast<float>(radius_);
   if (ImGui::SliderFloat("Radius", &r, 0.01f, 0.5f, "%.3f")) radius_ = r;
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("The region's radius, a fraction of the surface's diagonal");
@@ -182,9 +216,10 @@ void SpaceTimeTool::draw_options(const Document& doc, const Run& run) {
   if (!edits.empty()) {
     const SpaceTimeEdit& e = edits.back();
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
-    ImGui::TextWrapped("last: r %.3g over [%.3g, %.3g], move (%.3g, %.3g, %.3g) at t %.3g, retime %.3g; %s weights, "
+    ImGui::TextWrapped("last: r %.3g (%d ball%s) over [%.3g, %.3g], move (%.3g, %.3g, %.3g) at t %.3g, retime %.3g; %s weights, "
                        "time scale %.3g%s%s",
-                       e.region.radius, e.region.t0, e.region.t1, e.move.x(), e.move.y(), e.move.z(), e.handle.time,
+                       e.region.radius, static_cast<int>(e.region.dabs.size()) + 1, e.region.dabs.empty() ? "" : "s",
+                       e.region.t0, e.region.t1, e.move.x(), e.move.y(), e.move.z(), e.handle.time,
                        e.retime, laplacian_weights_name(e.weights), e.time_scale,
                        e.preserve_volume ? ", volume kept" : "", e.refine ? ", refined" : "");
     ImGui::PopStyleColor();

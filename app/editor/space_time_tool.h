@@ -1,7 +1,8 @@
 #pragma once
 // The Space-time tool (issue 35; Southern 2008 ch. 4): edits the animation manifold itself. Shift-click
 // (or the first click) on the surface at the current time sets an edit's region centre, with the
-// radius and the time window from the Tools panel (an edit-region line); then press on the surface
+// radius and the time window from the Tools panel (an edit-region line); holding the button and moving
+// brushes more of the region (an edit-brush line each half radius, the stroke one undo step); then press on the surface
 // near it and drag: that point is the handle, moved in the view plane, and the region follows
 // smoothly in space and over the window. The press is an edit-drag line (the same checks a script
 // gets), each frame of the drag sets the edit's move in the document (the manifold builder replays it
@@ -47,8 +48,8 @@ class SpaceTimeTool {
   CommandWords region_line(const Eigen::Vector3d& p, double diagonal) const;
   // The window the timeline draws as a band.
   std::pair<double, double> window() const { return {t0_, t1_}; }
-  bool dragging() const { return drag_.has_value(); }
-  void cancel(Document& doc);  // ends a drag cut short (its undo step stays as far as it got)
+  bool dragging() const { return drag_.has_value() || brushing_; }
+  void cancel(Document& doc);  // ends a drag or stroke cut short (its undo step stays as far as it got)
 
  private:
   struct Drag {
@@ -60,6 +61,7 @@ class SpaceTimeTool {
     std::shared_ptr<const SpaceTimeRetimeTrial> trial;  // null: a drag in space
     std::string refusal;
   };
+  std::string update_stroke(Document& doc, SceneView& view, const view::Camera& cam, const Input& in, const Run& run);
   std::string update_drag(Document& doc, const view::Camera& cam, const Input& in);
   void draw_setup();  // the Tools panel's weights, time scale and volume
   // The window when the fields hold none yet: the middle half of the keys' span.
@@ -73,6 +75,7 @@ class SpaceTimeTool {
   double time_scale_ = 1.0;
   bool volume_ = false;
   std::optional<Drag> drag_;
+  bool brushing_ = false;  // a Shift stroke: each step on the surface brushes more of the new region
 };
 
 }  // namespace dfm::editor

@@ -35,6 +35,13 @@ std::vector<int> region_anchors(const AnimationManifold& m, const std::vector<in
   return out;
 }
 
+bool in_region_balls(const EditRegionSpec& r, const Eigen::Vector3d& p) {
+  if ((p - r.center).norm() <= r.radius) return true;
+  for (const Eigen::Vector3d& d : r.dabs)
+    if ((p - d).norm() <= r.radius) return true;
+  return false;
+}
+
 EditRegion select_edit_region(const AnimationManifold& m, const EditRegionSpec& r, const EditHandleSpec& h) {
   if (!(r.radius > 0) || !std::isfinite(r.radius)) throw Error("edit region: the radius must be positive and finite");
   if (!(r.t0 < r.t1)) throw Error("edit region: the time window " + range_text(r.t0, r.t1) + " is empty (t0 must be < t1)");
@@ -62,7 +69,7 @@ EditRegion select_edit_region(const AnimationManifold& m, const EditRegionSpec& 
   for (int v = 0; v < n; ++v) {
     const double t = m.V(v, 3);
     if (star_out[v] || t < r.t0 || t > r.t1) continue;
-    if ((m.V.row(v).head<3>().transpose() - r.center).norm() <= r.radius) e.region.push_back(v);
+    if (in_region_balls(r, m.V.row(v).head<3>().transpose())) e.region.push_back(v);
   }
   if (e.region.empty())
     throw Error("edit region: no manifold vertex lies within " + std::to_string(r.radius) +

@@ -3,7 +3,8 @@
 // the region of interest, the anchors that hold it in place, and the handle the user drags.
 //
 // Rules (manifold vertices, 0-based, sorted):
-// - Region: |xyz - center| <= radius, and the vertex's whole star (every tetrahedron around it) has its
+// - Region: |xyz - center| <= radius, or |xyz - dab| <= radius for one of the dabs (a region brushed in
+//   several strokes of the same radius), and the vertex's whole star (every tetrahedron around it) has its
 //   times in [t0, t1]. The star rule is what keeps the motion outside the window untouched: a slice at a
 //   time outside [t0, t1] only cuts tetrahedra with a vertex outside the window, which hold no region
 //   vertex, so those slices are unchanged bit for bit. (On a prism manifold a layer vertex is in the
@@ -26,6 +27,7 @@ struct EditRegionSpec {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();
   double radius = 0;
   double t0 = 0, t1 = 0;
+  std::vector<Eigen::Vector3d> dabs;  // more ball centres of the same radius (a brushed region)
 };
 
 struct EditHandleSpec {
@@ -42,6 +44,9 @@ struct EditRegion {
 // piece of the manifold, so nothing holds it), a handle time outside the window, or a handle with no
 // region vertex.
 EditRegion select_edit_region(const AnimationManifold& m, const EditRegionSpec& region, const EditHandleSpec& handle);
+
+// Whether p lies in the region's balls (the centre's or a dab's), ignoring time.
+bool in_region_balls(const EditRegionSpec& region, const Eigen::Vector3d& p);
 
 // The anchors of an arbitrary vertex set (a painted selection): the rule above. `region` sorted.
 std::vector<int> region_anchors(const AnimationManifold& m, const std::vector<int>& region);

@@ -1,5 +1,5 @@
-// The table's space-time edit commands (SCRIPT.md; issue 35): edit-region, edit-drag, edit-refine,
-// edit-clear.
+// The table's space-time edit commands (SCRIPT.md; issue 35): edit-region, edit-brush, edit-drag,
+// edit-refine, edit-clear.
 #include <algorithm>
 
 #include "core/anim/manifold_laplacian.h"
@@ -43,6 +43,13 @@ void read_setup(const CommandWords& w, SpaceTimeEdit& e) {
   }
 }
 
+// Whether a vertex of m lies within the region's radius of p at a time inside its window.
+bool ball_holds_vertex(const AnimationManifold& m, const Eigen::Vector3d& p, const EditRegionSpec& r) {
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if ((m.V.row(v).head<3>().transpose() - p).norm() <= r.radius && m.V(v, 3) >= r.t0 && m.V(v, 3) <= r.t1) return true;
+  return false;
+}
+
 // Starts an edit: the region and window and its setup, no move yet (a still edit changes nothing).
 void edit_region(CommandContext& x, const CommandWords& w) {
   SpaceTimeEdit e;
@@ -58,12 +65,24 @@ void edit_region(CommandContext& x, const CommandWords& w) {
   if (e.region.t1 <= m.times.front() || e.region.t0 >= m.times.back())
     throw Error("the window [" + w[5] + ", " + w[6] + "] is outside the animation [" + std::to_string(m.times.front()) +
                 ", " + std::to_string(m.times.back()) + "]");
-  bool any = false;
-  for (int v = 0; v < m.num_vertices() && !any; ++v)
-    any = (m.V.row(v).head<3>().transpose() - e.region.center).norm() <= e.region.radius && m.V(v, 3) >= e.region.t0 &&
-          m.V(v, 3) <= e.region.t1;
-  if (!any) throw Error("the region holds no vertex of the animation (centre, radius or window)");
+  if (!ball_holds_vertex(m, e.region.center, e.region))
+    throw Error("the region holds no vertex of the animation (centre, radius or window)");
   x.doc.add_space_time_edit(e);
+}
+
+// Brushes more of the current edit's region: a ball of its radius at (X Y Z), before its first drag.
+void edit_brush(CommandContext& x, const CommandWords& w) {
+  const std::vector<SpaceTimeEdit>& edits = x.doc.space_time_edits();
+  if (edits.empty()) throw Error("no space-time edit: start one with edit-region");
+  SpaceTimeEdit e = edits.back();
+  if (moves(e)) throw Error("the current space-time edit has been dragged: start a new region (edit-region) to brush");
+  const Eigen::Vector3d p(num(w, 1), num(w, 2), num(w, 3));
+  e.region.dabs.push_back(p);
+  check_space_time_edit(e);
+  const AnimationManifold m = manifold_before_edit(x.doc, edits.size() - 1);
+  if (!ball_holds_vertex(m, p, e.region))
+    throw Error("the dab holds no vertex of the animation inside the edit's window");
+  x.doc.set_space_time_edit(static_cast<int>(edits.size()) - 1, e);
 }
 
 // Drags the handle at (HX HY HZ) at the current time by (DX DY DZ): the current edit's first move, or
@@ -130,6 +149,8 @@ void add_space_time_commands(std::vector<Command>& t) {
       throw Error(std::string(err.what()) + "; usage: " + usage);
     }
   };
+  c->poll = needs_two_keys;
+  c = &add(t, "edit-brush", "edit-brush X Y Z", 3, 3, {number_arg()}, edit_brush);
   c->poll = needs_two_keys;
   c = &add(t, "edit-drag", "edit-drag HX HY HZ DX DY DZ [DT]", 6, 7, {number_arg()}, edit_drag);
   c->poll = needs_two_keys;

@@ -464,8 +464,11 @@ namespace {
 // Space-time edits (optional: scenes before issue 35 have none).
 json space_time_edits_json(const std::vector<SpaceTimeEdit>& edits) {
   json out = json::array();
-  for (const SpaceTimeEdit& e : edits)
+  for (const SpaceTimeEdit& e : edits) {
+    json dabs = json::array();
+    for (const Eigen::Vector3d& d : e.region.dabs) dabs.push_back(vec3(d));
     out.push_back({{"center", vec3(e.region.center)},
+                   {"dabs", dabs},
                    {"radius", e.region.radius},
                    {"t0", e.region.t0},
                    {"t1", e.region.t1},
@@ -478,6 +481,7 @@ json space_time_edits_json(const std::vector<SpaceTimeEdit>& edits) {
                    {"time_scale", e.time_scale},
                    {"volume", e.preserve_volume},
                    {"refine", e.refine}});
+  }
   return out;
 }
 
@@ -488,6 +492,10 @@ void read_space_time_edits(const SceneReader& R, const json& j, SceneData& s) {
     const std::string c = "space_time_edits[" + std::to_string(i) + "]";
     SpaceTimeEdit e;
     e.region.center = R.vec3(R.field(a[i], "center", c), c + ".center");
+    if (a[i].contains("dabs")) {  // absent before brushed regions
+      const json& dabs = R.array(a[i]["dabs"], c + ".dabs");
+      for (size_t k = 0; k < dabs.size(); ++k) e.region.dabs.push_back(R.vec3(dabs[k], c + ".dabs[" + std::to_string(k) + "]"));
+    }
     e.region.radius = R.number(R.field(a[i], "radius", c), c + ".radius");
     e.region.t0 = R.number(R.field(a[i], "t0", c), c + ".t0");
     e.region.t1 = R.number(R.field(a[i], "t1", c), c + ".t1");

@@ -7,7 +7,7 @@
 namespace dfm {
 
 bool SpaceTimeEdit::same_setup(const SpaceTimeEdit& o) const {
-  return region.center == o.region.center && region.radius == o.region.radius && region.t0 == o.region.t0 &&
+  return region.center == o.region.center && region.dabs == o.region.dabs && region.radius == o.region.radius && region.t0 == o.region.t0 &&
          region.t1 == o.region.t1 && handle.point == o.handle.point && handle.time == o.handle.time &&
          weights == o.weights && time_scale == o.time_scale && preserve_volume == o.preserve_volume;
 }
@@ -20,6 +20,8 @@ bool SpaceTimeEdit::operator==(const SpaceTimeEdit& o) const {
 void check_space_time_edit(const SpaceTimeEdit& e) {
   if (!e.region.center.allFinite() || !std::isfinite(e.region.radius) || !(e.region.radius > 0))
     throw Error("space-time edit: the region needs a finite centre and a positive radius");
+  for (const Eigen::Vector3d& d : e.region.dabs)
+    if (!d.allFinite()) throw Error("space-time edit: a brushed dab of the region is not finite");
   if (!std::isfinite(e.region.t0) || !std::isfinite(e.region.t1) || !(e.region.t0 < e.region.t1))
     throw Error("space-time edit: the time window needs T0 < T1");
   if (!e.handle.point.allFinite() || !std::isfinite(e.handle.time))
