@@ -21,6 +21,7 @@
 #include "app/editor/pose_tool.h"
 #include "app/editor/sculpt_tool.h"
 #include "app/editor/space_time_tool.h"
+#include "app/editor/timeline_ruler.h"
 #include "core/scene/command.h"
 #include "core/scene/script.h"
 #include "tests/mock_render_backend.h"
@@ -1359,4 +1360,15 @@ TEST_CASE("space-time tool: a Shift stroke brushes the region (a ball each half 
   CHECK(doc.undo_depth() == depth + 1);  // the region and its stroke: one step
   doc.undo();
   CHECK(doc.space_time_edits().empty());
+}
+
+TEST_CASE("the timeline's Space-time band: a dragged edge snaps to whole frames and keeps the band a frame wide",
+          "[editor][space-time]") {
+  using editor::dragged_band;
+  const std::pair<double, double> band{0.4, 1.6};
+  CHECK(dragged_band(band, 0, 0.52, 24) == std::pair<double, double>{12.0 / 24, 1.6});  // 12.48 frames -> 12
+  CHECK(dragged_band(band, 1, 1.23, 24) == std::pair<double, double>{0.4, 30.0 / 24});  // 29.52 -> 30
+  // Past the other edge: stops a frame short of it.
+  CHECK(dragged_band(band, 0, 1.9, 24) == std::pair<double, double>{1.6 - 1.0 / 24, 1.6});
+  CHECK(dragged_band(band, 1, 0.1, 24) == std::pair<double, double>{0.4, 0.4 + 1.0 / 24});
 }

@@ -90,6 +90,10 @@ void Editor::draw_timeline() {
   if (tool_ == Tool::SpaceTime) timeline_ruler_.set_band(space_time_tool_.window());
   else timeline_ruler_.set_band(std::nullopt);
   timeline_ruler_.draw(doc_, frame_rate_, error_popup_);
+  if (tool_ == Tool::SpaceTime && timeline_ruler_.band()) {  // an edge dragged on the ruler
+    const auto [t0, t1] = *timeline_ruler_.band();
+    space_time_tool_.set_window(t0, t1);
+  }
 }
 
 // The in-between of the key interval holding the current time (one undo step per change); a

@@ -210,6 +210,7 @@ void SpaceTimeTool::draw_options(const Document& doc, const Run& run) {
   ImGui::InputDouble("T0", &t0_, 0, 0, "%.3f");
   ImGui::InputDouble("T1", &t1_, 0, 0, "%.3f");
   if (ImGui::Button("Window = current time +- 1/4")) t0_ = t1_ = 0, default_window(doc);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Or drag the edges of the window's band on the timeline");
   draw_setup();
   const std::vector<SpaceTimeEdit>& edits = doc.space_time_edits();
   ImGui::Text("%d edit(s)", static_cast<int>(edits.size()));

@@ -46,8 +46,9 @@ class SpaceTimeTool {
   }
   // The edit-region line a click at p makes: the panel's radius (times the surface's diagonal), window and setup.
   CommandWords region_line(const Eigen::Vector3d& p, double diagonal) const;
-  // The window the timeline draws as a band.
+  // The window the timeline draws as a band (and whose edges it drags: set_window).
   std::pair<double, double> window() const { return {t0_, t1_}; }
+  void set_window(double t0, double t1) { t0_ = t0, t1_ = t1; }
   bool dragging() const { return drag_.has_value() || brushing_; }
   void cancel(Document& doc);  // ends a drag or stroke cut short (its undo step stays as far as it got)
 

@@ -85,9 +85,23 @@ int TimelineRuler::handle_input(Document& doc, const Span& s, double frame_rate,
   int hover_key = -1;
   for (size_t i = 0; i < keys.size(); ++i)
     if (hovered && std::abs(mx - s.x_of(keys[i].time)) < 7 && std::abs(my - s.key_y()) < 10) hover_key = int(i);
+  // An edge of the band, when no key is under the cursor: 0 the start, 1 the end, -1 neither.
+  int hover_edge = -1;
+  if (hovered && hover_key < 0 && band_ && band_->first < band_->second) {
+    const float d0 = std::abs(mx - s.x_of(band_->first)), d1 = std::abs(mx - s.x_of(band_->second));
+    if (std::min(d0, d1) < 5) hover_edge = d0 <= d1 ? 0 : 1;
+  }
+  if (hover_edge >= 0 || drag_ == Drag::BandStart || drag_ == Drag::BandEnd) {
+    ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
+    if (drag_ == Drag::None) ImGui::SetTooltip("drag to move the Space-time tool's window %s", hover_edge == 0 ? "start" : "end");
+  }
   if (ImGui::IsItemClicked(ImGuiMouseButton_Left)) {
-    drag_ = hover_key >= 0 ? Drag::Key : Drag::Scrub;
+    drag_ = hover_key >= 0 ? Drag::Key : hover_edge == 0 ? Drag::BandStart : hover_edge == 1 ? Drag::BandEnd : Drag::Scrub;
     drag_key_ = hover_key;
+  }
+  if ((drag_ == Drag::BandStart || drag_ == Drag::BandEnd) && band_) {
+    band_ = dragged_band(*band_, drag_ == Drag::BandStart ? 0 : 1, std::clamp(s.t_of(mx), s.t0, s.t1), frame_rate);
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) drag_ = Drag::None;
   }
   if (ImGui::IsItemClicked(ImGuiMouseButton_Right) && hover_key >= 0) {
     doc.delete_key(hover_key);
