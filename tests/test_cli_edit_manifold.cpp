@@ -71,6 +71,35 @@ TEST_CASE("deform edit-manifold: the handle moves exactly, the rest of the file 
   CHECK(E.V(1 * M.num_vertices() / 5 + mid, 2) > 0.0);
 }
 
+TEST_CASE("deform edit-manifold --brush: a brushed ball widens the region, the rest of the file stays", "[cli]") {
+  ScratchDir s("cli_edit_manifold_brush");
+  const AnimationManifold M = sheet_manifold();
+  const std::string in = (s.dir / "sheet.tet4").string(), out = (s.dir / "brushed.tet4").string();
+  write_manifold(in, M);
+  // Region balls of radius 0.3 at x = 1.0 and (brushed) x = 1.4, over the whole animation; handle at 1.0.
+  const Eigen::Vector3d C(1.0, 0.5, 0), B(1.4, 0.5, 0);
+  const double R = 0.3;
+  const RunResult r = run_deform(s, {"edit-manifold", in, "--region", "1.0", "0.5", "0", "0.3", "0", "4", "--brush", "1.4",
+                                     "0.5", "0", "--handle", "1.0", "0.5", "0", "2", "--move", "0", "0", "0.25", "-o", out});
+  INFO(describe_run(r));
+  REQUIRE(r.exit_code == 0);
+  const AnimationManifold E = read_manifold(out);
+  REQUIRE(E.num_vertices() == M.num_vertices());
+  int moved_in_brush = 0;
+  for (int v = 0; v < M.num_vertices(); ++v) {
+    const Eigen::Vector3d p = M.V.row(v).head<3>().transpose();
+    const bool in_c = (p - C).norm() <= R, in_b = (p - B).norm() <= R;
+    if (!in_c && !in_b) REQUIRE((E.V.row(v).array() == M.V.row(v).array()).all());  // outside both balls
+    if (in_b && !in_c && E.V(v, 2) != M.V(v, 2)) ++moved_in_brush;
+  }
+  CHECK(moved_in_brush > 5);  // the brushed ball's vertices follow the drag
+  // A bad --brush is a usage error naming the option.
+  const RunResult bad = run_deform(s, {"edit-manifold", in, "--region", "1.0", "0.5", "0", "0.3", "0", "4", "--brush", "1.4",
+                                       "--handle", "1.0", "0.5", "0", "2", "--move", "0", "0", "0.25", "-o", out});
+  CHECK(bad.exit_code != 0);
+  CHECK(bad.err.find("--brush") != std::string::npos);
+}
+
 TEST_CASE("deform edit-manifold: hostile input exits 1 naming the file, nothing written", "[cli]") {
   ScratchDir s("cli_edit_manifold_bad");
   const std::string in = (s.dir / "sheet.tet4").string(), out = (s.dir / "never.tet4").string();

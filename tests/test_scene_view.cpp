@@ -1189,19 +1189,31 @@ TEST_CASE("scene view: a space-time drag frame keeps the interval's topology and
   REQUIRE(scene.vertex_time_count() > times_before);
 }
 
+// The keyed bar at t = 1 in a mock-GL view, showing its slice, seen from the +z side (the Space-time
+// tool's tests).
+struct SpaceTimeView {
+  Document doc;
+  MockRenderBackend gpu;
+  SceneView scene{gpu};
+  ViewSettings vs;
+  view::Camera cam;
+  SpaceTimeView() {
+    test::make_keyed(doc);
+    doc.set_time(1.0);
+    scene.sync(doc, vs);
+    REQUIRE(scene.showing_slice());
+    cam.width = 800, cam.height = 600;
+    view::frame_box(cam, Vector3d(-2, -1, -1), Vector3d(2, 1.6, 1));
+  }
+};
+
 TEST_CASE("space-time tool: the panel's setup goes on the region line; a Ctrl-drag retimes (the viewport's width the "
           "window) in one undo step, a refused retime keeps the last accepted one", "[editor][scene_view][space-time]") {
-  Document doc;
-  test::make_keyed(doc);
-  MockRenderBackend gpu;
-  SceneView scene(gpu);
-  ViewSettings vs;
-  doc.set_time(1.0);
-  scene.sync(doc, vs);
-  REQUIRE(scene.showing_slice());
-  view::Camera cam;
-  cam.width = 800, cam.height = 600;
-  view::frame_box(cam, Vector3d(-2, -1, -1), Vector3d(2, 1.6, 1));
+  SpaceTimeView f;
+  Document& doc = f.doc;
+  SceneView& scene = f.scene;
+  ViewSettings& vs = f.vs;
+  const view::Camera& cam = f.cam;
   REQUIRE(camera_forward(cam).z() < -0.9);  // looking at the +z side
   // A point on the +x end's front at t = 1 (in the lifted part), picked where it shows.
   const TriMesh frame = posed_surface(doc);
@@ -1297,17 +1309,10 @@ TEST_CASE("space-time tool: the panel's setup goes on the region line; a Ctrl-dr
 
 TEST_CASE("space-time tool: a Shift stroke brushes the region (a ball each half radius, one undo step with the region)",
           "[editor][scene_view][space-time]") {
-  Document doc;
-  test::make_keyed(doc);
-  MockRenderBackend gpu;
-  SceneView scene(gpu);
-  ViewSettings vs;
-  doc.set_time(1.0);
-  scene.sync(doc, vs);
-  REQUIRE(scene.showing_slice());
-  view::Camera cam;
-  cam.width = 800, cam.height = 600;
-  view::frame_box(cam, Vector3d(-2, -1, -1), Vector3d(2, 1.6, 1));
+  SpaceTimeView f;
+  Document& doc = f.doc;
+  SceneView& scene = f.scene;
+  const view::Camera& cam = f.cam;
   // Two points on the bar's front at t = 1, picked where they show: the stroke goes from one to the other.
   const TriMesh frame = posed_surface(doc);
   auto pixel_near = [&](const Eigen::RowVector3d& p) {

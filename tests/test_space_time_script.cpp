@@ -36,6 +36,18 @@ int nearest(const TriMesh& m, const Eigen::Vector3d& p) {
   return best;
 }
 
+// A scene file's path in a folder of its own, removed with it (one per test: ctest runs them in parallel).
+struct ScratchScene {
+  fs::path dir;
+  std::string path;
+  explicit ScratchScene(const std::string& name)
+      : dir(fs::temp_directory_path() / ("dfm_space_time_" + name + "_" + std::to_string(::getpid()))),
+        path((dir / "s.scene.json").string()) {
+    fs::create_directories(dir);
+  }
+  ~ScratchScene() { fs::remove_all(dir); }
+};
+
 void run(Document& d, const std::string& text) { run_script(d, parse_script(text, "s.txt"), "s.txt"); }
 
 }  // namespace
@@ -91,9 +103,8 @@ TEST_CASE("edit-region + edit-drag: the handle lands where dragged, frames befor
 }
 
 TEST_CASE("a scene round trip keeps the space-time edit and replays it; edit-clear drops it", "[script][space-time]") {
-  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string sc = (dir / "e.scene.json").string();
+  const ScratchScene scratch("edit");
+  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.2);
@@ -113,14 +124,12 @@ TEST_CASE("a scene round trip keeps the space-time edit and replays it; edit-cle
   run(e, "edit-clear\n");
   CHECK(e.space_time_edits().empty());
   CHECK(frame_at(e, 1.2).V == mid.V);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("edit-refine (4.5.1): the edit made again on a finer layer mesh, undoable, kept by the scene; a drag "
           "unrefines it", "[script][space-time]") {
-  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_refine_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string sc = (dir / "r.scene.json").string();
+  const ScratchScene scratch("refine");
+  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh before0 = frame_at(d, 0), mid = frame_at(d, 1.2);
@@ -169,14 +178,12 @@ TEST_CASE("edit-refine (4.5.1): the edit made again on a finer layer mesh, undoa
   run(d, line);
   CHECK(!d.space_time_edits()[0].refine);
   CHECK(frame_at(d, 1.2).V.rows() == n);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("edit-brush: more balls of the region's radius before its drag; the drag moves what they hold; the scene "
           "keeps them", "[script][space-time]") {
-  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_brush_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string sc = (dir / "b.scene.json").string();
+  const ScratchScene scratch("brush");
+  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.2);
@@ -219,7 +226,6 @@ TEST_CASE("edit-brush: more balls of the region's radius before its drag; the dr
   run(d, line);
   REQUIRE_THROWS_WITH(run(d, "edit-brush 40 40 40\n"), Catch::Contains("holds no vertex"));
   CHECK(d.space_time_edits().back().region.dabs.empty());
-  fs::remove_all(dir);
 }
 
 TEST_CASE("space-time edits: hostile input is a clear error and changes nothing; a stale edit is reported",
@@ -263,9 +269,8 @@ TEST_CASE("space-time edits: hostile input is a clear error and changes nothing;
 
 TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene keeps it, a fold is refused",
           "[script][space-time]") {
-  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_retime_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string sc = (dir / "r.scene.json").string();
+  const ScratchScene scratch("retime");
+  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.0), early = frame_at(d, 0.2);
@@ -318,14 +323,12 @@ TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene ke
   REQUIRE(e.space_time_edits().size() == 1);
   CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
   CHECK(frame_at(e, 1.1).V == later.V);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("edit-region's setup words: the edit's weights, time scale and volume, kept by its drags and the scene, "
           "replayed as the editor with those options drags", "[script][space-time]") {
-  const fs::path dir = fs::temp_directory_path() / ("dfm_space_time_setup_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string sc = (dir / "s.scene.json").string();
+  const ScratchScene scratch("setup");
+  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.2);
@@ -379,7 +382,6 @@ TEST_CASE("edit-region's setup words: the edit's weights, time scale and volume,
   l.load_scene(sc);
   CHECK(l.space_time_edits() == d.space_time_edits());
   CHECK(frame_at(l, 1.2).V == frame_at(d, 1.2).V);
-  fs::remove_all(dir);
 
   // Undo: the second edit, its press... back to no edit.
   run(d, "undo\nundo\nundo\n");

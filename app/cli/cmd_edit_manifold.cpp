@@ -19,13 +19,15 @@ namespace {
 const char* kUsage =
     "usage: deform edit-manifold IN.tet4 --region CX CY CZ RADIUS T0 T1 --handle HX HY HZ T --move DX DY DZ\n"
     "                            [--rotate AX AY AZ DEGREES] [--retime DT] [--weights W] [--time-scale S] [--volume]\n"
-    "                            [--refine] -o OUT.tet4\n"
+    "                            [--brush X Y Z ...] [--refine] -o OUT.tet4\n"
     "  Laplacian editing of the animation manifold (Southern 2008, 4.3): the region is every vertex within\n"
     "  RADIUS of (CX, CY, CZ) whose neighbourhood lies in the time window [T0, T1] (so frames outside the\n"
     "  window are unchanged); its boundary ring stays put. The handle is the region's vertices within\n"
     "  RADIUS / 4 of (HX, HY, HZ) on the layers at (or either side of) time T, moved by (DX, DY, DZ) after\n"
     "  turning DEGREES about the axis (AX, AY, AZ) through the handle point. The rest of the region follows\n"
     "  smoothly in space and time, its details turned with the handle (4.2.1). Vertices keep their times.\n"
+    "  --brush X Y Z  one more ball of the region's radius at (X, Y, Z) (a brushed region, as the editor's\n"
+    "                Shift stroke and the script's edit-brush make); repeatable\n"
     "  --retime DT   move the handle by DT in time as well (the region follows by its reach); refused when\n"
     "                it would fold a slab back in time or the region holds the first or last layer\n"
     "  --weights W   equal, reciprocal (1 / edge length; default), primal-boundary (reciprocal, and at the\n"
@@ -62,6 +64,10 @@ int run(const dfm::cli::Args& args) {
       rs.t0 = a.number(f);
       rs.t1 = a.number(f);
       region = true;
+    } else if (f == "--brush") {
+      Eigen::Vector3d d;
+      for (int i = 0; i < 3; ++i) d[i] = a.number(f);
+      rs.dabs.push_back(d);
     } else if (f == "--handle") {
       for (int i = 0; i < 3; ++i) hs.point[i] = a.number(f);
       hs.time = a.number(f);

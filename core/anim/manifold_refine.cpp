@@ -46,20 +46,28 @@ Layers layers_of(const AnimationManifold& m) {
   return L;
 }
 
-// The mean length of the layer edges at region vertices.
-double mean_region_edge(const AnimationManifold& m, const std::vector<int>& region) {
-  const PrismSlab& p = m.prism_slabs.front();
-  const Eigen::MatrixXi& F = m.layer_faces[p.faces];
+// Calls fn(f, a, b) for each edge (a, b) of layer triangle f, in every layer, with an end in `region`
+// (manifold vertex indices).
+template <class Fn>
+void for_region_layer_edges(const AnimationManifold& m, const std::vector<int>& region, Fn fn) {
+  const Eigen::MatrixXi& F = m.layer_faces[m.prism_slabs.front().faces];
   std::vector<char> in(static_cast<size_t>(m.num_vertices()), 0);
   for (int v : region) in[v] = 1;
-  double sum = 0;
-  int count = 0;
-  for (int layer = 0; layer < m.num_layers(); ++layer)
+  for (int layer = 0; layer < m.num_layers(); ++layer) {
+    const int start = layer_start(m, layer);
     for (Eigen::Index f = 0; f < F.rows(); ++f)
       for (int j = 0; j < 3; ++j) {
-        const int a = layer_start(m, layer) + F(f, j), b = layer_start(m, layer) + F(f, (j + 1) % 3);
-        if (in[a] || in[b]) sum += (m.V.row(a) - m.V.row(b)).head<3>().norm(), ++count;
+        const int a = start + F(f, j), b = start + F(f, (j + 1) % 3);
+        if (in[a] || in[b]) fn(f, a, b);
       }
+  }
+}
+
+// The mean length of the layer edges at region vertices.
+double mean_region_edge(const AnimationManifold& m, const std::vector<int>& region) {
+  double sum = 0;
+  int count = 0;
+  for_region_layer_edges(m, region, [&](Eigen::Index, int a, int b) { sum += (m.V.row(a) - m.V.row(b)).head<3>().norm(), ++count; });
   return count > 0 ? sum / count : 0;
 }
 
@@ -67,22 +75,14 @@ double mean_region_edge(const AnimationManifold& m, const std::vector<int>& regi
 // layer).
 std::vector<char> stretched_triangles(const AnimationManifold& m, const MatrixX4dRow& edited, const std::vector<int>& region,
                                       double mean, double stretch, double* longest) {
-  const PrismSlab& p = m.prism_slabs.front();
-  const Eigen::MatrixXi& F = m.layer_faces[p.faces];
-  std::vector<char> in(static_cast<size_t>(m.num_vertices()), 0);
-  for (int v : region) in[v] = 1;
-  std::vector<char> red(static_cast<size_t>(F.rows()), 0);
+  std::vector<char> red(static_cast<size_t>(m.layer_faces[m.prism_slabs.front().faces].rows()), 0);
   *longest = 0;
   if (mean <= 0) return red;
-  for (int layer = 0; layer < m.num_layers(); ++layer)
-    for (Eigen::Index f = 0; f < F.rows(); ++f)
-      for (int j = 0; j < 3; ++j) {
-        const int a = layer_start(m, layer) + F(f, j), b = layer_start(m, layer) + F(f, (j + 1) % 3);
-        if (!in[a] && !in[b]) continue;
-        const double after = (edited.row(a) - edited.row(b)).head<3>().norm();
-        *longest = std::max(*longest, after / mean);
-        if (after > stretch * mean && after > (m.V.row(a) - m.V.row(b)).head<3>().norm()) red[f] = 1;
-      }
+  for_region_layer_edges(m, region, [&](Eigen::Index f, int a, int b) {
+    const double after = (edited.row(a) - edited.row(b)).head<3>().norm();
+    *longest = std::max(*longest, after / mean);
+    if (after > stretch * mean && after > (m.V.row(a) - m.V.row(b)).head<3>().norm()) red[f] = 1;
+  });
   return red;
 }
 
@@ -135,6 +135,8 @@ AnimationManifold edit_once(const AnimationManifold& m, const EditRegionSpec& re
 }
 
 }  // namespace
+
+void check_refinable(const AnimationManifold& m) { layers_of(m); }
 
 AnimationManifold edit_refined(const AnimationManifold& m, const EditRegionSpec& region, const EditHandleSpec& handle,
                                const ManifoldEditOptions& options, const ManifoldDrag& drag, const RefineOptions& refine,

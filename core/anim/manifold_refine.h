@@ -43,6 +43,9 @@ struct RefineStats {
   std::vector<int> layer_index;
 };
 
+// Throws dfm::Error, as edit_refined does, when m is not all prism slabs of one layer mesh.
+void check_refinable(const AnimationManifold& m);
+
 // The edited manifold (m with the drag applied, refined as above; a retime's slabs merged). Throws
 // dfm::Error with m unchanged for the manifolds above and for what select_edit_region and
 // ManifoldEditor refuse.

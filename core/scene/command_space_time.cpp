@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/anim/manifold_laplacian.h"
+#include "core/anim/manifold_refine.h"
 #include "core/scene/command_parts.h"
 #include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
@@ -123,15 +124,15 @@ void edit_drag(CommandContext& x, const CommandWords& w) {
 }
 
 // Refines what the last edit stretched (Southern 4.5.1; core/anim/manifold_refine.h): the edit is made
-// again on a finer layer mesh. Made here once, so a manifold it cannot refine is a clear error.
+// again on a finer layer mesh, by the replay. A manifold it cannot refine is a clear error here (the
+// unrefined edit already applies, so its region and handle are good on the refined mesh too).
 void edit_refine(CommandContext& x, const CommandWords&) {
   const std::vector<SpaceTimeEdit>& edits = x.doc.space_time_edits();
   if (edits.empty() || !moves(edits.back())) throw Error("no space-time edit to refine: drag one first (edit-drag)");
   SpaceTimeEdit e = edits.back();
   if (e.refine) throw Error("the last space-time edit is refined already");
   e.refine = true;
-  AnimationManifold m = manifold_before_edit(x.doc, edits.size() - 1);
-  apply_space_time_edit(m, e);
+  check_refinable(manifold_before_edit(x.doc, edits.size() - 1));
   x.doc.set_space_time_edit(static_cast<int>(edits.size()) - 1, e);
 }
 
