@@ -5,7 +5,8 @@
 // then the documented field's own zero set on a grid (Euler characteristic over u, and the same
 // measures at u = 0.25, 0.5, 0.75), which tells the field's roughness from the sampling's.
 // Arguments: [all|bunny|torus|spheres|teddy] [layers] [spacing] [grid spacing in lattice spacings,
-// default 0.5] [relax rounds (TransitionOptions::relax_rounds; 0 for the unsmoothed level set)].
+// default 0.5] [relax rounds (TransitionOptions::relax_rounds; 0 for the unsmoothed level set)]
+// [close look: the Euler characteristic of the slices and of the field every 1/192 from there].
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -83,6 +84,17 @@ void print(const char* what, const Quality& q) {
 
 TransitionOptions options;
 double grid_factor = 0.5;  // the field's grid spacing, in the middle lattice's
+double window = -1;        // start of a close look at the Euler characteristic (none when negative)
+
+// t = window, window + 1/192, ... for 18 steps: finer than the layers (1/24 apart by default), so that
+// a short topology event of the field shows against the slices' own.
+template <class Euler>
+void print_window(const Euler& euler) {
+  if (window < 0) return;
+  std::printf("  close look:");
+  for (int i = 0; i < 18; ++i) std::printf(" %.4f:%d", window + i / 192.0, euler(window + i / 192.0));
+  std::printf("\n");
+}
 
 // The documented field's zero set at u (transition.h: aligned keys, no pairs), by marching tetrahedra
 // (six per grid cube, Freudenthal; slice_table.h's cases) on a grid whose signed distances d_s, d_t
@@ -158,6 +170,7 @@ void print_field_euler(const TriMesh& a, const TriMesh& b) {
   std::printf("  the documented field's zero set, grid %.4g:     ", h);
   for (int i = 0; i <= 20; ++i) std::printf(" %d", dfm::test::euler_characteristic(zero_set_triangles(n, d_s, d_t, i / 20.0)));
   std::printf("\n");
+  print_window([&](double u) { return dfm::test::euler_characteristic(zero_set_triangles(n, d_s, d_t, u)); });
   for (double u : {0.25, 0.5, 0.75}) {
     Eigen::MatrixXd V;
     const Eigen::MatrixXi F = zero_set_triangles(n, d_s, d_t, u, &G, &V);
@@ -187,6 +200,7 @@ void run(const char* name, const TriMesh& a, const TriMesh& b) {
   for (int i = 0; i <= 20; ++i)
     std::printf(" %d", dfm::test::euler_characteristic(slice_manifold(M, SliceAxis::T, i / 20.0).mesh.F));
   std::printf("  (keys %d, %d)\n", dfm::test::euler_characteristic(a.F), dfm::test::euler_characteristic(b.F));
+  print_window([&](double t) { return dfm::test::euler_characteristic(slice_manifold(M, SliceAxis::T, t).mesh.F); });
   if (options.pairs.rows() == 0) print_field_euler(a, b);
 }
 
@@ -198,6 +212,7 @@ int main(int argc, char** argv) {
   if (argc > 3) options.spacing = std::atof(argv[3]);
   if (argc > 4) grid_factor = std::atof(argv[4]);
   if (argc > 5) options.relax_rounds = std::atoi(argv[5]);
+  if (argc > 6) window = std::atof(argv[6]);
   const std::string dir = DFM_DATA_DIR;
   if (which == "all" || which == "bunny")
     run("bunny to 3holes", dfm::test::into_unit_box(read_surface(dir + "/bunny.off")),
