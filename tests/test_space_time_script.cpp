@@ -46,6 +46,11 @@ struct ScratchScene {
     fs::create_directories(dir);
   }
   ~ScratchScene() { fs::remove_all(dir); }
+  // d saved here, then loaded into e.
+  void round_trip(Document& d, Document& e) const {
+    d.save_scene(path);
+    e.load_scene(path);
+  }
 };
 
 void run(Document& d, const std::string& text) { run_script(d, parse_script(text, "s.txt"), "s.txt"); }
@@ -104,7 +109,6 @@ TEST_CASE("edit-region + edit-drag: the handle lands where dragged, frames befor
 
 TEST_CASE("a scene round trip keeps the space-time edit and replays it; edit-clear drops it", "[script][space-time]") {
   const ScratchScene scratch("edit");
-  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.2);
@@ -114,9 +118,8 @@ TEST_CASE("a scene round trip keeps the space-time edit and replays it; edit-cle
                 hp.x(), hp.y(), hp.z(), hp.x(), hp.y(), hp.z());
   run(d, line);
   const TriMesh edited = frame_at(d, 1.2), late = frame_at(d, 1.7);
-  d.save_scene(sc);
   Document e;
-  e.load_scene(sc);
+  scratch.round_trip(d, e);
   REQUIRE(e.space_time_edits().size() == 1);
   CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
   CHECK(frame_at(e, 1.2).V == edited.V);
@@ -129,7 +132,6 @@ TEST_CASE("a scene round trip keeps the space-time edit and replays it; edit-cle
 TEST_CASE("edit-refine (4.5.1): the edit made again on a finer layer mesh, undoable, kept by the scene; a drag "
           "unrefines it", "[script][space-time]") {
   const ScratchScene scratch("refine");
-  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh before0 = frame_at(d, 0), mid = frame_at(d, 1.2);
@@ -164,9 +166,8 @@ TEST_CASE("edit-refine (4.5.1): the edit made again on a finer layer mesh, undoa
   }
   REQUIRE_THROWS_WITH(run(d, "edit-refine\n"), Catch::Contains("refined already"));
   // The scene keeps it and replays the same frame.
-  d.save_scene(sc);
   Document e;
-  e.load_scene(sc);
+  scratch.round_trip(d, e);
   REQUIRE(e.space_time_edits().size() == 1);
   CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
   CHECK(frame_at(e, 1.2).V == refined.V);
@@ -183,7 +184,6 @@ TEST_CASE("edit-refine (4.5.1): the edit made again on a finer layer mesh, undoa
 TEST_CASE("edit-brush: more balls of the region's radius before its drag; the drag moves what they hold; the scene "
           "keeps them", "[script][space-time]") {
   const ScratchScene scratch("brush");
-  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.2);
@@ -212,9 +212,8 @@ TEST_CASE("edit-brush: more balls of the region's radius before its drag; the dr
     run(plain, line);
     CHECK(frame_at(plain, 1.2).V.row(far) == mid.V.row(far));
   }
-  d.save_scene(sc);
   Document e;
-  e.load_scene(sc);
+  scratch.round_trip(d, e);
   REQUIRE(e.space_time_edits().size() == 1);
   CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
   CHECK(frame_at(e, 1.2).V == edited.V);
@@ -270,7 +269,6 @@ TEST_CASE("space-time edits: hostile input is a clear error and changes nothing;
 TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene keeps it, a fold is refused",
           "[script][space-time]") {
   const ScratchScene scratch("retime");
-  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.0), early = frame_at(d, 0.2);
@@ -317,9 +315,8 @@ TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene ke
   CHECK(miss < 1e-9);
   CHECK(frame_at(d, 0.2).V == early.V);  // before the window: bit for bit
   // The scene keeps the retime and replays it.
-  d.save_scene(sc);
   Document e;
-  e.load_scene(sc);
+  scratch.round_trip(d, e);
   REQUIRE(e.space_time_edits().size() == 1);
   CHECK(e.space_time_edits()[0] == d.space_time_edits()[0]);
   CHECK(frame_at(e, 1.1).V == later.V);
@@ -328,7 +325,6 @@ TEST_CASE("edit-drag's retime DT: the handle's frame moves in time, the scene ke
 TEST_CASE("edit-region's setup words: the edit's weights, time scale and volume, kept by its drags and the scene, "
           "replayed as the editor with those options drags", "[script][space-time]") {
   const ScratchScene scratch("setup");
-  const std::string& sc = scratch.path;
   Document d;
   make_keyed(d);
   const TriMesh mid = frame_at(d, 1.2);
@@ -377,9 +373,8 @@ TEST_CASE("edit-region's setup words: the edit's weights, time scale and volume,
   CHECK(d.space_time_edits()[1].handle.time == 1.6);
 
   // The scene keeps the setup of both.
-  d.save_scene(sc);
   Document l;
-  l.load_scene(sc);
+  scratch.round_trip(d, l);
   CHECK(l.space_time_edits() == d.space_time_edits());
   CHECK(frame_at(l, 1.2).V == frame_at(d, 1.2).V);
 
