@@ -6,7 +6,8 @@
 // measures at u = 0.25, 0.5, 0.75), which tells the field's roughness from the sampling's.
 // Arguments: [all|bunny|torus|spheres|teddy] [layers] [spacing] [grid spacing in lattice spacings,
 // default 0.5] [relax rounds (TransitionOptions::relax_rounds; 0 for the unsmoothed level set)]
-// [close look: the Euler characteristic of the slices and of the field every 1/192 from there].
+// [close look: the Euler characteristic of the slices and of the field every 1/192 from there; -1 for
+// none] [TransitionOptions::transient_layers; 0 keeps the lattice's short-lived topology].
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -184,10 +185,10 @@ void run(const char* name, const TriMesh& a, const TriMesh& b) {
   TransitionStats st;
   const AnimationManifold M = build_transition(a, 0, b, 1, options, &st);
   std::printf("%s: %d -> %d vertices, %.2f s (align %.2f, conform %.2f, field %.2f, delaunay %.2f, extract %.2f), "
-              "%d middle points, %d tets, %d slabs\n",
+              "%d middle points, %d tets, %d slabs, %d short-lived events merged\n",
               name, static_cast<int>(a.V.rows()), static_cast<int>(b.V.rows()), st.total_seconds, st.align_seconds,
               st.conform_seconds, st.field_seconds, st.delaunay_seconds, st.extract_seconds, st.middle_points, M.num_tets(),
-              M.num_slabs());
+              M.num_slabs(), st.transients);
   print("key 0", quality(a.V, a.F));
   print("key 1", quality(b.V, b.F));
   for (double t : {0.25, 0.5, 0.75}) {
@@ -213,6 +214,7 @@ int main(int argc, char** argv) {
   if (argc > 4) grid_factor = std::atof(argv[4]);
   if (argc > 5) options.relax_rounds = std::atoi(argv[5]);
   if (argc > 6) window = std::atof(argv[6]);
+  if (argc > 7) options.transient_layers = std::atof(argv[7]);
   const std::string dir = DFM_DATA_DIR;
   if (which == "all" || which == "bunny")
     run("bunny to 3holes", dfm::test::into_unit_box(read_surface(dir + "/bunny.off")),

@@ -24,6 +24,7 @@
 #include "core/anim/key_plane.h"
 #include "core/anim/key_time_seal.h"
 #include "core/anim/layer_extrusion.h"
+#include "core/anim/layer_transients.h"
 #include "core/anim/level_set_relax.h"
 #include "core/anim/space_warp.h"
 #include "core/anim/transition_points.h"
@@ -128,6 +129,7 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   middle_points += o.middle_points;
   sealed += o.sealed;
   relaxed += o.relaxed;
+  transients += o.transients;
   simplices += o.simplices;
   tets += o.tets;
   conform_seconds += o.conform_seconds;
@@ -269,10 +271,32 @@ Delaunay4 end_triangulation(const FieldPoints& p, int a0, int a1, int b0, int b1
   return D;
 }
 
+// Merges the middle layers' short-lived topology (layer_transients.h) into events at their start, on
+// K (lattice numbers); returns how many.
+int merge_transients(FieldPoints& p, const MatrixX4iRow& K, const TransitionOptions& o, double h_mid) {
+  const int layers = static_cast<int>(p.layer_begin.size()), n = p.lattice_size;
+  Eigen::MatrixXd X(n, 3);
+  for (int i = 0; i < n; ++i) X.row(i) = p.points[p.layer_begin.front() + i].head<3>();
+  std::vector<double> u;
+  std::vector<Eigen::VectorXd> v(layers, Eigen::VectorXd(n));
+  for (int k = 0; k < layers; ++k) {
+    u.push_back(p.points[p.layer_begin[k]][3]);
+    for (int i = 0; i < n; ++i) v[k][i] = p.values[p.layer_begin[k] + i];
+  }
+  LayerTransientOptions lo;
+  lo.radius = 2 * h_mid;
+  lo.max_life = o.transient_layers / o.layers;
+  const LayerTransientStats st = merge_layer_transients(X, K, u, v, kAway * h_mid, lo);
+  for (int k = 0; k < layers; ++k)
+    for (int i = 0; i < n; ++i) p.values[p.layer_begin[k] + i] = v[k][i];
+  return st.events;
+}
+
 // The whole 4D triangulation (transition.h, "The 4D triangulation"): each key and its nearest layer by
 // a Delaunay triangulation (on two threads), whose facets in that layer are the lattice's
 // tetrahedra K; K x each middle layer interval where the field changes sign, by staircase prisms.
-Delaunay4 transition_triangulation(const FieldPoints& p, double time_scale) {
+Delaunay4 transition_triangulation(FieldPoints& p, double time_scale, const TransitionOptions& o, double h_mid,
+                                   int& transients) {
   const int first = p.layer_begin.front(), last = p.layer_begin.back(), n = p.lattice_size;
   auto target_end = std::async(std::launch::async, end_triangulation, std::cref(p), last, last + n, p.target_begin,
                                static_cast<int>(p.points.size()), time_scale);
@@ -281,6 +305,7 @@ Delaunay4 transition_triangulation(const FieldPoints& p, double time_scale) {
   const MatrixX4iRow K = hull_facets_in(D0, first, first + n);  // in lattice numbers
   if (!(hull_facets_in(D1, last, last + n) == K))
     throw Error("transition: the middle points' tetrahedralization differs between the two ends");
+  transients = merge_transients(p, K, o, h_mid);
   const MatrixX5iRow middle = extrude_tets(K, p.layer_begin, [&](Eigen::Index tet, int k) {
     int neg = 0;
     for (int c = 0; c < 4; ++c) neg += (p.values[p.layer_begin[k] + K(tet, c)] < 0) + (p.values[p.layer_begin[k + 1] + K(tet, c)] < 0);
@@ -332,12 +357,12 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   std::vector<double> u = {0.0};
   for (int k = 1; k <= o.layers; ++k) u.push_back((k - 0.5) / o.layers);
   u.push_back(1.0);
-  const FieldPoints p = field_points(S, T, middle_lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]), u, h_s, h_t, h_mid);
+  FieldPoints p = field_points(S, T, middle_lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]), u, h_s, h_t, h_mid);
   st.field_seconds = seconds_since(t);
 
   // Time scaled so that a key and its nearest layer lie two lattice spacings apart.
   t = Clock::now();
-  const Delaunay4 D = transition_triangulation(p, 4.0 * h_mid * o.layers);
+  const Delaunay4 D = transition_triangulation(p, 4.0 * h_mid * o.layers, o, h_mid, st.transients);
   st.delaunay_seconds = seconds_since(t);
 
   t = Clock::now();
@@ -464,6 +489,7 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
     throw Error("transition: key times must be finite and increasing");
   if (o.layers < 1 || !(o.spacing > 0)) throw Error("transition: needs at least one layer and a positive spacing");
   if (!(o.max_turn_per_layer > 0)) throw Error("transition: the turn per layer must be positive");
+  if (!(o.transient_layers >= 0)) throw Error("transition: the transients' layer count must be 0 or more");
   TransitionStats st;
   const TriMesh source = compacted(source_in), target = compacted(target_in);
   if (const auto bad = transition_pair_problem(source, target, o.pairs))

@@ -26,6 +26,12 @@
 // some middle layer's zero set may pass, coarser jittered points elsewhere, each carrying F(x, u_k)
 // exactly (F is linear in u at a fixed point).
 //
+// Where the blend is nearly flat, as when the air gap between two parts closes, the lattice reads
+// handles that live a layer interval or two (bridges here and there, the pockets between them filling
+// a moment later). Those short-lived events are merged before the 4D build (layer_transients.h;
+// TransitionOptions::transient_layers): the lattice points crossing near them during one move their
+// crossing to its start, so the gap closes at once instead of showing slits for a while.
+//
 // The 4D triangulation: each key and its nearest middle layer are joined by one 4D Delaunay
 // triangulation (Theorem 5.2.1: the key's tetrahedra and the layer's, the lattice's well-shaped
 // Delaunay tetrahedra K, survive as facets); between middle layers K x [u_k, u_k+1] is split into the
@@ -84,6 +90,9 @@ struct TransitionOptions {
   double max_turn_per_layer = 15;
   // Rounds of smoothing the middle layers' zero set (level_set_relax.h); 0 for none.
   int relax_rounds = 1;
+  // Topology the lattice reads for less than this many layer intervals (a gap closing through
+  // bridges and pockets) happens at once, where it starts (layer_transients.h); 0 keeps it.
+  double transient_layers = 2;
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
   Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
@@ -91,6 +100,7 @@ struct TransitionOptions {
   bool operator==(const TransitionOptions& o) const {
     return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds &&
            align == o.align && max_turn_per_layer == o.max_turn_per_layer && relax_rounds == o.relax_rounds &&
+           transient_layers == o.transient_layers &&
            pairs.rows() == o.pairs.rows() &&
            pairs.cols() == o.pairs.cols() && pairs == o.pairs;
   }
@@ -112,6 +122,7 @@ struct TransitionStats {
   int middle_points = 0;                         // in the layers between
   int sealed = 0;                                // folds at the keys' times replaced (key_time_seal.h)
   int relaxed = 0;                               // vertex moves of the smoothing (level_set_relax.h)
+  int transients = 0;                            // short-lived events merged (layer_transients.h)
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
   int tets = 0;                                  // of the resulting manifold
   double turn_degrees = 0, scale = 1;           // the placement's (the last transition's in a sum)

@@ -9,5 +9,8 @@ dfm_test(test_arap_interpolation SOURCES test_arap_interpolation.cpp LIBS dfm_an
 dfm_test(test_transition_align SOURCES test_transition_align.cpp LIBS dfm_anim dfm_mesh TIMEOUT 900)
 # In-betweens against the documented morph: smoothness, fidelity, topology (issue 30; [heavy]: release).
 dfm_test(test_transition_quality SOURCES test_transition_quality.cpp LIBS dfm_anim dfm_mesh TIMEOUT 900)
+target_compile_definitions(test_transition_quality PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+# Short-lived topology between a transition's middle layers, merged (layer_transients.h).
+dfm_test(test_layer_transients SOURCES test_layer_transients.cpp LIBS dfm_anim)
 # Smoothing a transition's level set without changing its connectivity (level_set_relax.h).
 dfm_test(test_transition_relax SOURCES test_transition_relax.cpp LIBS dfm_anim dfm_mesh)
