@@ -7,7 +7,7 @@
 // Arguments: [all|bunny|torus|spheres|teddy] [layers] [spacing] [grid spacing in lattice spacings,
 // default 0.5] [relax rounds (TransitionOptions::relax_rounds; 0 for the unsmoothed level set)]
 // [close look: the Euler characteristic of the slices and of the field every 1/192 from there; -1 for
-// none] [TransitionOptions::transient_layers; 0 keeps the lattice's short-lived topology].
+// none] [TransitionOptions::transient_life; 0 keeps the lattice's short-lived topology].
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -214,7 +214,7 @@ int main(int argc, char** argv) {
   if (argc > 4) grid_factor = std::atof(argv[4]);
   if (argc > 5) options.relax_rounds = std::atoi(argv[5]);
   if (argc > 6) window = std::atof(argv[6]);
-  if (argc > 7) options.transient_layers = std::atof(argv[7]);
+  if (argc > 7) options.transient_life = std::atof(argv[7]);
   const std::string dir = DFM_DATA_DIR;
   if (which == "all" || which == "bunny")
     run("bunny to 3holes", dfm::test::into_unit_box(read_surface(dir + "/bunny.off")),

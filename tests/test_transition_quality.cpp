@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/anim/delaunay_4d.h"
+#include "core/anim/key_alignment.h"
 #include "core/anim/key_distance.h"
 #include "core/anim/layer_extrusion.h"
 #include "core/anim/slice.h"
@@ -71,16 +72,28 @@ double distance_to_mesh(const Eigen::Vector3d& p, const TriMesh& m) {
   return d;
 }
 
-// The morph of keys S and T centred at the origin with no turn between them (transition.h): the
-// reference target T^ = T / scale, F(x, u) = (1 - u) d_S(x) + u d_T^(x), placed by P_u(x) = s(u) x,
-// s(u) = (1 - u) + u scale (scale 1 without alignment).
-struct UnturnedMorph {
-  UnturnedMorph(const TriMesh& S, const TriMesh& T, double scale)
-      : scale(scale), reference{T.V / scale, T.F, {}}, d_s(S.V, S.F), d_t(reference.V, reference.F) {}
-  double s(double u) const { return (1 - u) + u * scale; }
+// The documented morph (transition.h) for a placement p (key_alignment.h's, or none): the reference
+// target T^ = c0 + R^T (T - c1) / scale, F(x, u) = (1 - u) d_S(x) + u d_T^(x), placed by
+// P_u(x) = c0 + u (c1 - c0) + s(u) R(u) (x - c0), s(u) = (1 - u) + u scale, R(u) the turn by u times R's
+// angle about its axis.
+struct PlacedMorph {
+  PlacedMorph(const TriMesh& S, const TriMesh& T, const KeyPlacement& p)
+      : p(p), reference{source_frame(T.V, p), T.F, {}}, d_s(S.V, S.F), d_t(reference.V, reference.F) {}
+  static Eigen::MatrixXd source_frame(const Eigen::MatrixXd& X, const KeyPlacement& p) {
+    return ((X.rowwise() - p.c1.transpose()) * p.R / p.scale).rowwise() + p.c0.transpose();
+  }
+  double s(double u) const { return (1 - u) + u * p.scale; }
+  Eigen::Matrix3d R(double u) const {
+    const Eigen::AngleAxisd a(p.R);
+    return Eigen::AngleAxisd(u * a.angle(), a.axis()).toRotationMatrix();
+  }
+  Eigen::Vector3d placed(const Eigen::Vector3d& x, double u) const { return p.c0 + u * (p.c1 - p.c0) + s(u) * R(u) * (x - p.c0); }
+  Eigen::Vector3d unplaced(const Eigen::Vector3d& y, double u) const {
+    return p.c0 + R(u).transpose() * (y - p.c0 - u * (p.c1 - p.c0)) / s(u);
+  }
   Eigen::VectorXd field(const Eigen::MatrixXd& X, double u) const { return (1 - u) * d_s(X) + u * d_t(X); }
   double field(const Eigen::Vector3d& x, double u) const { return field(Eigen::MatrixXd(x.transpose()), u)[0]; }
-  double scale;
+  KeyPlacement p;
   TriMesh reference;
   SignedDistance d_s, d_t;
 };
@@ -95,14 +108,14 @@ struct Fidelity {
 // Both distances, sampled: `samples` slice vertices each shown within `tol` of the zero set by a sign
 // change of F along its gradient (or reported farther), and `samples` zero-set points bisected on x
 // edges of a grid of `cells` cells across the box.
-Fidelity fidelity(const UnturnedMorph& m, const TriMesh& slice, double u, const Eigen::RowVector3d& lo,
+Fidelity fidelity(const PlacedMorph& m, const TriMesh& slice, double u, const Eigen::RowVector3d& lo,
                   const Eigen::RowVector3d& hi, double tol, int cells, int samples) {
   Fidelity out;
   std::mt19937 rng(7);
   const double s = m.s(u);
   for (int k = 0; k < samples; ++k) {
     const int v = static_cast<int>(rng() % slice.V.rows());
-    const Eigen::Vector3d x = slice.V.row(v).transpose() / s;
+    const Eigen::Vector3d x = m.unplaced(slice.V.row(v).transpose(), u);
     Eigen::Vector3d g;
     const double e = 1e-6;
     for (int d = 0; d < 3; ++d)
@@ -133,7 +146,7 @@ Fidelity fidelity(const UnturnedMorph& m, const TriMesh& slice, double u, const 
       const Eigen::Vector3d c = (a + b) / 2;
       ((m.field(c, u) < 0) == neg_a ? a : b) = c;
     }
-    out.zero_set_to_slice.push_back(distance_to_mesh(s * (a + b) / 2, slice));
+    out.zero_set_to_slice.push_back(distance_to_mesh(m.placed((a + b) / 2, u), slice));
   }
   std::sort(out.slice_to_zero_set.begin(), out.slice_to_zero_set.end());
   std::sort(out.zero_set_to_slice.begin(), out.zero_set_to_slice.end());
@@ -149,11 +162,10 @@ Smoothness smoothness(const TriMesh& m) {
   return {percentile(a, 90), percentile(a, 99)};
 }
 
-// The acceptance's smoothness bound: the rougher key's percentile plus 5 degrees (plus `p99_slack`
-// more at the 99th).
-Smoothness rougher(const TriMesh& a, const TriMesh& b, double p99_slack) {
+// The acceptance's smoothness bound: the rougher key's percentile plus 5 degrees.
+Smoothness rougher(const TriMesh& a, const TriMesh& b) {
   const Smoothness x = smoothness(a), y = smoothness(b);
-  return {std::max(x.p90, y.p90) + 5, std::max(x.p99, y.p99) + 5 + p99_slack};
+  return {std::max(x.p90, y.p90) + 5, std::max(x.p99, y.p99) + 5};
 }
 
 // Euler characteristics over t = 0, 0.05, ..., 1; how many leave the keys' range.
@@ -174,19 +186,21 @@ double joint_diagonal(const TriMesh& a, const TriMesh& b) {
       .norm();
 }
 
-// Smooth, faithful to the documented morph, topology between the keys': the whole acceptance, for
-// keys centred at the origin with no turn between them.
+// Smooth, faithful to the documented morph, topology between the keys': the whole acceptance. At most
+// `max_out` Euler characteristic samples may leave the keys' range (the acceptance allows one).
 void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptions& o, const char* name,
-                       double p99_slack = 0) {
+                       int max_out = 1, TransitionStats* stats = nullptr) {
   TransitionStats st;
   const AnimationManifold M = build_transition(S, 0, T, 1, o, &st);
+  if (stats) *stats = st;
   INFO(name << ": " << st.total_seconds << " s, turn " << st.turn_degrees << " degrees, scale " << st.scale);
-  REQUIRE(st.turn_degrees == 0);
-  const double scale = o.align ? radius_of_gyration(T) / radius_of_gyration(S) : 1.0;
-  REQUIRE(st.scale == Approx(scale).epsilon(1e-9));
-  const UnturnedMorph morph(S, T, scale);
+  const KeyPlacement placement = o.align ? key_placement(solid_moments(S.V, S.F), solid_moments(T.V, T.F)) : KeyPlacement{};
+  if (o.align) REQUIRE(st.scale == Approx(radius_of_gyration(T) / radius_of_gyration(S)).epsilon(1e-9));
+  REQUIRE(st.scale == Approx(placement.scale).epsilon(1e-12));
+  REQUIRE(st.turn_degrees == Approx(Eigen::AngleAxisd(placement.R).angle() * 180 / M_PI).margin(1e-9));
+  const PlacedMorph morph(S, T, placement);
   const double diag = joint_diagonal(S, T);
-  const Smoothness bound = rougher(S, T, p99_slack);
+  const Smoothness bound = rougher(S, T);
   Eigen::RowVector3d lo = S.V.colwise().minCoeff().cwiseMin(morph.reference.V.colwise().minCoeff());
   Eigen::RowVector3d hi = S.V.colwise().maxCoeff().cwiseMax(morph.reference.V.colwise().maxCoeff());
   lo.array() -= 0.05 * diag;
@@ -206,7 +220,6 @@ void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptio
     CHECK(enclosed_volume(s.V, s.F) > 0);
     CHECK(got.p90 <= bound.p90);
     CHECK(got.p99 <= bound.p99);
-    if (got.p99 > bound.p99 - p99_slack) WARN(name << " at t = " << t << ": normals' 99th percentile " << got.p99);
     // The acceptance asks the largest within 0.5% of the diagonal; where the keys' distance gradients
     // nearly cancel (thin parts about to vanish or join) the lattice's piecewise linear blend still
     // differs from the blend by up to a lattice spacing, so nine in ten samples are held to it.
@@ -220,7 +233,7 @@ void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptio
   INFO("Euler characteristics " << Catch::Detail::stringify(chis));
   CHECK(chis.front() == euler_characteristic(S.F));
   CHECK(chis.back() == euler_characteristic(T.F));
-  CHECK(out <= 1);
+  CHECK(out <= max_out);
 }
 
 }  // namespace
@@ -243,28 +256,17 @@ TEST_CASE("in-betweens: bunny to 3holes, smooth, on the documented field's zero 
                     "bunny to 3holes");
 }
 
-TEST_CASE("in-betweens: the teddy to key-torus keeps the keys' topology range; its closing gap happens at once",
+TEST_CASE("in-betweens: the teddy to key-torus, smooth, on the documented field's zero set, no stray topology",
           "[transition][heavy]") {
   // Where the teddy's head meets its shoulders the gap closes near u = 0.48 through bridges and
-  // pockets that the lattice reads from 0.46 to 0.51 (bench_transition_quality's close look); merged
-  // (layer_transients.h), no sample leaves [0, 2] and t = 0.5 has no slits. Its normals' 99th
-  // percentile there was 43.3 degrees with them and is 38.8 without (the acceptance asks 35.1).
-  const TriMesh teddy = read_surface(std::string(DFM_SOURCE_DIR) + "/assets/default.obj");
-  const TriMesh torus = read_surface(std::string(DFM_SOURCE_DIR) + "/assets/key-torus.obj");
+  // pockets that the lattice reads from 0.46 to 0.51 (bench_transition_quality's close look): slits
+  // at t = 0.5, Euler characteristic -6 there. Merged (layer_transients.h), the gap closes at once
+  // and no sample leaves [0, 2]. The placement turns the torus 0.6 degrees.
   TransitionStats st;
-  const AnimationManifold M = build_transition(teddy, 0, torus, 1, {}, &st);
+  check_in_betweens(read_surface(std::string(DFM_SOURCE_DIR) + "/assets/default.obj"),
+                    read_surface(std::string(DFM_SOURCE_DIR) + "/assets/key-torus.obj"), {}, "teddy to key-torus", 0,
+                    &st);
   CHECK(st.transients > 0);
-  std::vector<int> chis;
-  const int out = samples_out_of_range(M, teddy, torus, chis);
-  INFO("Euler characteristics " << Catch::Detail::stringify(chis));
-  CHECK(out == 0);
-  const TriMesh s = slice_manifold(M, SliceAxis::T, 0.5).mesh;
-  CHECK(is_closed_and_oriented(s.F));
-  const Smoothness got = smoothness(s), bound = rougher(teddy, torus, 0);
-  INFO("t = 0.5: normals " << got.p90 << " / " << got.p99 << " degrees (bound " << bound.p90 << " / " << bound.p99 << ")");
-  CHECK(got.p90 <= bound.p90);
-  CHECK(got.p99 <= 40);
-  if (got.p99 > bound.p99) WARN("teddy to key-torus at t = 0.5: normals' 99th percentile " << got.p99);
 }
 
 TEST_CASE("layer extrusion: the staircase fills tet x interval; neighbours split their shared face alike", "[transition]") {

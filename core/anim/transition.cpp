@@ -285,7 +285,7 @@ int merge_transients(FieldPoints& p, const MatrixX4iRow& K, const TransitionOpti
   }
   LayerTransientOptions lo;
   lo.radius = 2 * h_mid;
-  lo.max_life = o.transient_layers / o.layers;
+  lo.max_life = o.transient_life;
   const LayerTransientStats st = merge_layer_transients(X, K, u, v, kAway * h_mid, lo);
   for (int k = 0; k < layers; ++k)
     for (int i = 0; i < n; ++i) p.values[p.layer_begin[k] + i] = v[k][i];
@@ -383,7 +383,7 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
     r.rounds = o.relax_rounds;
     r.radius = 0.8 * h_mid;  // within a lattice cell: wider fits reach past the two edges' ring
     r.max_move = 0.5 * h_mid;
-    r.time_scale = h_mid * o.layers / (t1 - t0);  // a layer interval as long as a lattice spacing
+    r.time_scale = 0.5 * h_mid * o.layers / (t1 - t0);  // a layer interval as long as half a lattice spacing
     st.relaxed = relax_level_set(iso.V, iso.T, movable, r).moved;
   }
   AnimationManifold M = into_slabs(iso, layer_times);
@@ -489,7 +489,7 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
     throw Error("transition: key times must be finite and increasing");
   if (o.layers < 1 || !(o.spacing > 0)) throw Error("transition: needs at least one layer and a positive spacing");
   if (!(o.max_turn_per_layer > 0)) throw Error("transition: the turn per layer must be positive");
-  if (!(o.transient_layers >= 0)) throw Error("transition: the transients' layer count must be 0 or more");
+  if (!(o.transient_life >= 0)) throw Error("transition: the transients' life must be 0 or more");
   TransitionStats st;
   const TriMesh source = compacted(source_in), target = compacted(target_in);
   if (const auto bad = transition_pair_problem(source, target, o.pairs))

@@ -29,7 +29,7 @@
 // Where the blend is nearly flat, as when the air gap between two parts closes, the lattice reads
 // handles that live a layer interval or two (bridges here and there, the pockets between them filling
 // a moment later). Those short-lived events are merged before the 4D build (layer_transients.h;
-// TransitionOptions::transient_layers): the lattice points crossing near them during one move their
+// TransitionOptions::transient_life): the lattice points crossing near them during one move their
 // crossing to its start, so the gap closes at once instead of showing slits for a while.
 //
 // The 4D triangulation: each key and its nearest middle layer are joined by one 4D Delaunay
@@ -45,11 +45,10 @@
 // et al. 1998). The transition is the field's zero level set (iso_manifold.h), each of its vertices
 // then moved by W_u and P_u at its own u. Before that, the vertices from the first middle layer's
 // time to the last's are smoothed in x, y, z (TransitionOptions::relax_rounds; level_set_relax.h:
-// each half way to the hyperplane fitted within 0.8 lattice spacings, a layer interval counted as
-// one spacing; a move that would turn a tetrahedron over is halved or undone): that takes the
-// marching facets' zigzag out of the slices (teddy to key-torus at t = 0.5: 99th percentile of
-// neighbouring normals 51.6 -> 43 degrees) and leaves the connectivity, every vertex's time and the
-// keys' planes as they were. It moves vertices off F = 0 by a fraction of a lattice spacing (half of
+// each round half way to the hyperplane fitted within 0.8 lattice spacings, a layer interval counted
+// as half a spacing; a move that would turn a tetrahedron over is halved or undone): that takes the
+// marching facets' zigzag out of the slices (bench_transition_quality) and leaves the connectivity,
+// every vertex's time and the keys' planes as they were. It moves vertices off F = 0 by a fraction of a lattice spacing (half of
 // one at most); snapping them onto F = 0 instead roughens the slices (F of two triangle meshes is
 // itself creased at the lattice's scale, and the marching vertices cluster). It is a closed
 // 3-manifold by construction, its slices change topology where the blend does, and at a key's time
@@ -76,7 +75,7 @@ struct TransitionOptions {
   // Middle layers between the keys (one lattice, its blend at each layer's time; layer_extrusion.h).
   // A slice between two layers crosses their staircase prisms' 4-simplices; close layers keep those
   // pieces nearly coplanar (bench_transition_quality measures the slices).
-  int layers = 24;
+  int layers = 28;
   // Spacing of the points off the surfaces, in mean surface edge lengths: each key's own near it;
   // the middle lattice's cube edge is the finer key's (in-betweens as finely sampled as it).
   double spacing = 2.0;
@@ -89,10 +88,10 @@ struct TransitionOptions {
   // 4), each cutting its arcs by chords (bench_transition: a box turned a quarter).
   double max_turn_per_layer = 15;
   // Rounds of smoothing the middle layers' zero set (level_set_relax.h); 0 for none.
-  int relax_rounds = 1;
-  // Topology the lattice reads for less than this many layer intervals (a gap closing through
+  int relax_rounds = 2;
+  // Topology the lattice reads for less than this part of the transition (a gap closing through
   // bridges and pockets) happens at once, where it starts (layer_transients.h); 0 keeps it.
-  double transient_layers = 2;
+  double transient_life = 0.08;
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
   Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
@@ -100,7 +99,7 @@ struct TransitionOptions {
   bool operator==(const TransitionOptions& o) const {
     return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds &&
            align == o.align && max_turn_per_layer == o.max_turn_per_layer && relax_rounds == o.relax_rounds &&
-           transient_layers == o.transient_layers &&
+           transient_life == o.transient_life &&
            pairs.rows() == o.pairs.rows() &&
            pairs.cols() == o.pairs.cols() && pairs == o.pairs;
   }

@@ -1,0 +1,99 @@
+// The keys' signed distance (core/anim/key_distance.h): its magnitude against a box's closed form,
+// its sign against the winding number summed here triangle by triangle (Van Oosterom and Strackee's
+// solid angle), at random points and just off the surface of a torus and two spheres.
+#include <cmath>
+#include <random>
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include "core/anim/key_distance.h"
+#include "tests/key_mesh_test_meshes.h"
+#include "tests/transition_test_meshes.h"
+#include "tests/volume_test_meshes.h"
+
+using namespace dfm;
+
+namespace {
+
+double brute_winding_number(const TriMesh& m, const Eigen::Vector3d& p) {
+  double sum = 0;
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const Eigen::Vector3d a = m.V.row(m.F(f, 0)).transpose() - p, b = m.V.row(m.F(f, 1)).transpose() - p,
+                          c = m.V.row(m.F(f, 2)).transpose() - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    sum += 2 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
+  }
+  return sum / (4 * M_PI);
+}
+
+double brute_distance(const TriMesh& m, const Eigen::Vector3d& p) {
+  double d = INFINITY;
+  for (int f = 0; f < m.F.rows(); ++f)
+    d = std::min(d, dfm::test::point_triangle_distance(p, m.V.row(m.F(f, 0)).transpose(), m.V.row(m.F(f, 1)).transpose(),
+                                                       m.V.row(m.F(f, 2)).transpose()));
+  return d;
+}
+
+// Random points in the box around m, and each vertex moved off the surface both ways by `off`
+// along its normal (the mean of its faces' normals).
+Eigen::MatrixXd probes(const TriMesh& m, int random, double off) {
+  std::mt19937 rng(7);
+  const Eigen::RowVector3d lo = m.V.colwise().minCoeff().array() - 0.3, hi = m.V.colwise().maxCoeff().array() + 0.3;
+  std::uniform_real_distribution<double> u(0, 1);
+  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(m.V.rows(), 3);
+  for (int f = 0; f < m.F.rows(); ++f) {
+    const Eigen::Vector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    for (int j = 0; j < 3; ++j) N.row(m.F(f, j)) += n.transpose();
+  }
+  N.rowwise().normalize();
+  Eigen::MatrixXd P(random + 2 * m.V.rows(), 3);
+  for (int i = 0; i < random; ++i)
+    for (int k = 0; k < 3; ++k) P(i, k) = lo[k] + (hi[k] - lo[k]) * u(rng);
+  P.middleRows(random, m.V.rows()) = m.V + off * N;
+  P.bottomRows(m.V.rows()) = m.V - off * N;
+  return P;
+}
+
+}  // namespace
+
+TEST_CASE("key distance: a box's signed distance, edges and corners nearest included", "[transition]") {
+  TriMesh box;
+  box.V.resize(8, 3);
+  for (int i = 0; i < 8; ++i) box.V.row(i) << (i & 1 ? 1 : -1), (i & 2 ? 1 : -1), (i & 4 ? 1 : -1);
+  box.F.resize(12, 3);
+  box.F << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5;
+  const SignedDistance d(box.V, box.F);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  Eigen::MatrixXd P(3000, 3);
+  for (int i = 0; i < P.rows(); ++i) P.row(i) << u(rng), u(rng), u(rng);
+  const Eigen::VectorXd got = d(P);
+  int outside_corner = 0;
+  for (int i = 0; i < P.rows(); ++i) {
+    const Eigen::Array3d q = P.row(i).transpose().array().abs() - 1.0;
+    const double expected = q.max(0.0).matrix().norm() + std::min(q.maxCoeff(), 0.0);
+    outside_corner += (q > 0).all();
+    CHECK(got[i] == Approx(expected).margin(1e-12));
+  }
+  CHECK(outside_corner > 100);  // many points whose nearest feature is a corner
+}
+
+TEST_CASE("key distance: signs agree with the winding number on curved, non-convex and two-piece keys", "[transition]") {
+  const TriMesh shapes[] = {dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.12, 40, 20),
+                            dfm::test::concat(dfm::test::icosphere(Eigen::Vector3d(-0.22, 0, 0), 0.2, 2),
+                                              dfm::test::icosphere(Eigen::Vector3d(0.22, 0, 0.01), 0.2, 2))};
+  for (const TriMesh& m : shapes) {
+    const SignedDistance d(m.V, m.F);
+    const Eigen::MatrixXd P = probes(m, 2000, 1e-4);
+    const Eigen::VectorXd got = d(P);
+    int wrong = 0;
+    for (int i = 0; i < P.rows(); ++i) {
+      const bool inside = brute_winding_number(m, P.row(i).transpose()) > 0.5;
+      wrong += inside != (got[i] < 0);
+      CHECK(std::abs(got[i]) == Approx(brute_distance(m, P.row(i).transpose())).margin(1e-12));
+    }
+    CHECK(wrong == 0);
+  }
+}
