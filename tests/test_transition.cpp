@@ -601,6 +601,11 @@ TEST_CASE("transition keys: hostile input names the key and the problem", "[tran
   inside_out.F.col(1).swap(inside_out.F.col(2));
   CHECK_THROWS_WITH(check_transition_key(inside_out, "inv.obj"), Catch::Contains("inv.obj"));
   CHECK_NOTHROW(check_transition_key(dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), "torus"));
+  TransitionOptions o;
+  o.transient_life = -0.1;
+  CHECK_THROWS_WITH(build_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1), 0,
+                                     dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), 1, o),
+                    Catch::Contains("transients' life"));
 }
 
 TEST_CASE("manifold sequence: a transition asked for again is the same manifold; other keys are not", "[transition]") {
