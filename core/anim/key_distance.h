@@ -5,8 +5,8 @@
 // where the point lies clearly off the surface along it (the offset's component along the normal at
 // least a tenth of its length); elsewhere, near the surface or nearly along it, where reading the
 // nearest feature wrongly would flip the sign, the generalized winding number's (Jacobson 2013,
-// ch. 8: inside where it exceeds 1/2; test_key_distance compares the signs). The pseudo-normal costs a
-// third of the winding number's time.
+// ch. 8: inside where it exceeds 1/2; test_key_distance compares the signs). The pseudo-normal is
+// the cheaper of the two: it comes with the nearest-point query.
 #include <memory>
 
 #include <Eigen/Core>

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <utility>
 
+#include "core/anim/transition_points.h"
+
 namespace dfm {
 namespace {
 
@@ -151,8 +153,7 @@ LayerTransientStats merge_layer_transients(const Eigen::MatrixXd& X, const Matri
     while (last > 0 && u[last - 1] > end) --last;
     for (const Crossing* x : moved) {
       for (size_t l = first; l <= last; ++l) {
-        const double v = (x->joins ? -rate : rate) * (u[l] - start);
-        values[l][x->point] = v < 0 ? std::min(v, -away) : std::max(v, std::sqrt(2.0) * away);
+        values[l][x->point] = transition_detail::clamp_away_from_zero((x->joins ? -rate : rate) * (u[l] - start), away);
       }
       ++st.moved;
     }

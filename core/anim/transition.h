@@ -48,9 +48,10 @@
 // each round half way to the hyperplane fitted within 0.8 lattice spacings, a layer interval counted
 // as half a spacing; a move that would turn a tetrahedron over is halved or undone): that takes the
 // marching facets' zigzag out of the slices (bench_transition_quality) and leaves the connectivity,
-// every vertex's time and the keys' planes as they were. It moves vertices off F = 0 by a fraction of a lattice spacing (half of
-// one at most); snapping them onto F = 0 instead roughens the slices (F of two triangle meshes is
-// itself creased at the lattice's scale, and the marching vertices cluster). It is a closed
+// every vertex's time and the keys' planes as they were. It moves vertices off F = 0 by a fraction
+// of a lattice spacing (half of one at most); snapping them onto F = 0 instead roughens the slices
+// (F of two triangle meshes is itself creased at the lattice's scale, and the marching vertices
+// cluster). It is a closed
 // 3-manifold by construction, its slices change topology where the blend does, and at a key's time
 // the crossings on the key's own edges are its surface vertices; the level set's boundary in the
 // key's plane is corrected to the key's surface (key_plane.h) and what folds there sealed
