@@ -98,15 +98,35 @@ struct PlacedMorph {
   SignedDistance d_s, d_t;
 };
 
-// Sampled distances, sorted: slice vertices to the zero set (bounded by a sign change of F along its
-// gradient, in powers of two up to 4 tol; farther reads infinity) and zero-set points to the slice.
+// How far from x along +-g the field's sign first differs from its sign at x: radii doubling from
+// reach / 256 find the first that shows it on either side, bisection the crossing there; infinity
+// when none up to `reach` does.
+double zero_along(const PlacedMorph& m, const Eigen::Vector3d& x, const Eigen::Vector3d& g, double u, double reach) {
+  const bool neg = m.field(x, u) < 0;
+  auto differs = [&](double r, int side) { return (m.field(Eigen::Vector3d(x + side * r * g), u) < 0) != neg; };
+  double inner = 0;
+  for (double r = reach / 256; r <= reach; inner = r, r *= 2) {
+    double best = HUGE_VAL;
+    for (int side : {-1, 1}) {
+      if (!differs(r, side)) continue;
+      double lo = inner, hi = r;
+      for (int it = 0; it < 40; ++it) (differs(0.5 * (lo + hi), side) ? hi : lo) = 0.5 * (lo + hi);
+      best = std::min(best, hi);
+    }
+    if (best < HUGE_VAL) return best;
+  }
+  return HUGE_VAL;
+}
+
+// Sampled distances, sorted: slice vertices to the zero set (along F's gradient, up to 4 tol; farther
+// reads infinity) and zero-set points to the slice.
 struct Fidelity {
   std::vector<double> slice_to_zero_set, zero_set_to_slice;
   double at(const std::vector<double>& d, int p) const { return d[d.size() * p / 100]; }
 };
 
-// Both distances, sampled: `samples` slice vertices each shown within `tol` of the zero set by a sign
-// change of F along its gradient (or reported farther), and `samples` zero-set points bisected on x
+// Both distances, sampled: `samples` slice vertices' distances to the zero set along F's gradient
+// (up to 4 tol; farther reads infinity), and `samples` zero-set points bisected on x
 // edges of a grid of `cells` cells across the box.
 Fidelity fidelity(const PlacedMorph& m, const TriMesh& slice, double u, const Eigen::RowVector3d& lo,
                   const Eigen::RowVector3d& hi, double tol, int cells, int samples) {
@@ -121,10 +141,7 @@ Fidelity fidelity(const PlacedMorph& m, const TriMesh& slice, double u, const Ei
     for (int d = 0; d < 3; ++d)
       g[d] = m.field(Eigen::Vector3d(x + e * Eigen::Vector3d::Unit(d)), u) - m.field(Eigen::Vector3d(x - e * Eigen::Vector3d::Unit(d)), u);
     g.normalize();
-    double r = tol / s / 64;  // the smallest radius with a sign change, doubling up to 4 tol
-    auto same = [&](double r) { return (m.field(Eigen::Vector3d(x + r * g), u) < 0) == (m.field(Eigen::Vector3d(x - r * g), u) < 0); };
-    while (r <= 4 * tol / s && same(r)) r *= 2;
-    out.slice_to_zero_set.push_back(r <= 4 * tol / s ? r * s : HUGE_VAL);
+    out.slice_to_zero_set.push_back(s * zero_along(m, x, g, u, 4 * tol / s));
   }
   const double h = (hi - lo).maxCoeff() / cells;
   const Eigen::Array3i n = ((hi - lo) / h).array().ceil().cast<int>().transpose() + 1;
