@@ -98,21 +98,27 @@ struct PlacedMorph {
   SignedDistance d_s, d_t;
 };
 
+// The point where F(., u) changes sign between a and b (of opposite signs), by bisection.
+Eigen::Vector3d sign_change(const PlacedMorph& m, Eigen::Vector3d a, Eigen::Vector3d b, double u) {
+  const bool neg_a = m.field(a, u) < 0;
+  for (int it = 0; it < 40; ++it) {
+    const Eigen::Vector3d c = (a + b) / 2;
+    ((m.field(c, u) < 0) == neg_a ? a : b) = c;
+  }
+  return (a + b) / 2;
+}
+
 // How far from x along +-g the field's sign first differs from its sign at x: radii doubling from
 // reach / 256 find the first that shows it on either side, bisection the crossing there; infinity
 // when none up to `reach` does.
 double zero_along(const PlacedMorph& m, const Eigen::Vector3d& x, const Eigen::Vector3d& g, double u, double reach) {
   const bool neg = m.field(x, u) < 0;
-  auto differs = [&](double r, int side) { return (m.field(Eigen::Vector3d(x + side * r * g), u) < 0) != neg; };
   double inner = 0;
   for (double r = reach / 256; r <= reach; inner = r, r *= 2) {
     double best = HUGE_VAL;
-    for (int side : {-1, 1}) {
-      if (!differs(r, side)) continue;
-      double lo = inner, hi = r;
-      for (int it = 0; it < 40; ++it) (differs(0.5 * (lo + hi), side) ? hi : lo) = 0.5 * (lo + hi);
-      best = std::min(best, hi);
-    }
+    for (int side : {-1, 1})
+      if ((m.field(Eigen::Vector3d(x + side * r * g), u) < 0) != neg)
+        best = std::min(best, (sign_change(m, x + side * inner * g, x + side * r * g, u) - x).norm());
     if (best < HUGE_VAL) return best;
   }
   return HUGE_VAL;
@@ -157,13 +163,8 @@ Fidelity fidelity(const PlacedMorph& m, const TriMesh& slice, double u, const Ei
   REQUIRE(!crossings.empty());
   for (int k = 0; k < samples; ++k) {
     const int r = crossings[rng() % crossings.size()];
-    Eigen::Vector3d a = G.row(r).transpose(), b = G.row(r + n[1] * n[2]).transpose();
-    const bool neg_a = f[r] < 0;
-    for (int it = 0; it < 40; ++it) {
-      const Eigen::Vector3d c = (a + b) / 2;
-      ((m.field(c, u) < 0) == neg_a ? a : b) = c;
-    }
-    out.zero_set_to_slice.push_back(distance_to_mesh(m.placed((a + b) / 2, u), slice));
+    const Eigen::Vector3d z = sign_change(m, G.row(r).transpose(), G.row(r + n[1] * n[2]).transpose(), u);
+    out.zero_set_to_slice.push_back(distance_to_mesh(m.placed(z, u), slice));
   }
   std::sort(out.slice_to_zero_set.begin(), out.slice_to_zero_set.end());
   std::sort(out.zero_set_to_slice.begin(), out.zero_set_to_slice.end());
