@@ -3,10 +3,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include <Eigen/LU>
 
+#include "core/bind/parallel_for.h"
 #include "core/util/error.h"
 
 namespace dfm {
@@ -17,9 +19,49 @@ namespace {
 constexpr int kRotate[6][6] = {{0, 1, 2, 3, 4, 5}, {1, 2, 0, 4, 5, 3}, {2, 0, 1, 5, 3, 4},
                                {3, 5, 4, 0, 2, 1}, {4, 3, 5, 1, 0, 2}, {5, 4, 3, 2, 1, 0}};
 
+// Crossing keys to vertex numbers: open addressing, linear probing, never erased. (The crossings of
+// a manifold of millions of tetrahedra: std::unordered_map's node per key made this the costly part.)
+class KeyIndex {
+ public:
+  explicit KeyIndex(size_t expected) {
+    size_t n = 16;
+    while (n < 2 * expected) n *= 2;
+    slots_.assign(n, {kEmpty, 0});
+    mask_ = n - 1;
+  }
+  // The value for key, inserting `value` if absent; whether it was inserted.
+  std::pair<int, bool> emplace(std::uint64_t key, int value) {
+    if (2 * (size_ + 1) > slots_.size()) grow();
+    for (size_t i = (key * 0x9E3779B97F4A7C15ull) >> 20 & mask_;; i = (i + 1) & mask_) {
+      if (slots_[i].first == key) return {slots_[i].second, false};
+      if (slots_[i].first == kEmpty) {
+        slots_[i] = {key, value};
+        ++size_;
+        return {value, true};
+      }
+    }
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~0ull;
+  void grow() {
+    std::vector<std::pair<std::uint64_t, int>> old(2 * slots_.size(), {kEmpty, 0});
+    old.swap(slots_);
+    mask_ = slots_.size() - 1;
+    size_ = 0;
+    for (const auto& [k, v] : old)
+      if (k != kEmpty) emplace(k, v);
+  }
+  std::vector<std::pair<std::uint64_t, int>> slots_;
+  size_t mask_ = 0, size_ = 0;
+};
+
 class Writer {
  public:
-  Writer(const IsoField& f) : f_(f) {}
+  Writer(const IsoField& f, size_t cut) : f_(f), edges_(cut), anchors_(1024) {
+    T_.reserve(2 * cut);
+    V_.reserve(cut / 4);
+  }
 
   // Cuts one 4-simplex (point indices s[0..4], orientation o = +-1).
   void simplex(const int* s, int o) {
@@ -61,11 +103,9 @@ class Writer {
 
   IsoManifold result() {
     IsoManifold M;
-    M.V.resize(static_cast<Eigen::Index>(V_.size()), 4);
-    for (size_t v = 0; v < V_.size(); ++v) M.V.row(static_cast<Eigen::Index>(v)) = V_[v];
-    M.T.resize(static_cast<Eigen::Index>(T_.size()), 4);
-    for (size_t t = 0; t < T_.size(); ++t)
-      for (int c = 0; c < 4; ++c) M.T(static_cast<Eigen::Index>(t), c) = T_[t][c];
+    const auto nv = static_cast<Eigen::Index>(V_.size()), nt = static_cast<Eigen::Index>(T_.size());
+    M.V = Eigen::Map<const MatrixX4dRow>(V_.empty() ? nullptr : V_.front().data(), nv, 4);
+    M.T = Eigen::Map<const MatrixX4iRow>(T_.empty() ? nullptr : T_.front().data(), nt, 4);
     return M;
   }
 
@@ -95,10 +135,10 @@ class Writer {
   }
 
   template <class Make>
-  int vertex_of(std::unordered_map<std::uint64_t, int>& map, std::uint64_t key, const Make& make) {
-    auto [it, fresh] = map.emplace(key, static_cast<int>(V_.size()));
+  int vertex_of(KeyIndex& map, std::uint64_t key, const Make& make) {
+    const auto [v, fresh] = map.emplace(key, static_cast<int>(V_.size()));
     if (fresh) V_.push_back(make());
-    return it->second;
+    return v;
   }
 
   // A tetrahedron of slots, oriented so that its 4D normal points toward the positive corners: the
@@ -128,7 +168,7 @@ class Writer {
   std::pair<int, Eigen::Matrix<double, 5, 1>> slots_[6];
   int id_[6] = {0, 0, 0, 0, 0, 0};
   int nslots_ = 0;
-  std::unordered_map<std::uint64_t, int> edges_, anchors_;
+  KeyIndex edges_, anchors_;
   std::vector<Eigen::RowVector4d> V_;
   std::vector<std::array<int, 4>> T_;
 };
@@ -142,18 +182,22 @@ IsoManifold iso_manifold(const IsoField& f, const Delaunay4& D) {
   for (Eigen::Index p = 0; p < n; ++p)
     if (!std::isfinite(f.values[p]) || f.values[p] == 0)
       throw Error("iso_manifold: the field at point " + std::to_string(p) + " is zero or not finite");
-  Writer w(f);
-  for (int s = 0; s < D.simplices.rows(); ++s) {
+  // The cut simplices and their orientations first, in parallel (each needs only its own corners).
+  std::vector<signed char> orientation(static_cast<size_t>(D.simplices.rows()), 0);
+  parallel_for(static_cast<int>(D.simplices.rows()), 0, [&](int s) {
     const int* c = D.simplices.row(s).data();
     bool mixed = false;
     for (int j = 1; j < 5; ++j) mixed = mixed || ((f.values[c[j]] < 0) != (f.values[c[0]] < 0));
-    if (!mixed) continue;
+    if (!mixed) return;
     Eigen::Matrix<double, 5, 4, Eigen::RowMajor> Q;
     for (int j = 0; j < 5; ++j) Q.row(j) = f.points.row(c[j]);
-    const int o = orientation_4d(Q);
-    if (o == 0) continue;
-    w.simplex(c, o);
-  }
+    orientation[static_cast<size_t>(s)] = static_cast<signed char>(orientation_4d(Q));
+  });
+  size_t cut = 0;
+  for (signed char o : orientation) cut += o != 0;
+  Writer w(f, cut);
+  for (int s = 0; s < D.simplices.rows(); ++s)
+    if (orientation[static_cast<size_t>(s)] != 0) w.simplex(D.simplices.row(s).data(), orientation[static_cast<size_t>(s)]);
   return w.result();
 }
 

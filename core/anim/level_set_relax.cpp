@@ -37,34 +37,50 @@ struct Rows {
   std::vector<int> begin, items;
 };
 
-// Each vertex's neighbours, repeated once per tetrahedron they share: items[begin[v], begin[v + 1]).
-Rows neighbours(const MatrixX4iRow& T, int nv) {
+// Marks for per-thread visited arrays: unique over rounds and calls, so never reset.
+std::atomic<long long> epoch{0};
+
+// Each vertex's tetrahedra, in index order: items[begin[v], begin[v + 1]).
+Rows vertex_tets(const MatrixX4iRow& T, int nv) {
   Rows r;
   r.begin.assign(nv + 1, 0);
   for (Eigen::Index t = 0; t < T.rows(); ++t)
-    for (int c = 0; c < 4; ++c) r.begin[T(t, c) + 1] += 3;
+    for (int c = 0; c < 4; ++c) ++r.begin[T(t, c) + 1];
   for (int v = 0; v < nv; ++v) r.begin[v + 1] += r.begin[v];
   r.items.resize(r.begin[nv]);
   std::vector<int> fill(r.begin.begin(), r.begin.end() - 1);
   for (Eigen::Index t = 0; t < T.rows(); ++t)
-    for (int c = 0; c < 4; ++c)
-      for (int d = 1; d < 4; ++d) r.items[fill[T(t, c)]++] = T(t, (c + d) % 4);
+    for (int c = 0; c < 4; ++c) r.items[fill[T(t, c)]++] = static_cast<int>(t);
   return r;
 }
 
-// For each vertex v with slot[v] >= 0, in slot order, its incident tetrahedra.
-Rows incident_tets(const MatrixX4iRow& T, const std::vector<int>& slot, int rows) {
+// Each vertex's neighbours, each once, in the order its tetrahedra (`tets`) show them.
+Rows neighbours(const MatrixX4iRow& T, const Rows& tets) {
+  const int nv = static_cast<int>(tets.begin.size()) - 1;
+  const long long base = epoch.fetch_add(2LL * nv);
+  // Calls out(w) for each neighbour w of v, once, marked with `mark`.
+  auto each = [&](int v, long long mark, const auto& out) {
+    thread_local std::vector<long long> stamp;
+    if (stamp.size() < static_cast<size_t>(nv)) stamp.assign(nv, -1);
+    for (int k = tets.begin[v]; k < tets.begin[v + 1]; ++k) {
+      const int* t = T.row(tets.items[k]).data();
+      int c = 0;
+      while (t[c] != v) ++c;
+      for (int d = 1; d < 4; ++d) {
+        const int w = t[(c + d) % 4];
+        if (stamp[w] != mark) stamp[w] = mark, out(w);
+      }
+    }
+  };
   Rows r;
-  r.begin.assign(rows + 1, 0);
-  for (Eigen::Index t = 0; t < T.rows(); ++t)
-    for (int c = 0; c < 4; ++c)
-      if (slot[T(t, c)] >= 0) ++r.begin[slot[T(t, c)] + 1];
-  for (int i = 0; i < rows; ++i) r.begin[i + 1] += r.begin[i];
-  r.items.resize(r.begin[rows]);
-  std::vector<int> fill(r.begin.begin(), r.begin.end() - 1);
-  for (Eigen::Index t = 0; t < T.rows(); ++t)
-    for (int c = 0; c < 4; ++c)
-      if (slot[T(t, c)] >= 0) r.items[fill[slot[T(t, c)]]++] = static_cast<int>(t);
+  r.begin.assign(nv + 1, 0);
+  parallel_for(nv, 0, [&](int v) { each(v, base + v, [&](int) { ++r.begin[v + 1]; }); });
+  for (int v = 0; v < nv; ++v) r.begin[v + 1] += r.begin[v];
+  r.items.resize(r.begin[nv]);
+  parallel_for(nv, 0, [&](int v) {
+    int k = r.begin[v];
+    each(v, base + nv + v, [&](int w) { r.items[k++] = w; });
+  });
   return r;
 }
 
@@ -84,13 +100,14 @@ LevelSetRelaxStats relax_level_set(MatrixX4dRow& V, const MatrixX4iRow& T, const
     if (movable[v]) slot[v] = static_cast<int>(ids.size()), ids.push_back(v);
   const int n = static_cast<int>(ids.size());
   if (n == 0 || o.rounds <= 0) return st;
-  const Rows nb = neighbours(T, nv);
-  const Rows inc = incident_tets(T, slot, n);
+  const Rows tets = vertex_tets(T, nv);
+  const Rows nb = neighbours(T, tets);
   std::vector<int> touched;  // tetrahedra with a movable corner
   {
     std::vector<char> seen(T.rows(), 0);
-    for (int t : inc.items)
-      if (!seen[t]) seen[t] = 1, touched.push_back(t);
+    for (int v : ids)
+      for (int k = tets.begin[v]; k < tets.begin[v + 1]; ++k)
+        if (!seen[tets.items[k]]) seen[tets.items[k]] = 1, touched.push_back(tets.items[k]);
   }
 
   const double r2 = o.radius * o.radius;
@@ -105,8 +122,6 @@ LevelSetRelaxStats relax_level_set(MatrixX4dRow& V, const MatrixX4iRow& T, const
     // Part of the way to the hyperplane fitted around each vertex, along its spatial normal.
     Eigen::MatrixXd X(n, 3), Y(n, 3);
     std::vector<char> state(n, 0);  // 0 stays, 1 moves, 2 moves half way, 3 undone
-    // Marks for the rings, per thread: unique over rounds and calls, so never reset.
-    static std::atomic<long long> epoch{0};
     const long long base = epoch.fetch_add(n);
     parallel_for(n, 0, [&](int i) {
       const int v = ids[i];
@@ -146,7 +161,7 @@ LevelSetRelaxStats relax_level_set(MatrixX4dRow& V, const MatrixX4iRow& T, const
       C = C / wsum - c * c.transpose();
       // The smallest eigenvector by inverse iteration from the incident tetrahedra's normal.
       Eigen::Vector4d normal = Eigen::Vector4d::Zero();
-      for (int k = inc.begin[i]; k < inc.begin[i + 1]; ++k) normal += before[inc.items[k]];
+      for (int k = tets.begin[v]; k < tets.begin[v + 1]; ++k) normal += before[tets.items[k]];
       const Eigen::LDLT<Eigen::Matrix4d> f(C + 1e-12 * C.trace() * Eigen::Matrix4d::Identity());
       for (int it = 0; it < 3; ++it) normal = f.solve(normal).normalized();
       if (!normal.allFinite()) return;
@@ -186,8 +201,8 @@ LevelSetRelaxStats relax_level_set(MatrixX4dRow& V, const MatrixX4iRow& T, const
       }
       check.clear();
       for (int i : changed)
-        for (int k = inc.begin[i]; k < inc.begin[i + 1]; ++k)
-          if (!queued[inc.items[k]]) queued[inc.items[k]] = 1, check.push_back(inc.items[k]);
+        for (int k = tets.begin[ids[i]]; k < tets.begin[ids[i] + 1]; ++k)
+          if (!queued[tets.items[k]]) queued[tets.items[k]] = 1, check.push_back(tets.items[k]);
       for (int t : check) queued[t] = 0;
     }
     for (int i = 0; i < n; ++i) {
