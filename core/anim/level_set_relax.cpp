@@ -37,8 +37,14 @@ struct Rows {
   std::vector<int> begin, items;
 };
 
-// Marks for per-thread visited arrays: unique over rounds and calls, so never reset.
+// Visited marks: this thread's array (at least n long), stamped with values from `epoch`, unique over
+// rounds and calls, so never reset.
 std::atomic<long long> epoch{0};
+std::vector<long long>& thread_stamps(int n) {
+  thread_local std::vector<long long> stamp;
+  if (stamp.size() < static_cast<size_t>(n)) stamp.assign(n, -1);
+  return stamp;
+}
 
 // Each vertex's tetrahedra, in index order: items[begin[v], begin[v + 1]).
 Rows vertex_tets(const MatrixX4iRow& T, int nv) {
@@ -60,8 +66,7 @@ Rows neighbours(const MatrixX4iRow& T, const Rows& tets) {
   const long long base = epoch.fetch_add(2LL * nv);
   // Calls out(w) for each neighbour w of v, once, marked with `mark`.
   auto each = [&](int v, long long mark, const auto& out) {
-    thread_local std::vector<long long> stamp;
-    if (stamp.size() < static_cast<size_t>(nv)) stamp.assign(nv, -1);
+    std::vector<long long>& stamp = thread_stamps(nv);
     for (int k = tets.begin[v]; k < tets.begin[v + 1]; ++k) {
       const int* t = T.row(tets.items[k]).data();
       int c = 0;
@@ -126,9 +131,8 @@ LevelSetRelaxStats relax_level_set(MatrixX4dRow& V, const MatrixX4iRow& T, const
     parallel_for(n, 0, [&](int i) {
       const int v = ids[i];
       X.row(i) = Y.row(i) = V.row(v).head<3>();
-      thread_local std::vector<long long> stamp;
+      std::vector<long long>& stamp = thread_stamps(nv);
       thread_local std::vector<int> ring;
-      if (stamp.size() < static_cast<size_t>(nv)) stamp.assign(nv, -1);
       const long long mark = base + i;
       ring.assign(1, v);
       stamp[v] = mark;
