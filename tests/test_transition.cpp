@@ -486,6 +486,49 @@ TEST_CASE("iso_manifold: the zero set of |p|^2 - r^2 over a 4D triangulation is 
                     Catch::Contains("zero"));
 }
 
+TEST_CASE("IsoManifoldBuilder: simplices cut in parts, the first part's field a prefix of the last, give "
+          "the manifold of all of them at once", "[transition]") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const int n = 2000, early = 1200;
+  IsoField f;
+  f.points.resize(n, 4);
+  f.values.resize(n);
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < 4; ++d) f.points(i, d) = u(rng);
+    f.values[i] = f.points.row(i).squaredNorm() - 0.49;
+  }
+  f.anchored.assign(n, 0);
+  for (int i = 0; i < n; i += 97) f.anchored[i] = f.values[i] < 0;  // some anchored points too
+  const Delaunay4 D = delaunay_4d(f.points);
+  // Part 1: the simplices on the first `early` points only (cut with the field of those); part 2: the rest.
+  std::vector<int> first, rest;
+  for (int s = 0; s < D.simplices.rows(); ++s) (D.simplices.row(s).maxCoeff() < early ? first : rest).push_back(s);
+  REQUIRE(first.size() > 100);
+  REQUIRE(rest.size() > 100);
+  auto rows = [&](const std::vector<int>& which) {
+    MatrixX5iRow S(static_cast<Eigen::Index>(which.size()), 5);
+    for (size_t k = 0; k < which.size(); ++k) S.row(static_cast<Eigen::Index>(k)) = D.simplices.row(which[k]);
+    return S;
+  };
+  const MatrixX5iRow A = rows(first), B = rows(rest);
+  IsoField prefix;
+  prefix.points = f.points.topRows(early);
+  prefix.values = f.values.head(early);
+  prefix.anchored.assign(f.anchored.begin(), f.anchored.begin() + early);
+  IsoManifoldBuilder b;
+  b.add(prefix, A);
+  b.add(f, B);
+  const IsoManifold parts = b.finish(f);
+  Delaunay4 all;
+  all.simplices.resize(A.rows() + B.rows(), 5);
+  all.simplices << A, B;
+  const IsoManifold whole = iso_manifold(f, all);
+  REQUIRE(parts.T.rows() > 100);
+  CHECK(parts.V == whole.V);
+  CHECK(parts.T == whole.T);
+}
+
 TEST_CASE("transition: sphere to torus", "[transition]") {
   // The torus's regular grid is co-spherical everywhere: fill points cost some of its triangles, where
   // the key slice takes the tetrahedralization's other faces, so its volume is close (5e-6 off;

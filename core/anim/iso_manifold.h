@@ -6,6 +6,7 @@
 // smallest vertex) so that neighbouring simplices meet without cracks. Because every 4-simplex is
 // cut by one rule of signs, the result is a closed 3-manifold wherever the field is nonzero at the
 // vertices: no repair is needed.
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,5 +32,21 @@ struct IsoManifold {
 
 // Throws dfm::Error when a value is 0 or not finite or the sizes disagree.
 IsoManifold iso_manifold(const IsoField& field, const Delaunay4& D);
+
+// The same, given the simplices part by part (a caller cuts those it has while others are still
+// being built): the result is iso_manifold's over the parts in their order. Each part's field
+// extends the last one's (the same points and values where both have them); finish takes the last.
+class IsoManifoldBuilder {
+ public:
+  IsoManifoldBuilder();
+  ~IsoManifoldBuilder();
+  // Throws as iso_manifold does.
+  void add(const IsoField& field, const MatrixX5iRow& simplices);
+  IsoManifold finish(const IsoField& field);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace dfm

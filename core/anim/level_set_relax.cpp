@@ -10,6 +10,7 @@
 #include "core/anim/manifold_normals.h"
 #include "core/bind/parallel_for.h"
 #include "core/util/error.h"
+#include "core/util/huge_pages.h"
 
 namespace dfm {
 
@@ -53,6 +54,7 @@ Rows vertex_tets(const MatrixX4iRow& T, int nv) {
   for (Eigen::Index t = 0; t < T.rows(); ++t)
     for (int c = 0; c < 4; ++c) ++r.begin[T(t, c) + 1];
   for (int v = 0; v < nv; ++v) r.begin[v + 1] += r.begin[v];
+  reserve_huge(r.items, r.begin[nv]);
   r.items.resize(r.begin[nv]);
   std::vector<int> fill(r.begin.begin(), r.begin.end() - 1);
   for (Eigen::Index t = 0; t < T.rows(); ++t)
@@ -81,6 +83,7 @@ Rows neighbours(const MatrixX4iRow& T, const Rows& tets) {
   r.begin.assign(nv + 1, 0);
   parallel_for(nv, 0, [&](int v) { each(v, base + v, [&](int) { ++r.begin[v + 1]; }); });
   for (int v = 0; v < nv; ++v) r.begin[v + 1] += r.begin[v];
+  reserve_huge(r.items, r.begin[nv]);
   r.items.resize(r.begin[nv]);
   parallel_for(nv, 0, [&](int v) {
     int k = r.begin[v];
@@ -109,20 +112,26 @@ LevelSetRelaxStats relax_level_set(MatrixX4dRow& V, const MatrixX4iRow& T, const
   const Rows nb = neighbours(T, tets);
   std::vector<int> touched;  // tetrahedra with a movable corner
   {
-    std::vector<char> seen(T.rows(), 0);
-    for (int v : ids)
-      for (int k = tets.begin[v]; k < tets.begin[v + 1]; ++k)
-        if (!seen[tets.items[k]]) seen[tets.items[k]] = 1, touched.push_back(tets.items[k]);
+    std::vector<char> has(T.rows(), 0);
+    parallel_for(static_cast<int>(T.rows()), 0, [&](int t) {
+      for (int c = 0; c < 4; ++c) has[t] |= movable[T(t, c)];
+    });
+    for (Eigen::Index t = 0; t < T.rows(); ++t)
+      if (has[t]) touched.push_back(static_cast<int>(t));
   }
 
   const double r2 = o.radius * o.radius;
-  std::vector<Eigen::Vector4d> before(T.rows());
+  std::vector<Eigen::Vector4d> before;
+  reserve_huge(before, T.rows());
+  before.resize(T.rows());
   std::vector<double> share(nv);
   for (int round = 0; round < o.rounds; ++round) {
     parallel_for(static_cast<int>(T.rows()), 0, [&](int t) { before[t] = normal4(V, T.row(t).data(), o.time_scale); });
-    std::fill(share.begin(), share.end(), 0.0);
-    for (Eigen::Index t = 0; t < T.rows(); ++t)
-      for (int c = 0; c < 4; ++c) share[T(t, c)] += before[t].norm();
+    parallel_for(nv, 0, [&](int v) {  // in tetrahedron order, as a loop over them would add
+      double sum = 0;
+      for (int k = tets.begin[v]; k < tets.begin[v + 1]; ++k) sum += before[tets.items[k]].norm();
+      share[v] = sum;
+    });
 
     // Part of the way to the hyperplane fitted around each vertex, along its spatial normal.
     Eigen::MatrixXd X(n, 3), Y(n, 3);
@@ -179,7 +188,9 @@ LevelSetRelaxStats relax_level_set(MatrixX4dRow& V, const MatrixX4iRow& T, const
 
     // Undo moves that turn a tetrahedron over: halve first, then give up. Each pass checks the
     // tetrahedra around the vertices the last one changed.
-    MatrixX4dRow W = V;
+    MatrixX4dRow W(V.rows(), 4);
+    advise_huge_pages(W.data(), sizeof(double) * W.size());
+    W = V;
     auto place = [&](int i) {
       if (state[i] == 1) W.row(ids[i]).head<3>() = Y.row(i);
       else if (state[i] == 2) W.row(ids[i]).head<3>() = 0.5 * (X.row(i) + Y.row(i));

@@ -5,6 +5,7 @@
 #include <future>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -31,7 +32,9 @@
 #include "core/anim/surface_checks.h"
 #include "core/bind/closest_surface_point.h"
 #include "core/bind/handle_geometry.h"
+#include "core/bind/parallel_for.h"
 #include "core/util/error.h"
+#include "core/util/huge_pages.h"
 
 namespace dfm {
 
@@ -74,40 +77,44 @@ TriMesh compacted(const TriMesh& key) {
 
 // The manifold's tetrahedra in one slab per layer interval where none crosses a layer time (else
 // the intervals merge).
-AnimationManifold into_slabs(const IsoManifold& iso, const std::vector<double>& layer_times) {
+AnimationManifold into_slabs(IsoManifold iso, const std::vector<double>& layer_times) {
   const int nt = static_cast<int>(iso.T.rows());
-  std::vector<double> lo(nt), hi(nt);
-  for (int t = 0; t < nt; ++t) {
+  std::vector<double> lo, hi;
+  reserve_huge(lo, nt);
+  reserve_huge(hi, nt);
+  lo.resize(nt);
+  hi.resize(nt);
+  parallel_for(nt, 0, [&](int t) {
     lo[t] = 1e300, hi[t] = -1e300;
     for (int c = 0; c < 4; ++c) {
       lo[t] = std::min(lo[t], iso.V(iso.T(t, c), 3));
       hi[t] = std::max(hi[t], iso.V(iso.T(t, c), 3));
     }
-  }
+  });
+  // crossed[k]: some tetrahedron has layer_times[k] strictly inside its time span.
+  std::vector<char> crossed(layer_times.size(), 0);
+  for (int t = 0; t < nt; ++t)
+    for (auto k = std::upper_bound(layer_times.begin(), layer_times.end(), lo[t]); k != layer_times.end() && *k < hi[t]; ++k)
+      crossed[k - layer_times.begin()] = 1;
   std::vector<double> cuts = {layer_times.front()};
-  for (size_t k = 1; k + 1 < layer_times.size(); ++k) {
-    const double b = layer_times[k];
-    bool crossed = false;
-    for (int t = 0; t < nt && !crossed; ++t) crossed = lo[t] < b && hi[t] > b;
-    if (!crossed) cuts.push_back(b);
-  }
+  for (size_t k = 1; k + 1 < layer_times.size(); ++k)
+    if (!crossed[k]) cuts.push_back(layer_times[k]);
   cuts.push_back(layer_times.back());
-  std::vector<std::vector<int>> in(cuts.size() - 1);
+  // Each tetrahedron's slab, then the slabs' rows in tetrahedron order (a counting sort).
+  std::vector<int> slab(nt), offsets(cuts.size(), 0);
   for (int t = 0; t < nt; ++t) {
     size_t s = std::upper_bound(cuts.begin(), cuts.end(), lo[t]) - cuts.begin();
-    s = std::min(std::max<size_t>(s, 1), cuts.size() - 1) - 1;
-    in[s].push_back(t);
+    slab[t] = static_cast<int>(std::min(std::max<size_t>(s, 1), cuts.size() - 1) - 1);
+    ++offsets[slab[t] + 1];
   }
+  for (size_t s = 1; s < offsets.size(); ++s) offsets[s] += offsets[s - 1];
   AnimationManifold M;
-  M.V = iso.V;
-  M.T.resize(nt, 4);
   M.times = cuts;
-  int row = 0;
-  for (const auto& slab : in) {
-    M.slab_offsets.push_back(row);
-    for (int t : slab) M.T.row(row++) = iso.T.row(t);
-  }
-  M.slab_offsets.push_back(row);
+  M.slab_offsets = offsets;
+  M.T.resize(nt, 4);
+  advise_huge_pages(M.T.data(), sizeof(int) * M.T.size());
+  for (int t = 0; t < nt; ++t) M.T.row(offsets[slab[t]]++) = iso.T.row(t);
+  M.V = std::move(iso.V);
   return M;
 }
 
@@ -172,22 +179,6 @@ void check_transition_key(const TriMesh& key, const std::string& what) {
 
 namespace {
 
-// The keys' points, the target's on a second thread (they are independent).
-std::pair<KeyLayer, KeyLayer> key_layers(const TriMesh& source, const SignedDistance& d_s, double h_s, const TriMesh& target,
-                                         const SignedDistance& d_t, double h_t, const Box& box, double h_mid,
-                                         const TransitionOptions& o) {
-  auto layer_of = [&](const char* which, const TriMesh& key, const SignedDistance& d, double h, int layer) {
-    try {
-      return key_layer(key, d, box, h, h_mid, o.max_conform_rounds, layer);
-    } catch (const Error& e) {
-      throw Error(std::string(which) + " key: " + e.what());
-    }
-  };
-  auto target_layer = std::async(std::launch::async, layer_of, "target", std::cref(target), std::cref(d_t), h_t, o.layers + 1);
-  KeyLayer S = layer_of("source", source, d_s, h_s, 0);
-  return {std::move(S), target_layer.get()};
-}
-
 // Every point of the transition with its field value and local time u: the source key's (at 0), the
 // middle lattice once per layer (at u[1..K]), the target key's (at 1), with where each part starts.
 struct FieldPoints {
@@ -236,8 +227,8 @@ Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, 
   return L;
 }
 
-FieldPoints field_points(const KeyLayer& S, const KeyLayer& T, const Lattice& L, const std::vector<double>& u, double h_s,
-                         double h_t, double h_mid) {
+// The source key's points and the middle layers'.
+FieldPoints field_points(const KeyLayer& S, const Lattice& L, const std::vector<double>& u, double h_s, double h_mid) {
   FieldPoints p;
   const double eps = kMinValue * h_mid;
   p.add(S.surface.V, 0.0, nullptr, eps, -eps);
@@ -250,25 +241,38 @@ FieldPoints field_points(const KeyLayer& S, const KeyLayer& T, const Lattice& L,
     p.add(L.X, u[k], &f, kAway * h_mid, -eps);
   }
   p.target_begin = static_cast<int>(p.points.size());
-  p.add(T.surface.V, 1.0, nullptr, eps, -eps);
-  p.add(T.surface.fill, 1.0, &T.fill_values, kAway * h_t, -eps);
   return p;
 }
 
-// The 4D Delaunay triangulation of points [a0, a1) and [b0, b1) with u scaled by time_scale, in global
-// point numbers.
-Delaunay4 end_triangulation(const FieldPoints& p, int a0, int a1, int b0, int b1, double time_scale) {
-  MatrixX4dRow P4(a1 - a0 + b1 - b0, 4);
-  std::vector<int> global;
-  for (int r : {0, 1})
-    for (int i = r ? b0 : a0; i < (r ? b1 : a1); ++i) {
-      P4.row(static_cast<Eigen::Index>(global.size())) << p.points[i].head<3>(), p.points[i][3] * time_scale;
-      global.push_back(i);
-    }
-  Delaunay4 D = delaunay_4d(P4);
+// The target key's points after them.
+void add_target_points(FieldPoints& p, const KeyLayer& T, double h_t, double h_mid) {
+  const double eps = kMinValue * h_mid;
+  p.add(T.surface.V, 1.0, nullptr, eps, -eps);
+  p.add(T.surface.fill, 1.0, &T.fill_values, kAway * h_t, -eps);
+}
+
+// The 4D Delaunay triangulation of A at local time ua followed by B at ub (u scaled by time_scale), in
+// the points' order: A's rows, then B's.
+Delaunay4 end_triangulation(const Eigen::MatrixXd& A, double ua, const Eigen::MatrixXd& B, double ub, double time_scale) {
+  MatrixX4dRow P4(A.rows() + B.rows(), 4);
+  P4.topLeftCorner(A.rows(), 3) = A;
+  P4.topRightCorner(A.rows(), 1).setConstant(ua * time_scale);
+  P4.bottomLeftCorner(B.rows(), 3) = B;
+  P4.bottomRightCorner(B.rows(), 1).setConstant(ub * time_scale);
+  return delaunay_4d(P4);
+}
+
+// A key layer's points in FieldPoints' order: the surface's, then the fill.
+Eigen::MatrixXd key_points(const KeyLayer& k) {
+  Eigen::MatrixXd P(k.surface.V.rows() + k.surface.fill.rows(), 3);
+  P << k.surface.V, k.surface.fill;
+  return P;
+}
+
+// D's point numbers: those below `split` plus a, the others minus split plus b.
+void renumber(Delaunay4& D, int split, int a, int b) {
   for (Eigen::Index s = 0; s < D.simplices.rows(); ++s)
-    for (int c = 0; c < 5; ++c) D.simplices(s, c) = global[D.simplices(s, c)];
-  return D;
+    for (int c = 0; c < 5; ++c) D.simplices(s, c) += D.simplices(s, c) < split ? a : b - split;
 }
 
 // Merges the middle layers' short-lived topology (layer_transients.h) into events at their start, on
@@ -292,34 +296,36 @@ int merge_transients(FieldPoints& p, const MatrixX4iRow& K, const TransitionOpti
   return st.events;
 }
 
-// The whole 4D triangulation (transition.h, "The 4D triangulation"): each key and its nearest layer by
-// a Delaunay triangulation (on two threads), whose facets in that layer are the lattice's
-// tetrahedra K; K x each middle layer interval where the field changes sign, by staircase prisms.
-Delaunay4 transition_triangulation(FieldPoints& p, double time_scale, const TransitionOptions& o, double h_mid,
-                                   int& transients) {
-  const int first = p.layer_begin.front(), last = p.layer_begin.back(), n = p.lattice_size;
-  auto target_end = std::async(std::launch::async, end_triangulation, std::cref(p), last, last + n, p.target_begin,
-                               static_cast<int>(p.points.size()), time_scale);
-  const Delaunay4 D0 = end_triangulation(p, 0, p.source_end, first, first + n, time_scale);
-  const Delaunay4 D1 = target_end.get();
-  const MatrixX4iRow K = hull_facets_in(D0, first, first + n);  // in lattice numbers
-  if (!(hull_facets_in(D1, last, last + n) == K))
-    throw Error("transition: the middle points' tetrahedralization differs between the two ends");
+// The 4D triangulation (transition.h, "The 4D triangulation") up to the last middle layer: the source's
+// end D0 (source points, then the first layer's lattice, renumbered here), whose facets in that
+// layer are the lattice's tetrahedra K, and K x each middle layer interval where the field changes
+// sign, by staircase prisms (after the short-lived events are merged, which changes p's values).
+MatrixX5iRow source_and_middle(FieldPoints& p, Delaunay4& D0, const TransitionOptions& o, double h_mid, MatrixX4iRow& K,
+                               int& transients) {
+  const int first = p.layer_begin.front(), n = p.lattice_size;
+  renumber(D0, p.source_end, 0, first);
+  K = hull_facets_in(D0, first, first + n);  // in lattice numbers
   transients = merge_transients(p, K, o, h_mid);
-  const MatrixX5iRow middle = extrude_tets(K, p.layer_begin, [&](Eigen::Index tet, int k) {
+  return extrude_tets(K, p.layer_begin, [&](Eigen::Index tet, int k) {
     int neg = 0;
     for (int c = 0; c < 4; ++c) neg += (p.values[p.layer_begin[k] + K(tet, c)] < 0) + (p.values[p.layer_begin[k + 1] + K(tet, c)] < 0);
     return neg > 0 && neg < 8;
   });
-  Delaunay4 D;
-  D.simplices.resize(D0.simplices.rows() + middle.rows() + D1.simplices.rows(), 5);
-  D.simplices << D0.simplices, middle, D1.simplices;
-  return D;
+}
+
+// The target's end D1 (the last layer's lattice, then target points), renumbered; its facets in the
+// last layer must be K.
+void target_end_in(const FieldPoints& p, Delaunay4& D1, const MatrixX4iRow& K) {
+  const int last = p.layer_begin.back(), n = p.lattice_size;
+  renumber(D1, n, last, p.target_begin);
+  if (!(hull_facets_in(D1, last, last + n) == K))
+    throw Error("transition: the middle points' tetrahedralization differs between the two ends");
 }
 
 IsoField iso_field(const FieldPoints& p, double t0, double t1) {
   IsoField field;
   field.points.resize(static_cast<Eigen::Index>(p.points.size()), 4);
+  advise_huge_pages(field.points.data(), sizeof(double) * field.points.size());
   for (size_t i = 0; i < p.points.size(); ++i)
     field.points.row(static_cast<Eigen::Index>(i)) << p.points[i].head<3>(), t0 + p.points[i][3] * (t1 - t0);
   field.values = Eigen::Map<const Eigen::VectorXd>(p.values.data(), static_cast<Eigen::Index>(p.values.size()));
@@ -347,28 +353,86 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   box.lo.array() -= 2 * h_mid;
   box.hi.array() += 2 * h_mid;
 
-  auto t = Clock::now();
-  const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
-  const auto [S, T] = key_layers(source, d_s, h_s, target, d_t, h_t, box, h_mid, o);
-  st.conform_seconds = seconds_since(t);
-
   // Layer k of K sits at local time (k - 1/2) / K, away from the round times a user scrubs to.
-  t = Clock::now();
   std::vector<double> u = {0.0};
   for (int k = 1; k <= o.layers; ++k) u.push_back((k - 0.5) / o.layers);
   u.push_back(1.0);
-  FieldPoints p = field_points(S, T, middle_lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]), u, h_s, h_t, h_mid);
-  st.field_seconds = seconds_since(t);
-
   // Time scaled so that a key and its nearest layer lie two lattice spacings apart.
+  const double time_scale = 4.0 * h_mid * o.layers;
+
+  // Each key's layer and its end of the 4D triangulation on its own thread; the middle lattice on
+  // whichever needs it first. (The two keys' layers often cost very different times.)
+  const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
+  struct End {
+    KeyLayer layer;
+    KeyTets tets;  // for correcting the key's plane (key_plane.h)
+    Delaunay4 D;
+    double conform_seconds = 0, delaunay_seconds = 0;
+  };
+  std::once_flag lattice_once;
+  Lattice L;
+  double lattice_seconds = 0;
+  auto lattice = [&]() -> const Eigen::MatrixXd& {
+    std::call_once(lattice_once, [&] {
+      const auto t = Clock::now();
+      L = middle_lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]);
+      lattice_seconds = seconds_since(t);
+    });
+    return L.X;
+  };
+  auto end = [&](const char* which, const TriMesh& key, const SignedDistance& d, double h, bool is_source) {
+    End e;
+    auto t = Clock::now();
+    try {
+      e.layer = key_layer(key, d, box, h, h_mid, o.max_conform_rounds, is_source ? 0 : o.layers + 1);
+    } catch (const Error& x) {
+      throw Error(std::string(which) + " key: " + x.what());
+    }
+    e.conform_seconds = seconds_since(t);
+    auto tets = std::async(std::launch::async, [&e] { return key_tets(e.layer.surface, e.layer.fill_values); });
+    const Eigen::MatrixXd& X = lattice();
+    t = Clock::now();
+    e.D = is_source ? end_triangulation(key_points(e.layer), 0.0, X, u[1], time_scale)
+                    : end_triangulation(X, u[o.layers], key_points(e.layer), 1.0, time_scale);
+    e.delaunay_seconds = seconds_since(t);
+    e.tets = tets.get();
+    return e;
+  };
+  auto target_end = std::async(std::launch::async, end, "target", std::cref(target), std::cref(d_t), h_t, false);
+  End S = end("source", source, d_s, h_s, true);
+
+  // While the target's end is still being built (often the longer one): the source's end and the
+  // middle layers, their level set cut.
+  auto t = Clock::now();
+  FieldPoints p = field_points(S.layer, L, u, h_s, h_mid);
+  st.field_seconds = lattice_seconds + seconds_since(t);
   t = Clock::now();
-  const Delaunay4 D = transition_triangulation(p, 4.0 * h_mid * o.layers, o, h_mid, st.transients);
-  st.delaunay_seconds = seconds_since(t);
+  MatrixX4iRow K;
+  const MatrixX5iRow middle = source_and_middle(p, S.D, o, h_mid, K, st.transients);
+  const double middle_seconds = seconds_since(t);
+  t = Clock::now();
+  IsoManifoldBuilder level_set;
+  {
+    const IsoField field = iso_field(p, t0, t1);
+    level_set.add(field, S.D.simplices);
+    level_set.add(field, middle);
+  }
+  double extract_seconds = seconds_since(t);
+
+  End T = target_end.get();
+  st.conform_seconds = std::max(S.conform_seconds, T.conform_seconds);
+  t = Clock::now();
+  add_target_points(p, T.layer, h_t, h_mid);
+  target_end_in(p, T.D, K);
+  st.delaunay_seconds = std::max(S.delaunay_seconds + middle_seconds, T.delaunay_seconds) + seconds_since(t);
+  st.simplices = static_cast<int>(S.D.simplices.rows() + middle.rows() + T.D.simplices.rows());
 
   t = Clock::now();
-  IsoManifold iso = iso_manifold(iso_field(p, t0, t1), D);
-  const KeyPlaneStats plane_s = correct_key_plane(iso.V, iso.T, t0, key_tets(S.surface, S.fill_values));
-  const KeyPlaneStats plane_t = correct_key_plane(iso.V, iso.T, t1, key_tets(T.surface, T.fill_values));
+  const IsoField field = iso_field(p, t0, t1);
+  level_set.add(field, T.D.simplices);
+  IsoManifold iso = level_set.finish(field);
+  const KeyPlaneStats plane_s = correct_key_plane(iso.V, iso.T, t0, S.tets);
+  const KeyPlaneStats plane_t = correct_key_plane(iso.V, iso.T, t1, T.tets);
   const double seal = 1e-6 * (t1 - t0);  // how far inside the slab a sealing cone's point sits
   st.sealed = seal_key_time(iso.V, iso.T, t0, t0 + seal) + seal_key_time(iso.V, iso.T, t1, t1 - seal);
   std::vector<double> layer_times;
@@ -386,17 +450,16 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
     r.time_scale = 0.5 * h_mid * o.layers / (t1 - t0);  // a layer interval as long as half a lattice spacing
     st.relaxed = relax_level_set(iso.V, iso.T, movable, r).moved;
   }
-  AnimationManifold M = into_slabs(iso, layer_times);
-  st.extract_seconds = seconds_since(t);
+  AnimationManifold M = into_slabs(std::move(iso), layer_times);
+  st.extract_seconds = extract_seconds + seconds_since(t);
 
-  st.source = key_build_stats(S);
-  st.target = key_build_stats(T);
+  st.source = key_build_stats(S.layer);
+  st.target = key_build_stats(T.layer);
   st.source.points = p.source_end;
   st.middle_points = p.lattice_size;
   st.target.points = static_cast<int>(p.points.size()) - p.target_begin;
   st.source.plane_fixes = plane_s.bridges + plane_s.carved;
   st.target.plane_fixes = plane_t.bridges + plane_t.carved;
-  st.simplices = static_cast<int>(D.simplices.rows());
   st.tets = M.num_tets();
   return M;
 }

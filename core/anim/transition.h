@@ -127,6 +127,9 @@ struct TransitionStats {
   int tets = 0;                                  // of the resulting manifold
   double turn_degrees = 0, scale = 1;           // the placement's (the last transition's in a sum)
   double align_seconds = 0;                      // moments, warp, and placing the manifold's vertices
+  // Each key's conforming, filling and 4D Delaunay end run on a thread of their own, and the source's
+  // end and the middle layers are cut while the target's end is still being built: a stage's time is
+  // its longer key's, and the stages add up to more than the total.
   double conform_seconds = 0, field_seconds = 0, delaunay_seconds = 0, extract_seconds = 0;
   double total_seconds = 0;
 
