@@ -1,9 +1,12 @@
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <vector>
 
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +14,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/error.h"
+#include "core/util/huge_pages.h"
 
 namespace fs = std::filesystem;
 
@@ -90,4 +94,57 @@ TEST_CASE("write_files_atomic replaces no file unless every write succeeded", "[
   REQUIRE(slurp(a) == "A3");
   REQUIRE(slurp(b) == "B3");
   fs::remove_all(dir);
+}
+
+// Whether the mapping holding address a is advised for huge pages ("hg" in /proc/self/smaps).
+static bool advised_huge(const void* a) {
+  std::ifstream smaps("/proc/self/smaps");
+  const auto x = reinterpret_cast<std::uintptr_t>(a);
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    std::uintptr_t lo = 0, hi = 0;
+    char dash = 0;
+    std::istringstream head(line);
+    if (head >> std::hex >> lo >> dash >> hi && dash == '-') {
+      inside = lo <= x && x < hi;
+      continue;
+    }
+    if (inside && line.rfind("VmFlags:", 0) == 0) return line.find(" hg") != std::string::npos;
+  }
+  return false;
+}
+
+TEST_CASE("advise_huge_pages advises exactly the whole 2 MB pages inside the range", "[util]") {
+  if (!fs::exists("/sys/kernel/mm/transparent_hugepage/enabled")) {
+    WARN("this kernel has no transparent huge pages: nothing to check");
+    return;
+  }
+  constexpr std::size_t kHuge = std::size_t{2} << 20, kBytes = 5 * kHuge;
+  void* map = mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  REQUIRE(map != MAP_FAILED);
+  char* p = static_cast<char*>(map);
+  // A range starting one 4 KB page in and ending one short of the end: its whole 2 MB pages only.
+  dfm::advise_huge_pages(p + 4096, kBytes - 2 * 4096);
+  const auto at = reinterpret_cast<std::uintptr_t>(p);
+  char* first = p + ((at + 4096 + kHuge - 1) / kHuge * kHuge - at);
+  char* end = p + ((at + kBytes - 4096) / kHuge * kHuge - at);
+  REQUIRE(end - first >= static_cast<std::ptrdiff_t>(2 * kHuge));
+  CHECK(!advised_huge(first - 1));
+  CHECK(advised_huge(first));
+  CHECK(advised_huge(end - 1));
+  CHECK(!advised_huge(end));
+  // The memory stays ordinary memory.
+  for (std::size_t i = 0; i < kBytes; i += 4096) p[i] = static_cast<char>(i / 4096);
+  bool same = true;
+  for (std::size_t i = 0; i < kBytes; i += 4096) same = same && p[i] == static_cast<char>(i / 4096);
+  CHECK(same);
+  munmap(map, kBytes);
+  // A range under two huge pages is left alone, even one starting on a 2 MB boundary.
+  map = mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  REQUIRE(map != MAP_FAILED);
+  p = static_cast<char*>(map);
+  char* q = p + ((reinterpret_cast<std::uintptr_t>(p) + kHuge - 1) / kHuge * kHuge - reinterpret_cast<std::uintptr_t>(p));
+  dfm::advise_huge_pages(q, 2 * kHuge - 1);  // holds the whole page [q, q + 2 MB)
+  CHECK(!advised_huge(q));
+  munmap(map, kBytes);
 }
