@@ -529,6 +529,45 @@ TEST_CASE("IsoManifoldBuilder: simplices cut in parts, the first part's field a 
   CHECK(parts.T == whole.T);
 }
 
+TEST_CASE("GrowingSurfaceDelaunay: grown by edge splits, fill points dropped, or changed otherwise, it is the "
+          "tetrahedralization surface_delaunay builds afresh", "[transition]") {
+  // An icosphere: all its vertices on one sphere, the most degenerate input (ties everywhere).
+  const TriMesh ball = dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 2);
+  ConformingSurface s;
+  s.V = ball.V;
+  s.F = ball.F;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.8, 0.8);
+  s.fill.resize(300, 3);
+  for (int i = 0; i < 300; ++i) s.fill.row(i) << u(rng), u(rng), u(rng);
+  auto cells = [](const SurfaceDelaunay& d) {
+    std::set<std::array<int, 4>> c;
+    for (auto it = d.dt.finite_cells_begin(); it != d.dt.finite_cells_end(); ++it) {
+      std::array<int, 4> k;
+      for (int j = 0; j < 4; ++j) k[j] = it->vertex(j)->info();
+      std::sort(k.begin(), k.end());
+      c.insert(k);
+    }
+    for (size_t i = 0; i < d.vertex.size(); ++i) REQUIRE(d.vertex[i]->info() == static_cast<int>(i));
+    return c;
+  };
+  GrowingSurfaceDelaunay g;
+  CHECK(cells(g.of(s)) == cells(surface_delaunay(s)));
+  split_edges(s, {{0, 0}, {17, 1}, {40, 2}, {41, 0}});  // the surface grows
+  REQUIRE(s.V.rows() > ball.V.rows());
+  CHECK(cells(g.of(s)) == cells(surface_delaunay(s)));
+  CHECK(cells(g.of(s)) == cells(surface_delaunay(s)));  // unchanged
+  Eigen::MatrixXd kept(0, 3);
+  for (int i = 0; i < s.fill.rows(); ++i)
+    if (i % 7 != 3) kept.conservativeResize(kept.rows() + 1, 3), kept.row(kept.rows() - 1) = s.fill.row(i);
+  s.fill = kept;  // fill points dropped
+  CHECK(cells(g.of(s)) == cells(surface_delaunay(s)));
+  s.fill.row(5) << 0.01, 0.02, 0.03;  // moved: built afresh
+  CHECK(cells(g.of(s)) == cells(surface_delaunay(s)));
+  s.fill.row(6) = s.fill.row(7);
+  CHECK_THROWS_WITH(g.of(s), Catch::Contains("same position"));
+}
+
 TEST_CASE("transition: sphere to torus", "[transition]") {
   // The torus's regular grid is co-spherical everywhere: fill points cost some of its triangles, where
   // the key slice takes the tetrahedralization's other faces, so its volume is close (5e-6 off;

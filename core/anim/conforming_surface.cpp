@@ -45,12 +45,15 @@ struct RoundOptions {
 // missing triangle and its neighbour are coplanar (co-circular points: the Delaunay tetrahedralization
 // chose the other diagonal) the surface takes the other diagonal, which changes no geometry;
 // elsewhere the triangle's longest edge missing from the tetrahedralization is split (else its
-// longest edge). Returns the number of triangles that were missing.
-int conform_round(ConformingSurface& s, RoundOptions o, std::vector<int>* missing_rows = nullptr) {
+// longest edge). Returns the number of triangles that were missing. `growing`: where to get the
+// tetrahedralization (else it is built afresh).
+int conform_round(ConformingSurface& s, RoundOptions o, std::vector<int>* missing_rows = nullptr,
+                  GrowingSurfaceDelaunay* growing = nullptr) {
   const bool fix = o.action != RoundAction::count;
   const bool allow_split = o.action == RoundAction::flip_and_split;
   const double flip_gap = o.flip_gap;
-  const SurfaceDelaunay sd = surface_delaunay(s);
+  std::optional<SurfaceDelaunay> own;
+  const SurfaceDelaunay& sd = growing ? growing->of(s) : own.emplace(surface_delaunay(s));
   const Delaunay3& dt = sd.dt;
   const auto& vh = sd.vertex;
   std::unordered_map<std::uint64_t, std::vector<int>> faces_of;
@@ -119,14 +122,16 @@ int conform_round(ConformingSurface& s, RoundOptions o, std::vector<int>* missin
 
 }  // namespace
 
-int add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates, FillRule rule) {
+int add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates, FillRule rule,
+                    GrowingSurfaceDelaunay* growing) {
   std::vector<std::vector<Eigen::RowVector3d>> groups(static_cast<size_t>(candidates.rows()));
   for (Eigen::Index i = 0; i < candidates.rows(); ++i) groups[static_cast<size_t>(i)] = {candidates.row(i)};
-  return add_fill_points(s, groups, rule);
+  return add_fill_points(s, groups, rule, {}, growing);
 }
 
 int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups, FillRule rule,
-                    const std::function<bool(size_t, const Eigen::RowVector3d&)>& accept) {
+                    const std::function<bool(size_t, const Eigen::RowVector3d&)>& accept,
+                    GrowingSurfaceDelaunay* growing) {
   if (groups.empty()) return 0;
   const Eigen::MatrixXd before = s.fill;
   // A point (nearly) where the tetrahedralization has one already is not added: it would only make
@@ -169,7 +174,7 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
   int lost_before = s.missing;
   for (int round = 0; round < 4 && !added.empty(); ++round) {
     std::vector<int> lost;
-    conform_round(s, {RoundAction::flip}, &lost);
+    conform_round(s, {RoundAction::flip}, &lost, growing);
     if (static_cast<int>(lost.size()) <= lost_before) {  // no worse than without the points
       s.missing = static_cast<int>(lost.size());
       return static_cast<int>(added.size());
@@ -190,7 +195,7 @@ int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::R
     store();
   }
   ConformingSurface probe = s;
-  s.missing = conform_round(probe, {RoundAction::count});  // what the points cost in the end
+  s.missing = conform_round(probe, {RoundAction::count}, nullptr, growing);  // what the points cost in the end
   return static_cast<int>(added.size());
 }
 
@@ -255,7 +260,7 @@ std::vector<Eigen::RowVector3d> chord_points(const Eigen::RowVector3d (&p)[4], c
 
 }  // namespace
 
-int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds) {
+int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds, GrowingSurfaceDelaunay* growing) {
   const WindingTree tree = build_winding_tree(s.V, s.F);
   std::unordered_set<std::uint64_t> surface;  // sorted triangle keys (21 bits a vertex)
   auto tri_key = [](int a, int b, int c) {
@@ -298,7 +303,7 @@ int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds) {
     const auto on_side = [&](size_t g, const Eigen::RowVector3d& q) {
       return (winding_number(tree, q.transpose()) < 0.5) == static_cast<bool>(group_outside[g]);
     };
-    if (add_fill_points(s, groups, rule, on_side) == 0) break;  // every candidate would cost a surface triangle
+    if (add_fill_points(s, groups, rule, on_side, growing) == 0) break;  // every candidate would cost a surface triangle
   }
   return left;
 }
@@ -361,7 +366,9 @@ int flip_nearly_flat(ConformingSurface& s, double max_gap) {
   return static_cast<int>(s.flipped.size() - before);
 }
 
-void make_conforming(ConformingSurface& s, int max_rounds) {
+void make_conforming(ConformingSurface& s, int max_rounds, GrowingSurfaceDelaunay* growing) {
+  GrowingSurfaceDelaunay own;  // each round only splits edges: the surface grows
+  GrowingSurfaceDelaunay& tetrahedralization = growing ? *growing : own;
   ConformingSurface best;
   int previous = -1;
   best.missing = -1;
@@ -369,7 +376,7 @@ void make_conforming(ConformingSurface& s, int max_rounds) {
     ConformingSurface next = s;
     // Counts s's missing triangles; the last round only counts.
     const RoundAction act = round < max_rounds ? RoundAction::flip_and_split : RoundAction::count;
-    const int missing = conform_round(next, {act});
+    const int missing = conform_round(next, {act}, nullptr, &tetrahedralization);
     if (best.missing < 0 || missing < best.missing) {
       best = s;
       best.missing = missing;

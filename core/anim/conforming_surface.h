@@ -37,8 +37,13 @@ ConformingSurface conforming_delaunay_surface(const Eigen::MatrixXd& V, const Ei
 // vertex stays, the surface moves by at most max_gap (a last resort for surfaces whose splits
 // cascade). Returns the number of flips.
 int flip_nearly_flat(ConformingSurface& s, double max_gap);
+
+// Where the functions below get the surface's Delaunay tetrahedralization when given one (it follows
+// the surface's points from call to call; surface_delaunay.h), else it is built afresh.
+class GrowingSurfaceDelaunay;
+
 // Continues on a surface that is already partly conforming (e.g. after split_longest_edges).
-void make_conforming(ConformingSurface& s, int max_rounds);
+void make_conforming(ConformingSurface& s, int max_rounds, GrowingSurfaceDelaunay* growing = nullptr);
 
 // How added points spare the surface's conformity. Protect admits only points that leave every
 // surface triangle that is a Delaunay face one (face_protection.h), and none near the others. Repair
@@ -49,17 +54,19 @@ enum class FillRule { Protect, Repair };
 // Adds points off the surface to the tetrahedralization (as TetGen's quality mesh fills the keys in
 // Southern's 8.7: small tetrahedra keep the simplices of a transition small), as the rule allows.
 // Returns the number of points added.
-int add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates, FillRule rule);
+int add_fill_points(ConformingSurface& s, const Eigen::MatrixXd& candidates, FillRule rule,
+                    GrowingSurfaceDelaunay* growing = nullptr);
 // The same for groups of alternatives: of each group, the first candidate that the rule admits and
 // `accept` (if given; called with the group's index) takes.
 int add_fill_points(ConformingSurface& s, const std::vector<std::vector<Eigen::RowVector3d>>& groups, FillRule rule,
-                    const std::function<bool(size_t, const Eigen::RowVector3d&)>& accept = {});
+                    const std::function<bool(size_t, const Eigen::RowVector3d&)>& accept = {},
+                    GrowingSurfaceDelaunay* growing = nullptr);
 
 // Tetrahedra with all four corners on the surface, and outside tetrahedra with a triangle of three
 // surface vertices that is not a surface triangle (they bridge concavities), get a point in their
 // circumball, as far as add_fill_points keeps them (for `rounds` rounds): so that every tetrahedron
 // has a corner off the surface and the outside touches the surface only through surface triangles,
 // edges and vertices. Returns the number of such tetrahedra left.
-int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds = 1);
+int cover_outside_chords(ConformingSurface& s, FillRule rule, int rounds = 1, GrowingSurfaceDelaunay* growing = nullptr);
 
 }  // namespace dfm

@@ -7,6 +7,7 @@
 
 #include "core/anim/conforming_tetgen.h"
 #include "core/anim/face_protection.h"
+#include "core/anim/surface_delaunay.h"
 #include "core/util/error.h"
 
 namespace dfm::transition_detail {
@@ -174,20 +175,21 @@ KeyLayer filled_layer(const ConformingSurface& conforming, const Eigen::MatrixXd
                       int max_rounds) {
   KeyLayer k;
   k.surface = conforming;
+  GrowingSurfaceDelaunay tetrahedralization;  // shared by the steps below: each changes few points
   // Split what the points broke, where a split does not land on a fill point.
   auto mend = [&] {
     if (k.surface.missing == 0) return;
     ConformingSurface again = k.surface;
     try {
-      make_conforming(again, max_rounds);
+      make_conforming(again, max_rounds, &tetrahedralization);
       if (again.missing < k.surface.missing) k.surface = std::move(again);
     } catch (const Error&) {
     }
   };
-  add_fill_points(k.surface, candidates, rule);
+  add_fill_points(k.surface, candidates, rule, &tetrahedralization);
   mend();
   k.banded = k.surface.fill.rows();
-  k.chords = cover_outside_chords(k.surface, rule);
+  k.chords = cover_outside_chords(k.surface, rule, 1, &tetrahedralization);
   mend();
   return k;
 }
