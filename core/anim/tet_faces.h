@@ -55,15 +55,17 @@ inline bool same_orientation(const std::array<int, 4>& a, const std::array<int, 
 
 // Drops the rows of T marked in drop, then appends the vertices extra_v and the tetrahedra extra_t
 // (which may use them).
+// In place: the manifolds are large, and a copy of T costs more than the edit.
 inline void edit_tets(MatrixX4dRow& V, MatrixX4iRow& T, const std::vector<char>& drop,
                       const std::vector<Eigen::RowVector4d>& extra_v, const std::vector<std::array<int, 4>>& extra_t) {
-  const Eigen::Index kept = static_cast<Eigen::Index>(std::count(drop.begin(), drop.end(), 0));
-  MatrixX4iRow out(kept + static_cast<Eigen::Index>(extra_t.size()), 4);
   Eigen::Index r = 0;
   for (Eigen::Index t = 0; t < T.rows(); ++t)
-    if (!drop[static_cast<size_t>(t)]) out.row(r++) = T.row(t);
-  for (const auto& t : extra_t) out.row(r++) << t[0], t[1], t[2], t[3];
-  T = std::move(out);
+    if (!drop[static_cast<size_t>(t)]) {
+      if (r != t) T.row(r) = T.row(t);
+      ++r;
+    }
+  T.conservativeResize(r + static_cast<Eigen::Index>(extra_t.size()), 4);
+  for (const auto& t : extra_t) T.row(r++) << t[0], t[1], t[2], t[3];
   const Eigen::Index nv = V.rows();
   V.conservativeResize(nv + static_cast<Eigen::Index>(extra_v.size()), 4);
   for (size_t k = 0; k < extra_v.size(); ++k) V.row(nv + static_cast<Eigen::Index>(k)) = extra_v[k];
