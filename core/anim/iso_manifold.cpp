@@ -118,7 +118,7 @@ struct IsoManifoldBuilder::Impl {
     signs_.resize(tets_.size());
     parallel_for(n, 0, [&](int i) {
       const Candidate& c = tets_[first + i];
-      signs_[first + i] = static_cast<signed char>(orient(c, D.row(c.simplex).data()) * orientation[static_cast<size_t>(c.simplex)]);
+      signs_[first + i] = static_cast<signed char>(orient(c, D.row(c.simplex).data(), orientation[static_cast<size_t>(c.simplex)]));
     });
   }
 
@@ -216,14 +216,14 @@ struct IsoManifoldBuilder::Impl {
     tets_.push_back({t, simplex_, packed});
   }
 
-  // +1 when the candidate's 4D normal points toward its simplex's positive corners (simplex s,
-  // taken positively oriented) as it stands, -1 when its last two corners must swap, 0 when it is
+  // +1 when the candidate's 4D normal points toward its simplex's positive corners (simplex s of
+  // orientation o) as it stands, -1 when its last two corners must swap, 0 when it is
   // flat: the sign of det[q1 - q0, c - q0, ...] is the determinant of the barycentric rows times the
   // simplex's orientation, and barycentric rows stay well scaled where the simplex is a sliver. The
   // rows are the unanchored crossings': the level set there is a proper convex polytope, and an
   // anchored crossing only moves a corner onto its point (which may flatten the piece, never turn it
   // over).
-  int orient(const Candidate& c, const int* s) const {
+  int orient(const Candidate& c, const int* s, int o) const {
     Eigen::Matrix<double, 5, 1> positive_centroid = Eigen::Matrix<double, 5, 1>::Zero();
     int np = 0;
     for (int j = 0; j < 5; ++j) np += f_->values[s[j]] >= 0;
@@ -235,7 +235,7 @@ struct IsoManifoldBuilder::Impl {
     B.row(2) = slot_weights(*f_, s, c.slot(1)).transpose();
     B.row(3) = slot_weights(*f_, s, c.slot(2)).transpose();
     B.row(4) = slot_weights(*f_, s, c.slot(3)).transpose();
-    const double det = B.determinant();
+    const double det = B.determinant() * o;
     return det < 0 ? -1 : det == 0 ? 0 : 1;
   }
 

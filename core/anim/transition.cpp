@@ -342,6 +342,71 @@ KeyBuildStats key_build_stats(const KeyLayer& k) {
   return st;
 }
 
+// The middle lattice, built once by whichever thread asks first.
+class SharedLattice {
+ public:
+  SharedLattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
+                double u_last)
+      : box_(box), h_mid_(h_mid), d_s_(d_s), d_t_(d_t), u_first_(u_first), u_last_(u_last) {}
+  const Lattice& get() {
+    std::call_once(once_, [&] {
+      const auto t = Clock::now();
+      L_ = middle_lattice(box_, h_mid_, d_s_, d_t_, u_first_, u_last_);
+      seconds_ = seconds_since(t);
+    });
+    return L_;
+  }
+  double seconds() const { return seconds_; }
+
+ private:
+  const Box& box_;
+  double h_mid_;
+  const SignedDistance &d_s_, &d_t_;
+  double u_first_, u_last_;
+  std::once_flag once_;
+  Lattice L_;
+  double seconds_ = 0;
+};
+
+// What both keys' ends share.
+struct EndSetting {
+  const Box& box;
+  double h_mid, time_scale;
+  const TransitionOptions& o;
+  const std::vector<double>& u;  // the layers' local times, the keys' included
+  SharedLattice& lattice;
+};
+
+// A key's layer, its tetrahedra for correcting its plane (key_plane.h) and its end of the 4D
+// triangulation (end_triangulation: the source's points before the first layer's lattice, the last
+// layer's lattice before the target's).
+struct KeyEnd {
+  KeyLayer layer;
+  KeyTets tets;
+  Delaunay4 D;
+  double conform_seconds = 0, delaunay_seconds = 0;
+};
+
+KeyEnd key_end(const char* which, const TriMesh& key, const SignedDistance& d, double h, bool is_source,
+               const EndSetting& at) {
+  KeyEnd e;
+  auto t = Clock::now();
+  try {
+    e.layer = key_layer(key, d, at.box, h, at.h_mid, at.o.max_conform_rounds, is_source ? 0 : at.o.layers + 1);
+  } catch (const Error& x) {
+    throw Error(std::string(which) + " key: " + x.what());
+  }
+  e.conform_seconds = seconds_since(t);
+  auto tets = std::async(std::launch::async, [&e] { return key_tets(e.layer.surface, e.layer.fill_values); });
+  const Eigen::MatrixXd& X = at.lattice.get().X;
+  t = Clock::now();
+  e.D = is_source ? end_triangulation(key_points(e.layer), 0.0, X, at.u[1], at.time_scale)
+                  : end_triangulation(X, at.u[at.o.layers], key_points(e.layer), 1.0, at.time_scale);
+  e.delaunay_seconds = seconds_since(t);
+  e.tets = tets.get();
+  return e;
+}
+
 // The field's morph between keys already in one frame (transition.h, "The field"), with o.layers
 // middle layers. Its vertices in the target key's plane have time t0 + 1.0 * (t1 - t0).
 AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target, double t1, const TransitionOptions& o,
@@ -360,52 +425,20 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   // Time scaled so that a key and its nearest layer lie two lattice spacings apart.
   const double time_scale = 4.0 * h_mid * o.layers;
 
-  // Each key's layer and its end of the 4D triangulation on its own thread; the middle lattice on
-  // whichever needs it first. (The two keys' layers often cost very different times.)
+  // Each key's layer and its end of the 4D triangulation on its own thread (the two keys' layers
+  // often cost very different times).
   const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
-  struct End {
-    KeyLayer layer;
-    KeyTets tets;  // for correcting the key's plane (key_plane.h)
-    Delaunay4 D;
-    double conform_seconds = 0, delaunay_seconds = 0;
-  };
-  std::once_flag lattice_once;
-  Lattice L;
-  double lattice_seconds = 0;
-  auto lattice = [&]() -> const Eigen::MatrixXd& {
-    std::call_once(lattice_once, [&] {
-      const auto t = Clock::now();
-      L = middle_lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]);
-      lattice_seconds = seconds_since(t);
-    });
-    return L.X;
-  };
-  auto end = [&](const char* which, const TriMesh& key, const SignedDistance& d, double h, bool is_source) {
-    End e;
-    auto t = Clock::now();
-    try {
-      e.layer = key_layer(key, d, box, h, h_mid, o.max_conform_rounds, is_source ? 0 : o.layers + 1);
-    } catch (const Error& x) {
-      throw Error(std::string(which) + " key: " + x.what());
-    }
-    e.conform_seconds = seconds_since(t);
-    auto tets = std::async(std::launch::async, [&e] { return key_tets(e.layer.surface, e.layer.fill_values); });
-    const Eigen::MatrixXd& X = lattice();
-    t = Clock::now();
-    e.D = is_source ? end_triangulation(key_points(e.layer), 0.0, X, u[1], time_scale)
-                    : end_triangulation(X, u[o.layers], key_points(e.layer), 1.0, time_scale);
-    e.delaunay_seconds = seconds_since(t);
-    e.tets = tets.get();
-    return e;
-  };
-  auto target_end = std::async(std::launch::async, end, "target", std::cref(target), std::cref(d_t), h_t, false);
-  End S = end("source", source, d_s, h_s, true);
+  SharedLattice lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]);
+  const EndSetting at{box, h_mid, time_scale, o, u, lattice};
+  auto target_end = std::async(std::launch::async, key_end, "target", std::cref(target), std::cref(d_t), h_t, false, std::cref(at));
+  KeyEnd S = key_end("source", source, d_s, h_s, true, at);
+  const Lattice& L = lattice.get();
 
   // While the target's end is still being built (often the longer one): the source's end and the
   // middle layers, their level set cut.
   auto t = Clock::now();
   FieldPoints p = field_points(S.layer, L, u, h_s, h_mid);
-  st.field_seconds = lattice_seconds + seconds_since(t);
+  st.field_seconds = lattice.seconds() + seconds_since(t);
   t = Clock::now();
   MatrixX4iRow K;
   const MatrixX5iRow middle = source_and_middle(p, S.D, o, h_mid, K, st.transients);
@@ -419,7 +452,7 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   }
   double extract_seconds = seconds_since(t);
 
-  End T = target_end.get();
+  KeyEnd T = target_end.get();
   st.conform_seconds = std::max(S.conform_seconds, T.conform_seconds);
   t = Clock::now();
   add_target_points(p, T.layer, h_t, h_mid);
