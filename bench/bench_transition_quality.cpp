@@ -184,10 +184,10 @@ void print_field_euler(const TriMesh& a, const TriMesh& b) {
 void run(const char* name, const TriMesh& a, const TriMesh& b) {
   TransitionStats st;
   const AnimationManifold M = build_transition(a, 0, b, 1, options, &st);
-  std::printf("%s: %d -> %d vertices, %.2f s (align %.2f, conform %.2f, field %.2f, delaunay %.2f, extract %.2f), "
+  std::printf("%s: %d -> %d vertices, %.2f s (align %.2f, conform %.2f, field %.2f, delaunay %.2f, extract %.2f of which relax %.2f), "
               "%d middle points, %d tets, %d slabs, %d short-lived events merged\n",
               name, static_cast<int>(a.V.rows()), static_cast<int>(b.V.rows()), st.total_seconds, st.align_seconds,
-              st.conform_seconds, st.field_seconds, st.delaunay_seconds, st.extract_seconds, st.middle_points, M.num_tets(),
+              st.conform_seconds, st.field_seconds, st.delaunay_seconds, st.extract_seconds, st.relax_seconds, st.middle_points, M.num_tets(),
               M.num_slabs(), st.transients);
   print("key 0", quality(a.V, a.F));
   print("key 1", quality(b.V, b.F));

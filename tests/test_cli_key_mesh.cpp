@@ -60,7 +60,7 @@ TEST_CASE("deform manifold: same-connectivity keyframes are exactly the prism bu
   CHECK(count_field(r.out, "transition slabs") == 0);
   CHECK(count_field(r.out, "steiner points") == 0);
   for (const char* k : {"conform seconds: ", "field seconds: ", "delaunay seconds: ", "extract seconds: ",
-                        "total seconds: "})
+                        "relax seconds: ", "total seconds: "})
     CHECK(r.out.find(k) != std::string::npos);
   CHECK(r.out.find("closed: yes") != std::string::npos);
   // The saved manifold is the prism build of the three layers.

@@ -96,6 +96,10 @@ void check_transition(const TriMesh& S, const TriMesh& T, const std::string& nam
   const double diag = diagonal(S, T);
   INFO(name << ": " << st.simplices << " 4-simplices, " << st.tets << " tets, Steiner " << st.source.steiner << " + "
             << st.target.steiner << ", " << st.total_seconds << " s");
+  // The level set's smoothing is timed as the part of the extraction it is.
+  CHECK(st.relaxed > 0);
+  CHECK(st.relax_seconds > 0);
+  CHECK(st.relax_seconds <= st.extract_seconds);
   // At the keys: the slice's vertices lie on the key surface, every key vertex is a slice vertex.
   for (int k = 0; k < 2; ++k) {
     const TriMesh& key = k == 0 ? S : T;

@@ -129,6 +129,10 @@ double zero_along(const PlacedMorph& m, const Eigen::Vector3d& x, const Eigen::V
 struct Fidelity {
   std::vector<double> slice_to_zero_set, zero_set_to_slice;
   double at(const std::vector<double>& d, int p) const { return d[d.size() * p / 100]; }
+  // How many of d's samples lie farther than `bound`.
+  static long over(const std::vector<double>& d, double bound) {
+    return std::count_if(d.begin(), d.end(), [&](double x) { return !(x <= bound); });
+  }
 };
 
 // Both distances, sampled: `samples` slice vertices' distances to the zero set along F's gradient
@@ -243,8 +247,10 @@ void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptio
     // differs from the blend by up to a lattice spacing, so nine in ten samples are held to it.
     CHECK(fid.at(a, 90) <= 1.000001 * 0.005 * diag);
     CHECK(fid.at(b, 90) <= 1.000001 * 0.005 * diag);
-    if (!(b.back() <= 0.005 * diag && a.back() <= 1.000001 * 0.005 * diag)) WARN(name << " at t = " << t << ": largest distances "
-                                                                                     << a.back() / diag << ", " << b.back() / diag << " diagonals");
+    if (!(b.back() <= 0.005 * diag && a.back() <= 1.000001 * 0.005 * diag))
+      WARN(name << " at t = " << t << ": largest distances " << a.back() / diag << ", " << b.back() / diag
+                << " diagonals; samples over 0.5% of the diagonal " << Fidelity::over(a, 1.000001 * 0.005 * diag) << " and "
+                << Fidelity::over(b, 0.005 * diag) << " of " << a.size());
   }
   std::vector<int> chis;
   const int out = samples_out_of_range(M, S, T, chis);

@@ -143,6 +143,7 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   field_seconds += o.field_seconds;
   delaunay_seconds += o.delaunay_seconds;
   extract_seconds += o.extract_seconds;
+  relax_seconds += o.relax_seconds;
   turn_degrees = o.turn_degrees;
   scale = o.scale;
   align_seconds += o.align_seconds;
@@ -481,7 +482,9 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
     r.radius = 0.8 * h_mid;  // within a lattice cell: wider fits reach past the two edges' ring
     r.max_move = 0.5 * h_mid;
     r.time_scale = 0.5 * h_mid * o.layers / (t1 - t0);  // a layer interval as long as half a lattice spacing
+    const auto relax_start = Clock::now();
     st.relaxed = relax_level_set(iso.V, iso.T, movable, r).moved;
+    st.relax_seconds = seconds_since(relax_start);
   }
   AnimationManifold M = into_slabs(std::move(iso), layer_times);
   st.extract_seconds = extract_seconds + seconds_since(t);

@@ -131,6 +131,7 @@ struct TransitionStats {
   // end and the middle layers are cut while the target's end is still being built: a stage's time is
   // its longer key's, and the stages add up to more than the total.
   double conform_seconds = 0, field_seconds = 0, delaunay_seconds = 0, extract_seconds = 0;
+  double relax_seconds = 0;  // the part of extract_seconds that smooths the level set (level_set_relax.h)
   double total_seconds = 0;
 
   // Adds another transition's counts and times (a sequence's sum).
