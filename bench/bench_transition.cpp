@@ -45,12 +45,12 @@ void run(const char* name, const TriMesh& a, const TriMesh& b, bool align) {
   std::printf("%-28s %s: turn %.1f degrees, scale %.3f, align and place %.2f s\n", name, align ? "aligned" : "unaligned",
               st.turn_degrees, st.scale, st.align_seconds);
   std::printf("%-28s %5d -> %5d vertices: total %.2f s (conform and fill %.2f, field %.2f, delaunay %.2f, extract %.2f of which relax %.2f); "
-              "%d + %d + %d points, %d 4-simplices, %d Steiner points, %d flips, %d triangles not conforming, %d chords, %d key-plane fixes, %d tets\n",
+              "%d + %d + %d points, %d 4-simplices, %d Steiner points, %d flips, %d triangles not conforming, %d chords, %d key-plane fixes, %d tets, %d ends tied\n",
               name, static_cast<int>(a.V.rows()), static_cast<int>(b.V.rows()), st.total_seconds, st.conform_seconds,
               st.field_seconds, st.delaunay_seconds, st.extract_seconds, st.relax_seconds, st.source.points, st.middle_points,
               st.target.points, st.simplices, st.source.steiner + st.target.steiner, st.source.flipped + st.target.flipped,
               st.source.missing + st.target.missing, st.source.chords + st.target.chords,
-              st.source.plane_fixes + st.target.plane_fixes, st.tets);
+              st.source.plane_fixes + st.target.plane_fixes, st.tets, st.source.tied + st.target.tied);
   // Baseline in the same process: a prism manifold of the first key over enough layers to hold about
   // as many tetrahedra, sliced by the same slicer.
   const int layers = std::max(2, static_cast<int>(std::lround(st.tets / (3.0 * a.F.rows()))) + 1);

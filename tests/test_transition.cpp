@@ -100,6 +100,8 @@ void check_transition(const TriMesh& S, const TriMesh& T, const std::string& nam
   CHECK(st.relaxed > 0);
   CHECK(st.relax_seconds > 0);
   CHECK(st.relax_seconds <= st.extract_seconds);
+  // Both ends read off the Voronoi overlay (no exact tie sent one to CGAL's dD triangulation).
+  CHECK(st.source.tied + st.target.tied == 0);
   // At the keys: the slice's vertices lie on the key surface, every key vertex is a slice vertex.
   for (int k = 0; k < 2; ++k) {
     const TriMesh& key = k == 0 ? S : T;

@@ -1,6 +1,7 @@
 #include "core/anim/transition.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <future>
 #include <cmath>
@@ -25,6 +26,7 @@
 #include "core/anim/key_plane.h"
 #include "core/anim/key_time_seal.h"
 #include "core/anim/layer_extrusion.h"
+#include "core/anim/layer_pair_delaunay.h"
 #include "core/anim/layer_transients.h"
 #include "core/anim/level_set_relax.h"
 #include "core/anim/space_warp.h"
@@ -127,6 +129,7 @@ KeyBuildStats& KeyBuildStats::operator+=(const KeyBuildStats& o) {
   flipped += o.flipped;
   chords += o.chords;
   plane_fixes += o.plane_fixes;
+  tied += o.tied;
   return *this;
 }
 
@@ -208,7 +211,22 @@ struct FieldPoints {
 struct Lattice {
   Eigen::MatrixXd X;
   Eigen::VectorXd d_s, d_t;
+  Tetrahedralization delaunay;  // of X
+  MatrixX4iRow K;               // its tetrahedra, each sorted ascending, the list sorted
 };
+
+MatrixX4iRow sorted_tets(const Eigen::MatrixXi& T) {
+  std::vector<std::array<int, 4>> tets(T.rows());
+  for (Eigen::Index t = 0; t < T.rows(); ++t) {
+    for (int c = 0; c < 4; ++c) tets[t][c] = T(t, c);
+    std::sort(tets[t].begin(), tets[t].end());
+  }
+  std::sort(tets.begin(), tets.end());
+  MatrixX4iRow K(T.rows(), 4);
+  for (size_t i = 0; i < tets.size(); ++i)
+    for (int c = 0; c < 4; ++c) K(static_cast<Eigen::Index>(i), c) = tets[i][c];
+  return K;
+}
 
 Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
                        double u_last) {
@@ -225,6 +243,8 @@ Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, 
   });
   L.d_s = d_s(L.X);
   L.d_t = d_t(L.X);
+  L.delaunay = delaunay_3d(L.X);
+  L.K = sorted_tets(L.delaunay.tets);
   return L;
 }
 
@@ -263,17 +283,10 @@ Delaunay4 end_triangulation(const Eigen::MatrixXd& A, double ua, const Eigen::Ma
   return delaunay_4d(P4);
 }
 
-// A key layer's points in FieldPoints' order: the surface's, then the fill.
-Eigen::MatrixXd key_points(const KeyLayer& k) {
-  Eigen::MatrixXd P(k.surface.V.rows() + k.surface.fill.rows(), 3);
-  P << k.surface.V, k.surface.fill;
-  return P;
-}
-
-// D's point numbers: those below `split` plus a, the others minus split plus b.
-void renumber(Delaunay4& D, int split, int a, int b) {
-  for (Eigen::Index s = 0; s < D.simplices.rows(); ++s)
-    for (int c = 0; c < 5; ++c) D.simplices(s, c) += D.simplices(s, c) < split ? a : b - split;
+// S's point numbers: those below `split` plus a, the others minus split plus b.
+void renumber(MatrixX5iRow& S, int split, int a, int b) {
+  for (Eigen::Index s = 0; s < S.rows(); ++s)
+    for (int c = 0; c < 5; ++c) S(s, c) += S(s, c) < split ? a : b - split;
 }
 
 // Merges the middle layers' short-lived topology (layer_transients.h) into events at their start, on
@@ -301,11 +314,9 @@ int merge_transients(FieldPoints& p, const MatrixX4iRow& K, const TransitionOpti
 // end D0 (source points, then the first layer's lattice, renumbered here), whose facets in that
 // layer are the lattice's tetrahedra K, and K x each middle layer interval where the field changes
 // sign, by staircase prisms (after the short-lived events are merged, which changes p's values).
-MatrixX5iRow source_and_middle(FieldPoints& p, Delaunay4& D0, const TransitionOptions& o, double h_mid, MatrixX4iRow& K,
-                               int& transients) {
-  const int first = p.layer_begin.front(), n = p.lattice_size;
-  renumber(D0, p.source_end, 0, first);
-  K = hull_facets_in(D0, first, first + n);  // in lattice numbers
+MatrixX5iRow source_and_middle(FieldPoints& p, MatrixX5iRow& D0, const TransitionOptions& o, double h_mid,
+                               const MatrixX4iRow& K, int& transients) {
+  renumber(D0, p.source_end, 0, p.layer_begin.front());
   transients = merge_transients(p, K, o, h_mid);
   return extrude_tets(K, p.layer_begin, [&](Eigen::Index tet, int k) {
     int neg = 0;
@@ -314,14 +325,6 @@ MatrixX5iRow source_and_middle(FieldPoints& p, Delaunay4& D0, const TransitionOp
   });
 }
 
-// The target's end D1 (the last layer's lattice, then target points), renumbered; its facets in the
-// last layer must be K.
-void target_end_in(const FieldPoints& p, Delaunay4& D1, const MatrixX4iRow& K) {
-  const int last = p.layer_begin.back(), n = p.lattice_size;
-  renumber(D1, n, last, p.target_begin);
-  if (!(hull_facets_in(D1, last, last + n) == K))
-    throw Error("transition: the middle points' tetrahedralization differs between the two ends");
-}
 
 IsoField iso_field(const FieldPoints& p, double t0, double t1) {
   IsoField field;
@@ -384,9 +387,25 @@ struct EndSetting {
 struct KeyEnd {
   KeyLayer layer;
   KeyTets tets;
-  Delaunay4 D;
+  MatrixX5iRow D;
+  bool tied = false;
   double conform_seconds = 0, delaunay_seconds = 0;
 };
+
+// A key's end of the 4D triangulation: the Voronoi overlay of its tetrahedra and the lattice's
+// (layer_pair_delaunay.h), else, on an exact tie, CGAL's dD triangulation, which must then read the
+// lattice's tetrahedra as K.
+MatrixX5iRow end_simplices(const KeyTets& key, const Lattice& L, bool is_source, const EndSetting& at, bool& tied) {
+  const DelaunayLayer k{key.points, key.tets, key.neighbours}, l{L.X, L.delaunay.tets, L.delaunay.neighbours};
+  if (auto S = is_source ? layer_pair_delaunay(k, l) : layer_pair_delaunay(l, k)) return std::move(*S);
+  tied = true;
+  const Delaunay4 D = is_source ? end_triangulation(key.points, 0.0, L.X, at.u[1], at.time_scale)
+                                : end_triangulation(L.X, at.u[at.o.layers], key.points, 1.0, at.time_scale);
+  const int first = is_source ? static_cast<int>(key.points.rows()) : 0;
+  if (!(hull_facets_in(D, first, first + static_cast<int>(L.X.rows())) == L.K))
+    throw Error("transition: the middle points' tetrahedralization differs between the two ends");
+  return D.simplices;
+}
 
 KeyEnd key_end(const char* which, const TriMesh& key, const SignedDistance& d, double h, bool is_source,
                const EndSetting& at) {
@@ -398,13 +417,10 @@ KeyEnd key_end(const char* which, const TriMesh& key, const SignedDistance& d, d
     throw Error(std::string(which) + " key: " + x.what());
   }
   e.conform_seconds = seconds_since(t);
-  auto tets = std::async(std::launch::async, [&e] { return key_tets(e.layer.surface, e.layer.fill_values); });
-  const Eigen::MatrixXd& X = at.lattice.get().X;
   t = Clock::now();
-  e.D = is_source ? end_triangulation(key_points(e.layer), 0.0, X, at.u[1], at.time_scale)
-                  : end_triangulation(X, at.u[at.o.layers], key_points(e.layer), 1.0, at.time_scale);
+  e.tets = key_tets(e.layer.surface, e.layer.fill_values);
+  e.D = end_simplices(e.tets, at.lattice.get(), is_source, at, e.tied);
   e.delaunay_seconds = seconds_since(t);
-  e.tets = tets.get();
   return e;
 }
 
@@ -441,14 +457,14 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   FieldPoints p = field_points(S.layer, L, u, h_s, h_mid);
   st.field_seconds = lattice.seconds() + seconds_since(t);
   t = Clock::now();
-  MatrixX4iRow K;
+  const MatrixX4iRow& K = L.K;
   const MatrixX5iRow middle = source_and_middle(p, S.D, o, h_mid, K, st.transients);
   const double middle_seconds = seconds_since(t);
   t = Clock::now();
   IsoManifoldBuilder level_set;
   {
     const IsoField field = iso_field(p, t0, t1);
-    level_set.add(field, S.D.simplices);
+    level_set.add(field, S.D);
     level_set.add(field, middle);
   }
   double extract_seconds = seconds_since(t);
@@ -457,13 +473,13 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   st.conform_seconds = std::max(S.conform_seconds, T.conform_seconds);
   t = Clock::now();
   add_target_points(p, T.layer, h_t, h_mid);
-  target_end_in(p, T.D, K);
+  renumber(T.D, p.lattice_size, p.layer_begin.back(), p.target_begin);
   st.delaunay_seconds = std::max(S.delaunay_seconds + middle_seconds, T.delaunay_seconds) + seconds_since(t);
-  st.simplices = static_cast<int>(S.D.simplices.rows() + middle.rows() + T.D.simplices.rows());
+  st.simplices = static_cast<int>(S.D.rows() + middle.rows() + T.D.rows());
 
   t = Clock::now();
   const IsoField field = iso_field(p, t0, t1);
-  level_set.add(field, T.D.simplices);
+  level_set.add(field, T.D);
   IsoManifold iso = level_set.finish(field);
   const KeyPlaneStats plane_s = correct_key_plane(iso.V, iso.T, t0, S.tets);
   const KeyPlaneStats plane_t = correct_key_plane(iso.V, iso.T, t1, T.tets);
@@ -491,6 +507,8 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
 
   st.source = key_build_stats(S.layer);
   st.target = key_build_stats(T.layer);
+  st.source.tied = S.tied;
+  st.target.tied = T.tied;
   st.source.points = p.source_end;
   st.middle_points = p.lattice_size;
   st.target.points = static_cast<int>(p.points.size()) - p.target_begin;

@@ -34,7 +34,8 @@
 //
 // The 4D triangulation: each key and its nearest middle layer are joined by one 4D Delaunay
 // triangulation (Theorem 5.2.1: the key's tetrahedra and the layer's, the lattice's well-shaped
-// Delaunay tetrahedra K, survive as facets); between middle layers K x [u_k, u_k+1] is split into the
+// Delaunay tetrahedra K, survive as facets), read off the two layers' Voronoi diagrams
+// (layer_pair_delaunay.h); between middle layers K x [u_k, u_k+1] is split into the
 // staircase 4-simplices of layer_extrusion.h. (A 4D Delaunay triangulation of jittered points in
 // every layer cuts slices full of slivers; bench_transition_quality measures the slices.)
 //
@@ -114,6 +115,7 @@ struct KeyBuildStats {
   int flipped = 0;      // nearly flat quads that took their other diagonal
   int chords = 0;       // outside tetrahedra still bridging a concavity
   int plane_fixes = 0;  // tets the key's plane read wrongly, corrected (key_plane.h)
+  int tied = 0;         // 1 when an exact tie sent its end of the 4D triangulation to CGAL's dD (slower)
   KeyBuildStats& operator+=(const KeyBuildStats& o);
 };
 

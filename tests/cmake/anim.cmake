@@ -16,3 +16,5 @@ dfm_test(test_key_distance SOURCES test_key_distance.cpp LIBS dfm_anim)
 dfm_test(test_layer_transients SOURCES test_layer_transients.cpp LIBS dfm_anim)
 # Smoothing a transition's level set without changing its connectivity (level_set_relax.h).
 dfm_test(test_transition_relax SOURCES test_transition_relax.cpp LIBS dfm_anim dfm_mesh)
+# The 4D Delaunay triangulation of two layers from their 3D ones, against CGAL's dD (layer_pair_delaunay.h).
+dfm_test(test_layer_pair_delaunay SOURCES test_layer_pair_delaunay.cpp LIBS dfm_anim)
