@@ -183,13 +183,14 @@ void check_transition_key(const TriMesh& key, const std::string& what) {
 
 namespace {
 
-// Every point of the transition with its field value and local time u: the source key's (at 0), the
-// middle lattice once per layer (at u[1..K]), the target key's (at 1), with where each part starts.
+// Every point of the transition with its field value and local time u: the middle lattice once per
+// layer (at u[1..K]), the source key's (at 0), the target key's (at 1), with where each part starts
+// (the middle first: it is cut while the keys are still being built).
 struct FieldPoints {
   std::vector<Eigen::RowVector4d> points;  // x, y, z, u
   std::vector<double> values;
   std::vector<char> anchored;
-  int source_end = 0, lattice_size = 0, target_begin = 0;
+  int lattice_size = 0, source_begin = 0, source_end = 0, target_begin = 0;
   std::vector<int> layer_begin;  // per middle layer
 
   // Values are kept at least `away` from 0: a crossing that close to a point would make slivers. (Not
@@ -215,6 +216,7 @@ struct Lattice {
   MatrixX4iRow K;               // its tetrahedra, each sorted ascending, the list sorted
 };
 
+// T's tetrahedra as hull_facets_in lists them (layer_extrusion.h): corners ascending, rows sorted.
 MatrixX4iRow sorted_tets(const Eigen::MatrixXi& T) {
   std::vector<std::array<int, 4>> tets(T.rows());
   for (Eigen::Index t = 0; t < T.rows(); ++t) {
@@ -248,28 +250,26 @@ Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, 
   return L;
 }
 
-// The source key's points and the middle layers'.
-FieldPoints field_points(const KeyLayer& S, const Lattice& L, const std::vector<double>& u, double h_s, double h_mid) {
+// The middle layers' points.
+FieldPoints layer_points(const Lattice& L, const std::vector<double>& u, double h_mid) {
   FieldPoints p;
-  const double eps = kMinValue * h_mid;
-  p.add(S.surface.V, 0.0, nullptr, eps, -eps);
-  p.add(S.surface.fill, 0.0, &S.fill_values, kAway * h_s, -eps);
-  p.source_end = static_cast<int>(p.points.size());
   p.lattice_size = static_cast<int>(L.X.rows());
   for (size_t k = 1; k + 1 < u.size(); ++k) {
     const Eigen::VectorXd f = (1 - u[k]) * L.d_s + u[k] * L.d_t;
     p.layer_begin.push_back(static_cast<int>(p.points.size()));
-    p.add(L.X, u[k], &f, kAway * h_mid, -eps);
+    p.add(L.X, u[k], &f, kAway * h_mid, -kMinValue * h_mid);
   }
-  p.target_begin = static_cast<int>(p.points.size());
   return p;
 }
 
-// The target key's points after them.
-void add_target_points(FieldPoints& p, const KeyLayer& T, double h_t, double h_mid) {
+// A key's points at local time u after them (h: the key's spacing): its surface vertices, then its
+// fill. Returns where they start.
+int add_key_points(FieldPoints& p, const KeyLayer& k, double u, double h, double h_mid) {
+  const int begin = static_cast<int>(p.points.size());
   const double eps = kMinValue * h_mid;
-  p.add(T.surface.V, 1.0, nullptr, eps, -eps);
-  p.add(T.surface.fill, 1.0, &T.fill_values, kAway * h_t, -eps);
+  p.add(k.surface.V, u, nullptr, eps, -eps);
+  p.add(k.surface.fill, u, &k.fill_values, kAway * h, -eps);
+  return begin;
 }
 
 // The 4D Delaunay triangulation of A at local time ua followed by B at ub (u scaled by time_scale), in
@@ -309,22 +309,6 @@ int merge_transients(FieldPoints& p, const MatrixX4iRow& K, const TransitionOpti
     for (int i = 0; i < n; ++i) p.values[p.layer_begin[k] + i] = v[k][i];
   return st.events;
 }
-
-// The 4D triangulation (transition.h, "The 4D triangulation") up to the last middle layer: the source's
-// end D0 (source points, then the first layer's lattice, renumbered here), whose facets in that
-// layer are the lattice's tetrahedra K, and K x each middle layer interval where the field changes
-// sign, by staircase prisms (after the short-lived events are merged, which changes p's values).
-MatrixX5iRow source_and_middle(FieldPoints& p, MatrixX5iRow& D0, const TransitionOptions& o, double h_mid,
-                               const MatrixX4iRow& K, int& transients) {
-  renumber(D0, p.source_end, 0, p.layer_begin.front());
-  transients = merge_transients(p, K, o, h_mid);
-  return extrude_tets(K, p.layer_begin, [&](Eigen::Index tet, int k) {
-    int neg = 0;
-    for (int c = 0; c < 4; ++c) neg += (p.values[p.layer_begin[k] + K(tet, c)] < 0) + (p.values[p.layer_begin[k + 1] + K(tet, c)] < 0);
-    return neg > 0 && neg < 8;
-  });
-}
-
 
 IsoField iso_field(const FieldPoints& p, double t0, double t1) {
   IsoField field;
@@ -403,7 +387,7 @@ MatrixX5iRow end_simplices(const KeyTets& key, const Lattice& L, bool is_source,
                                 : end_triangulation(L.X, at.u[at.o.layers], key.points, 1.0, at.time_scale);
   const int first = is_source ? static_cast<int>(key.points.rows()) : 0;
   if (!(hull_facets_in(D, first, first + static_cast<int>(L.X.rows())) == L.K))
-    throw Error("transition: the middle points' tetrahedralization differs between the two ends");
+    throw Error("transition: the 4D triangulation's tetrahedra in the middle layer are not the lattice's");
   return D.simplices;
 }
 
@@ -424,6 +408,39 @@ KeyEnd key_end(const char* which, const TriMesh& key, const SignedDistance& d, d
   return e;
 }
 
+// The middle layers (transition.h): the lattice at each layer's time, its short-lived events merged,
+// and K x each layer interval where the field changes sign, by staircase prisms, cut into `level_set`
+// as its first part.
+struct Middle {
+  FieldPoints p;
+  int simplices = 0, transients = 0;
+  double field_seconds = 0, prism_seconds = 0, extract_seconds = 0;
+};
+
+Middle middle_layers(SharedLattice& lattice, const std::vector<double>& u, double t0, double t1, const TransitionOptions& o,
+                     double h_mid, IsoManifoldBuilder& level_set) {
+  Middle m;
+  const Lattice& L = lattice.get();
+  auto t = Clock::now();
+  m.p = layer_points(L, u, h_mid);
+  m.field_seconds = lattice.seconds() + seconds_since(t);
+  t = Clock::now();
+  FieldPoints& p = m.p;
+  m.transients = merge_transients(p, L.K, o, h_mid);
+  const MatrixX5iRow S = extrude_tets(L.K, p.layer_begin, [&](Eigen::Index tet, int k) {
+    int neg = 0;
+    for (int c = 0; c < 4; ++c)
+      neg += (p.values[p.layer_begin[k] + L.K(tet, c)] < 0) + (p.values[p.layer_begin[k + 1] + L.K(tet, c)] < 0);
+    return neg > 0 && neg < 8;
+  });
+  m.simplices = static_cast<int>(S.rows());
+  m.prism_seconds = seconds_since(t);
+  t = Clock::now();
+  level_set.add(iso_field(p, t0, t1), S);
+  m.extract_seconds = seconds_since(t);
+  return m;
+}
+
 // The field's morph between keys already in one frame (transition.h, "The field"), with o.layers
 // middle layers. Its vertices in the target key's plane have time t0 + 1.0 * (t1 - t0).
 AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target, double t1, const TransitionOptions& o,
@@ -442,40 +459,39 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   // Time scaled so that a key and its nearest layer lie two lattice spacings apart.
   const double time_scale = 4.0 * h_mid * o.layers;
 
-  // Each key's layer and its end of the 4D triangulation on its own thread (the two keys' layers
-  // often cost very different times).
+  // Each key's layer and its end of the 4D triangulation on a thread of its own (the two keys' layers
+  // often cost very different times), and the middle layers on a third, cut first.
   const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
   SharedLattice lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]);
   const EndSetting at{box, h_mid, time_scale, o, u, lattice};
+  IsoManifoldBuilder level_set;
+  auto middle = std::async(std::launch::async, middle_layers, std::ref(lattice), std::cref(u), t0, t1, std::cref(o), h_mid,
+                           std::ref(level_set));
   auto target_end = std::async(std::launch::async, key_end, "target", std::cref(target), std::cref(d_t), h_t, false, std::cref(at));
   KeyEnd S = key_end("source", source, d_s, h_s, true, at);
-  const Lattice& L = lattice.get();
+  Middle m = middle.get();
+  FieldPoints& p = m.p;
+  st.field_seconds = m.field_seconds;
+  st.transients = m.transients;
 
-  // While the target's end is still being built (often the longer one): the source's end and the
-  // middle layers, their level set cut.
+  // The source's end while the target's is still being built (often the longer one).
   auto t = Clock::now();
-  FieldPoints p = field_points(S.layer, L, u, h_s, h_mid);
-  st.field_seconds = lattice.seconds() + seconds_since(t);
+  const int ns = static_cast<int>(S.tets.points.rows());
+  p.source_begin = add_key_points(p, S.layer, 0.0, h_s, h_mid);
+  p.source_end = static_cast<int>(p.points.size());
+  renumber(S.D, ns, p.source_begin, p.layer_begin.front());
+  double delaunay_seconds = seconds_since(t);
   t = Clock::now();
-  const MatrixX4iRow& K = L.K;
-  const MatrixX5iRow middle = source_and_middle(p, S.D, o, h_mid, K, st.transients);
-  const double middle_seconds = seconds_since(t);
-  t = Clock::now();
-  IsoManifoldBuilder level_set;
-  {
-    const IsoField field = iso_field(p, t0, t1);
-    level_set.add(field, S.D);
-    level_set.add(field, middle);
-  }
-  double extract_seconds = seconds_since(t);
+  level_set.add(iso_field(p, t0, t1), S.D);
+  double extract_seconds = m.extract_seconds + seconds_since(t);
 
   KeyEnd T = target_end.get();
   st.conform_seconds = std::max(S.conform_seconds, T.conform_seconds);
   t = Clock::now();
-  add_target_points(p, T.layer, h_t, h_mid);
+  p.target_begin = add_key_points(p, T.layer, 1.0, h_t, h_mid);
   renumber(T.D, p.lattice_size, p.layer_begin.back(), p.target_begin);
-  st.delaunay_seconds = std::max(S.delaunay_seconds + middle_seconds, T.delaunay_seconds) + seconds_since(t);
-  st.simplices = static_cast<int>(S.D.rows() + middle.rows() + T.D.rows());
+  st.delaunay_seconds = std::max({S.delaunay_seconds, T.delaunay_seconds, m.prism_seconds}) + delaunay_seconds + seconds_since(t);
+  st.simplices = static_cast<int>(S.D.rows() + m.simplices + T.D.rows());
 
   t = Clock::now();
   const IsoField field = iso_field(p, t0, t1);
@@ -509,7 +525,7 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   st.target = key_build_stats(T.layer);
   st.source.tied = S.tied;
   st.target.tied = T.tied;
-  st.source.points = p.source_end;
+  st.source.points = p.source_end - p.source_begin;
   st.middle_points = p.lattice_size;
   st.target.points = static_cast<int>(p.points.size()) - p.target_begin;
   st.source.plane_fixes = plane_s.bridges + plane_s.carved;

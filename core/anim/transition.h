@@ -129,9 +129,10 @@ struct TransitionStats {
   int tets = 0;                                  // of the resulting manifold
   double turn_degrees = 0, scale = 1;           // the placement's (the last transition's in a sum)
   double align_seconds = 0;                      // moments, warp, and placing the manifold's vertices
-  // Each key's conforming, filling and 4D Delaunay end run on a thread of their own, and the source's
-  // end and the middle layers are cut while the target's end is still being built: a stage's time is
-  // its longer key's, and the stages add up to more than the total.
+  // Each key's conforming, filling and 4D Delaunay end run on a thread of their own and the middle
+  // layers on a third (field: the lattice and its values; extract includes cutting the middle while the
+  // keys are still being built): a stage's time is its longest thread's, and the stages add up to more
+  // than the total.
   double conform_seconds = 0, field_seconds = 0, delaunay_seconds = 0, extract_seconds = 0;
   double relax_seconds = 0;  // the part of extract_seconds that smooths the level set (level_set_relax.h)
   double total_seconds = 0;
