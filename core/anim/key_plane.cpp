@@ -7,7 +7,7 @@
 #include <map>
 #include <unordered_map>
 
-#include "core/anim/surface_delaunay.h"
+#include "core/anim/delaunay_3d.h"
 #include "core/anim/tet_faces.h"
 #include "core/bind/winding_bvh.h"
 
@@ -114,27 +114,21 @@ std::vector<int> label_tets(const Chain& D, int sigma, const KeyTets& key, int& 
 }  // namespace
 
 KeyTets key_tets(const ConformingSurface& s, const Eigen::VectorXd& fill_values) {
-  const SurfaceDelaunay sd = surface_delaunay(s);
-  const WindingTree tree = build_winding_tree(s.V, s.F);
   KeyTets k;
   k.points.resize(s.V.rows() + s.fill.rows(), 3);
   k.points << s.V, s.fill;
-  std::map<Delaunay3::Cell_handle, int> index;
-  for (auto c = sd.dt.finite_cells_begin(); c != sd.dt.finite_cells_end(); ++c)
-    index.emplace(c, static_cast<int>(index.size()));
-  const int n = static_cast<int>(index.size());
-  k.tets.resize(n, 4);
-  k.neighbours.resize(n, 4);
-  k.inside.resize(n);
-  for (const auto& [c, t] : index) {
+  Tetrahedralization d = delaunay_3d(k.points);
+  k.tets = std::move(d.tets);
+  k.neighbours = std::move(d.neighbours);
+  const WindingTree tree = build_winding_tree(s.V, s.F);
+  k.inside.resize(k.tets.rows());
+  for (Eigen::Index t = 0; t < k.tets.rows(); ++t) {
     Eigen::Vector3d m = Eigen::Vector3d::Zero();
     int fill = -1;
     for (int j = 0; j < 4; ++j) {
-      const int p = k.tets(t, j) = c->vertex(j)->info();
+      const int p = k.tets(t, j);
       m += k.points.row(p).transpose() / 4;
       if (p >= s.V.rows()) fill = p - static_cast<int>(s.V.rows());
-      const auto nb = c->neighbor(j);
-      k.neighbours(t, j) = sd.dt.is_infinite(nb) ? -1 : index.at(nb);
     }
     k.inside[t] = fill >= 0 ? fill_values[fill] < 0 : winding_number(tree, m) > 0.5;
   }

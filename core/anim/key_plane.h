@@ -34,7 +34,7 @@ struct KeyTets {
   std::vector<char> inside;    // per tet: inside the key (winding number of its centroid)
 };
 
-// The Delaunay tetrahedralization of a conforming surface and its fill points (surface_delaunay.h);
+// The Delaunay tetrahedralization of a conforming surface and its fill points (delaunay_3d.h);
 // a tet with a fill point is on that point's side (fill_values: their signed distances, negative
 // inside), one with all corners on the surface where the winding number puts its centroid.
 KeyTets key_tets(const ConformingSurface& s, const Eigen::VectorXd& fill_values);

@@ -6,40 +6,13 @@
 #include <optional>
 #include <vector>
 
-#include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/Interval_nt.h>
-#include <CGAL/Triangulation_cell_base_with_info_3.h>
-#include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include "core/mesh/mesh_info.h"
 #include "core/util/error.h"
 
 namespace dfm {
-
-Tetrahedralization delaunay_3d(const Eigen::MatrixXd& X) {
-  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-  using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
-  using DT = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
-  std::vector<std::pair<K::Point_3, int>> pts;
-  pts.reserve(X.rows());
-  for (int i = 0; i < X.rows(); ++i) pts.push_back({K::Point_3(X(i, 0), X(i, 1), X(i, 2)), i});
-  DT dt(pts.begin(), pts.end());
-  if (dt.number_of_vertices() != static_cast<size_t>(X.rows())) throw Error("3D Delaunay: two points coincide");
-  if (dt.dimension() != 3) throw Error("3D Delaunay: the points are coplanar");
-  int n = 0;
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = dt.is_infinite(c) ? -1 : n++;
-  Tetrahedralization d;
-  d.tets.resize(n, 4);
-  d.neighbours.resize(n, 4);
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
-    for (int j = 0; j < 4; ++j) {
-      d.tets(c->info(), j) = c->vertex(j)->info();
-      d.neighbours(c->info(), j) = c->neighbor(j)->info();
-    }
-  return d;
-}
 
 namespace {
 
@@ -121,8 +94,9 @@ struct Tie {};  // an exact tie: the triangulation is not unique
 // points numbered from a0, B's from b0.
 class HalfOverlay {
  public:
-  HalfOverlay(const DelaunayLayer& a, const DelaunayLayer& b) : A_(a), B_(b) {
-    adjacency();
+  HalfOverlay(const DelaunayLayer& a, const DelaunayLayer& b)
+      : A_(a), B_(b), adj_(vertex_neighbours(b.tets, static_cast<int>(b.points.rows()))) {
+    points();
     centres();
   }
 
@@ -167,24 +141,9 @@ class HalfOverlay {
   }
 
  private:
-  void adjacency() {
-    const Eigen::MatrixXi& T = B_.tets;
-    const int n = static_cast<int>(B_.points.rows());
-    std::vector<std::pair<int, int>> e;
-    e.reserve(12 * T.rows());
-    for (int t = 0; t < T.rows(); ++t)
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-          if (i != j) e.push_back({T(t, i), T(t, j)});
-    std::sort(e.begin(), e.end());
-    e.erase(std::unique(e.begin(), e.end()), e.end());
-    begin_.assign(n + 1, 0);
-    for (const auto& p : e) ++begin_[p.first + 1];
-    for (int v = 0; v < n; ++v) begin_[v + 1] += begin_[v];
-    adj_.resize(e.size());
-    for (size_t k = 0; k < e.size(); ++k) adj_[k] = e[k].second;
-    bp_.resize(n);
-    for (int v = 0; v < n; ++v) bp_[v] = row<double>(B_.points, v);
+  void points() {
+    bp_.resize(B_.points.rows());
+    for (size_t v = 0; v < bp_.size(); ++v) bp_[v] = row<double>(B_.points, static_cast<int>(v));
   }
 
   // Each A tetrahedron's circumcentre in doubles, and how far (per coordinate) the exact one may lie.
@@ -254,8 +213,8 @@ class HalfOverlay {
   int walk_to_nearest(int t, int q) {
     for (bool moved = true; moved;) {
       moved = false;
-      for (int k = begin_[q]; k < begin_[q + 1] && !moved; ++k)
-        if (farther_sign(t, q, adj_[k]) < 0) q = adj_[k], moved = true;
+      for (size_t k = 0; k < adj_[q].size() && !moved; ++k)
+        if (farther_sign(t, q, adj_[q][k]) < 0) q = adj_[q][k], moved = true;
     }
     return q;
   }
@@ -329,8 +288,7 @@ class HalfOverlay {
         if (s < 0) best = r, hb = h, gb = g;
       };
       int level[16], nlevel = 0;  // nearly parallel to their bisectors: considered last
-      for (int k = begin_[q]; k < begin_[q + 1]; ++k) {
-        const int r = adj_[k];
+      for (const int r : adj_[q]) {
         if (r == prev) continue;
         const Bounded g = G(q, r);
         const int gs = sign_of(g);
@@ -363,7 +321,7 @@ class HalfOverlay {
   }
 
   const DelaunayLayer &A_, &B_;
-  std::vector<int> begin_, adj_;  // B's Delaunay neighbours
+  std::vector<std::vector<int>> adj_;  // B's Delaunay neighbours
   std::vector<P3<double>> bp_;    // B's points
   std::vector<P3<double>> c_;     // A's circumcentres
   std::vector<double> e_;

@@ -18,19 +18,10 @@
 
 #include <Eigen/Core>
 
+#include "core/anim/delaunay_3d.h"
 #include "core/anim/delaunay_4d.h"
 
 namespace dfm {
-
-// A point set's Delaunay tetrahedralization: tets (#T x 4 point indices), neighbours(t, i) the tet
-// across the face opposite corner i, -1 on the hull.
-struct Tetrahedralization {
-  Eigen::MatrixXi tets, neighbours;
-};
-
-// CGAL's (exact predicates, ties broken by symbolic perturbation). points: #P x 3, distinct, not
-// coplanar; throws dfm::Error otherwise.
-Tetrahedralization delaunay_3d(const Eigen::MatrixXd& points);
 
 // One layer: its points (#P x 3) and their Delaunay tetrahedralization (as Tetrahedralization's).
 struct DelaunayLayer {
