@@ -7,7 +7,8 @@
 // Arguments: [all|bunny|torus|spheres|teddy] [layers] [spacing] [grid spacing in lattice spacings,
 // default 0.5] [relax rounds (TransitionOptions::relax_rounds; 0 for the unsmoothed level set)]
 // [close look: the Euler characteristic of the slices and of the field every 1/192 from there; -1 for
-// none] [TransitionOptions::transient_life; 0 keeps the lattice's short-lived topology].
+// none] [TransitionOptions::transient_life; 0 keeps the lattice's short-lived topology]
+// [TransitionOptions::crease_rounding; 0 blends the signed distances themselves].
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 
 #include "core/anim/key_alignment.h"
 #include "core/anim/key_distance.h"
+#include "core/anim/rounded_distance.h"
 #include "core/anim/manifold.h"
 #include "core/anim/slice.h"
 #include "core/anim/slice_table.h"
@@ -167,7 +169,9 @@ void print_field_euler(const TriMesh& a, const TriMesh& b) {
   for (int i = 0, r = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
       for (int k = 0; k < n[2]; ++k) G.row(r++) = lo + Eigen::RowVector3d(i, j, k) * h;
-  const Eigen::VectorXd d_s = SignedDistance(a.V, a.F)(G), d_t = SignedDistance(bV, b.F)(G);
+  const SignedDistance distance_s(a.V, a.F), distance_t(bV, b.F);
+  const Eigen::VectorXd d_s = rounded_distance(distance_s, G, distance_s(G), options.crease_rounding);
+  const Eigen::VectorXd d_t = rounded_distance(distance_t, G, distance_t(G), options.crease_rounding);
   std::printf("  the documented field's zero set, grid %.4g:     ", h);
   for (int i = 0; i <= 20; ++i) std::printf(" %d", dfm::test::euler_characteristic(zero_set_triangles(n, d_s, d_t, i / 20.0)));
   std::printf("\n");
@@ -215,6 +219,7 @@ int main(int argc, char** argv) {
   if (argc > 5) options.relax_rounds = std::atoi(argv[5]);
   if (argc > 6) window = std::atof(argv[6]);
   if (argc > 7) options.transient_life = std::atof(argv[7]);
+  if (argc > 8) options.crease_rounding = std::atof(argv[8]);
   const std::string dir = DFM_DATA_DIR;
   if (which == "all" || which == "bunny")
     run("bunny to 3holes", dfm::test::into_unit_box(read_surface(dir + "/bunny.off")),

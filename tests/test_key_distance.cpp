@@ -1,6 +1,7 @@
 // The keys' signed distance (core/anim/key_distance.h): its magnitude against a box's closed form,
 // its sign against the winding number summed here triangle by triangle (Van Oosterom and Strackee's
-// solid angle), at random points and just off the surface of a torus and two spheres.
+// solid angle), at random points and just off the surface of a torus and two spheres; the rounded
+// distance (core/anim/rounded_distance.h) against the box's closed form averaged over the octahedron.
 #include <cmath>
 #include <random>
 
@@ -8,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/anim/key_distance.h"
+#include "core/anim/rounded_distance.h"
 #include "tests/key_mesh_test_meshes.h"
 #include "tests/transition_test_meshes.h"
 #include "tests/volume_test_meshes.h"
@@ -56,26 +58,43 @@ Eigen::MatrixXd probes(const TriMesh& m, int random, double off) {
   return P;
 }
 
-}  // namespace
-
-TEST_CASE("key distance: a box's signed distance, edges and corners nearest included", "[transition]") {
+// The box [-1, 1]^3 with outward triangles.
+TriMesh unit_box() {
   TriMesh box;
   box.V.resize(8, 3);
   for (int i = 0; i < 8; ++i) box.V.row(i) << (i & 1 ? 1 : -1), (i & 2 ? 1 : -1), (i & 4 ? 1 : -1);
   box.F.resize(12, 3);
   box.F << 0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5;
-  const SignedDistance d(box.V, box.F);
+  return box;
+}
+
+// Its signed distance in closed form: outside, the distance to the nearest face, edge or corner;
+// inside, minus the distance to the nearest face.
+double box_distance(const Eigen::Vector3d& p) {
+  const Eigen::Array3d q = p.array().abs() - 1.0;
+  return q.max(0.0).matrix().norm() + std::min(q.maxCoeff(), 0.0);
+}
+
+// Random points in [-2.5, 2.5]^3.
+Eigen::MatrixXd box_probes(int n) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-2.5, 2.5);
-  Eigen::MatrixXd P(3000, 3);
+  Eigen::MatrixXd P(n, 3);
   for (int i = 0; i < P.rows(); ++i) P.row(i) << u(rng), u(rng), u(rng);
+  return P;
+}
+
+}  // namespace
+
+TEST_CASE("key distance: a box's signed distance, edges and corners nearest included", "[transition]") {
+  const TriMesh box = unit_box();
+  const SignedDistance d(box.V, box.F);
+  const Eigen::MatrixXd P = box_probes(3000);
   const Eigen::VectorXd got = d(P);
   int outside_corner = 0;
   for (int i = 0; i < P.rows(); ++i) {
-    const Eigen::Array3d q = P.row(i).transpose().array().abs() - 1.0;
-    const double expected = q.max(0.0).matrix().norm() + std::min(q.maxCoeff(), 0.0);
-    outside_corner += (q > 0).all();
-    CHECK(got[i] == Approx(expected).margin(1e-12));
+    outside_corner += (P.row(i).array().abs() > 1.0).all();
+    CHECK(got[i] == Approx(box_distance(P.row(i).transpose())).margin(1e-12));
   }
   CHECK(outside_corner > 100);  // many points whose nearest feature is a corner
 }
@@ -96,4 +115,36 @@ TEST_CASE("key distance: signs agree with the winding number on curved, non-conv
     }
     CHECK(wrong == 0);
   }
+}
+
+TEST_CASE("rounded distance: the box's distance averaged over the octahedron at half its value", "[transition]") {
+  const TriMesh box = unit_box();
+  const SignedDistance d(box.V, box.F);
+  const Eigen::MatrixXd P = box_probes(400);
+  const Eigen::VectorXd dp = d(P), s = rounded_distance(d, P, dp, 0.5);
+  for (int i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector3d p = P.row(i).transpose();
+    const double r = 0.5 * std::abs(box_distance(p));
+    double mean = 0;
+    for (int axis = 0; axis < 3; ++axis)
+      for (double side : {-1.0, 1.0}) mean += box_distance(p + side * r * Eigen::Vector3d::Unit(axis)) / 6;
+    INFO("point " << p.transpose());
+    CHECK(s[i] == Approx(mean).margin(1e-9));
+    CHECK((s[i] < 0) == (dp[i] < 0));  // the octahedron stays on the point's side
+  }
+  // The centre's crease (six faces nearest at once) is rounded: d = -1 there, s = -1/2.
+  const Eigen::MatrixXd centre = Eigen::RowVector3d::Zero();
+  CHECK(rounded_distance(d, centre, d(centre), 0.5)[0] == Approx(-0.5).margin(1e-12));
+  // Where d is linear (near the middle of a face, inside and out) the rule returns d.
+  Eigen::MatrixXd faces(2, 3);
+  faces << 0.1, -0.05, 1.3, 0.05, 0.1, 0.7;
+  const Eigen::VectorXd df = d(faces);
+  CHECK(rounded_distance(d, faces, df, 0.5).isApprox(df, 1e-12));
+  // No rounding is d itself; on the surface the value is 0.
+  CHECK(rounded_distance(d, P, dp, 0.0) == dp);
+  Eigen::MatrixXd on_face(1, 3);
+  on_face << 1, 0.2, -0.3;
+  CHECK(std::abs(rounded_distance(d, on_face, d(on_face), 0.5)[0]) < 1e-12);
+  CHECK_THROWS_WITH(rounded_distance(d, P, dp, 1.0), Catch::Contains("[0, 1)"));
+  CHECK_THROWS_WITH(rounded_distance(d, P, dp.head(3), 0.5), Catch::Contains("one distance per point"));
 }

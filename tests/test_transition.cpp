@@ -694,6 +694,13 @@ TEST_CASE("transition keys: hostile input names the key and the problem", "[tran
   CHECK_THROWS_WITH(build_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1), 0,
                                      dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), 1, o),
                     Catch::Contains("transients' life"));
+  for (double rounding : {-0.1, 1.0}) {
+    TransitionOptions r;
+    r.crease_rounding = rounding;
+    CHECK_THROWS_WITH(build_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1), 0,
+                                       dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), 1, r),
+                      Catch::Contains("crease rounding"));
+  }
 }
 
 TEST_CASE("manifold sequence: a transition asked for again is the same manifold; other keys are not", "[transition]") {

@@ -77,8 +77,8 @@ double distance_to_mesh(const Eigen::Vector3d& p, const TriMesh& m) {
 // P_u(x) = c0 + u (c1 - c0) + s(u) R(u) (x - c0), s(u) = (1 - u) + u scale, R(u) the turn by u times R's
 // angle about its axis.
 struct PlacedMorph {
-  PlacedMorph(const TriMesh& S, const TriMesh& T, const KeyPlacement& p)
-      : p(p), reference{source_frame(T.V, p), T.F, {}}, d_s(S.V, S.F), d_t(reference.V, reference.F) {}
+  PlacedMorph(const TriMesh& S, const TriMesh& T, const KeyPlacement& p, double c)
+      : p(p), c(c), reference{source_frame(T.V, p), T.F, {}}, d_s(S.V, S.F), d_t(reference.V, reference.F) {}
   static Eigen::MatrixXd source_frame(const Eigen::MatrixXd& X, const KeyPlacement& p) {
     return ((X.rowwise() - p.c1.transpose()) * p.R / p.scale).rowwise() + p.c0.transpose();
   }
@@ -91,9 +91,22 @@ struct PlacedMorph {
   Eigen::Vector3d unplaced(const Eigen::Vector3d& y, double u) const {
     return p.c0 + R(u).transpose() * (y - p.c0 - u * (p.c1 - p.c0)) / s(u);
   }
-  Eigen::VectorXd field(const Eigen::MatrixXd& X, double u) const { return (1 - u) * d_s(X) + u * d_t(X); }
+  // d averaged over the six points at c |d(x)| from x along the axes (rounded_distance.h's rule).
+  Eigen::VectorXd rounded(const SignedDistance& d, const Eigen::MatrixXd& X) const {
+    const Eigen::VectorXd v = d(X);
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(X.rows());
+    for (int axis = 0; axis < 3; ++axis)
+      for (double side : {-1.0, 1.0}) {
+        Eigen::MatrixXd Y = X;
+        Y.col(axis) += side * c * v.cwiseAbs();
+        sum += d(Y) / 6;
+      }
+    return sum;
+  }
+  Eigen::VectorXd field(const Eigen::MatrixXd& X, double u) const { return (1 - u) * rounded(d_s, X) + u * rounded(d_t, X); }
   double field(const Eigen::Vector3d& x, double u) const { return field(Eigen::MatrixXd(x.transpose()), u)[0]; }
   KeyPlacement p;
+  double c;  // TransitionOptions::crease_rounding
   TriMesh reference;
   SignedDistance d_s, d_t;
 };
@@ -124,8 +137,32 @@ double zero_along(const PlacedMorph& m, const Eigen::Vector3d& x, const Eigen::V
   return HUGE_VAL;
 }
 
-// Sampled distances, sorted: slice vertices to the zero set (along F's gradient, up to 4 tol; farther
-// reads infinity) and zero-set points to the slice.
+// Directions spread over the sphere (a Fibonacci spiral).
+std::vector<Eigen::Vector3d> sphere_directions(int n) {
+  std::vector<Eigen::Vector3d> d;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1 - (2 * i + 1.0) / n, r = std::sqrt(1 - z * z), phi = i * M_PI * (3 - std::sqrt(5.0));
+    d.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+  }
+  return d;
+}
+
+// An upper bound on x's distance to the zero set, up to `reach`: the smaller of the crossing along
+// +-g (zero_along) and the smallest radius of reach / 8, reach / 4, ..., reach at which one of the
+// directions meets the other sign (F is continuous, so the zero set cuts that radius). Where F's
+// gradient nearly vanishes the zero set's nearest point need not lie along it.
+double zero_near(const PlacedMorph& m, const Eigen::Vector3d& x, const Eigen::Vector3d& g, double u, double reach) {
+  static const std::vector<Eigen::Vector3d> dirs = sphere_directions(64);
+  const double along = zero_along(m, x, g, u, reach);
+  const bool neg = m.field(x, u) < 0;
+  for (double r = reach / 8; r <= reach && r < along; r *= 2)
+    for (const Eigen::Vector3d& d : dirs)
+      if ((m.field(Eigen::Vector3d(x + r * d), u) < 0) != neg) return r;
+  return along;
+}
+
+// Sampled distances, sorted: slice vertices to the zero set (zero_near, up to 4 tol; farther reads
+// infinity) and zero-set points to the slice.
 struct Fidelity {
   std::vector<double> slice_to_zero_set, zero_set_to_slice;
   double at(const std::vector<double>& d, int p) const { return d[d.size() * p / 100]; }
@@ -135,8 +172,8 @@ struct Fidelity {
   }
 };
 
-// Both distances, sampled: `samples` slice vertices' distances to the zero set along F's gradient
-// (up to 4 tol; farther reads infinity), and `samples` zero-set points bisected on x
+// Both distances, sampled: `samples` slice vertices' distances to the zero set (zero_near: along
+// F's gradient or any of 64 directions, up to 4 tol; farther reads infinity), and `samples` zero-set points bisected on x
 // edges of a grid of `cells` cells across the box.
 Fidelity fidelity(const PlacedMorph& m, const TriMesh& slice, double u, const Eigen::RowVector3d& lo,
                   const Eigen::RowVector3d& hi, double tol, int cells, int samples) {
@@ -151,7 +188,7 @@ Fidelity fidelity(const PlacedMorph& m, const TriMesh& slice, double u, const Ei
     for (int d = 0; d < 3; ++d)
       g[d] = m.field(Eigen::Vector3d(x + e * Eigen::Vector3d::Unit(d)), u) - m.field(Eigen::Vector3d(x - e * Eigen::Vector3d::Unit(d)), u);
     g.normalize();
-    out.slice_to_zero_set.push_back(s * zero_along(m, x, g, u, 4 * tol / s));
+    out.slice_to_zero_set.push_back(s * zero_near(m, x, g, u, 4 * tol / s));
   }
   const double h = (hi - lo).maxCoeff() / cells;
   const Eigen::Array3i n = ((hi - lo) / h).array().ceil().cast<int>().transpose() + 1;
@@ -220,7 +257,7 @@ void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptio
   if (o.align) REQUIRE(st.scale == Approx(radius_of_gyration(T) / radius_of_gyration(S)).epsilon(1e-9));
   REQUIRE(st.scale == Approx(placement.scale).epsilon(1e-12));
   REQUIRE(st.turn_degrees == Approx(Eigen::AngleAxisd(placement.R).angle() * 180 / M_PI).margin(1e-9));
-  const PlacedMorph morph(S, T, placement);
+  const PlacedMorph morph(S, T, placement, o.crease_rounding);
   const double diag = joint_diagonal(S, T);
   const Smoothness bound = rougher(S, T);
   Eigen::RowVector3d lo = S.V.colwise().minCoeff().cwiseMin(morph.reference.V.colwise().minCoeff());
@@ -242,11 +279,12 @@ void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptio
     CHECK(enclosed_volume(s.V, s.F) > 0);
     CHECK(got.p90 <= bound.p90);
     CHECK(got.p99 <= bound.p99);
-    // The acceptance asks the largest within 0.5% of the diagonal; where the keys' distance gradients
-    // nearly cancel (thin parts about to vanish or join) the lattice's piecewise linear blend still
-    // differs from the blend by up to a lattice spacing, so nine in ten samples are held to it.
-    CHECK(fid.at(a, 90) <= 1.000001 * 0.005 * diag);
-    CHECK(fid.at(b, 90) <= 1.000001 * 0.005 * diag);
+    // The acceptance asks the largest within 0.5% of the diagonal; where the keys' rounded distances'
+    // gradients nearly cancel (thin parts about to vanish, a hole about to open) the lattice's
+    // piecewise linear blend still differs from the blend by a fraction of a lattice spacing: at most 5
+    // of 300 samples per slice read up to 1.5 times the bound. Nearly all are held to it.
+    CHECK(fid.at(a, 97) <= 1.000001 * 0.005 * diag);
+    CHECK(fid.at(b, 97) <= 1.000001 * 0.005 * diag);
     if (!(b.back() <= 0.005 * diag && a.back() <= 1.000001 * 0.005 * diag))
       WARN(name << " at t = " << t << ": largest distances " << a.back() / diag << ", " << b.back() / diag
                 << " diagonals; samples over 0.5% of the diagonal " << Fidelity::over(a, 1.000001 * 0.005 * diag) << " and "
@@ -265,7 +303,7 @@ void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptio
 TEST_CASE("in-betweens: a sphere to a torus, smooth, on the documented field's zero set", "[transition][heavy]") {
   // The torus, a regular grid, reads 7.2 degrees at its 90th and 99th percentiles alike; where its
   // hole opens (t near 0.7) the slice curves more tightly than either key, and the lattice's facets
-  // there reach 11.9 degrees at the 99th at t = 0.75, within the bound of 12.2.
+  // there reach 10.7 degrees at the 99th at t = 0.75, within the bound of 12.2.
   check_in_betweens(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.45, 4),
                     dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.12, 100, 50), {}, "sphere to torus");
 }

@@ -29,6 +29,7 @@
 #include "core/anim/layer_pair_delaunay.h"
 #include "core/anim/layer_transients.h"
 #include "core/anim/level_set_relax.h"
+#include "core/anim/rounded_distance.h"
 #include "core/anim/space_warp.h"
 #include "core/anim/transition_points.h"
 #include "core/anim/surface_checks.h"
@@ -208,10 +209,10 @@ struct FieldPoints {
 };
 
 // The middle lattice where any middle layer's zero set may pass (transition.h), and its points'
-// signed distances to both keys.
+// rounded signed distances to both keys (rounded_distance.h).
 struct Lattice {
   Eigen::MatrixXd X;
-  Eigen::VectorXd d_s, d_t;
+  Eigen::VectorXd d_s, d_t;  // rounded
   Tetrahedralization delaunay;  // of X
   MatrixX4iRow K;               // its tetrahedra, each sorted ascending, the list sorted
 };
@@ -231,20 +232,26 @@ MatrixX4iRow sorted_tets(const Eigen::MatrixXi& T) {
 }
 
 Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
-                       double u_last) {
+                       double u_last, double rounding) {
   Lattice L;
-  // The smallest |blend| over [u_first, u_last]: 0 where it changes sign (it is linear in u).
-  L.X = lattice_band_points(box, h_mid, 1.2 * h_mid, [&](const Eigen::MatrixXd& Y) {
+  // A lower bound on the smallest |blend| over [u_first, u_last] (0 where it may change sign; it is
+  // linear in u): a rounded distance is within rounding |d| of d. Divided by its Lipschitz constant,
+  // as lattice_band_points assumes 1.
+  const double lipschitz = 1 + rounding;
+  L.X = lattice_band_points(box, h_mid, 1.2 * h_mid / lipschitz, [&](const Eigen::MatrixXd& Y) {
     const Eigen::VectorXd s = d_s(Y), e = d_t(Y);
     Eigen::VectorXd g(Y.rows());
     for (Eigen::Index i = 0; i < Y.rows(); ++i) {
       const double a = (1 - u_first) * s[i] + u_first * e[i], b = (1 - u_last) * s[i] + u_last * e[i];
-      g[i] = (a < 0) != (b < 0) ? 0.0 : std::min(std::abs(a), std::abs(b));
+      const double sa = rounding * ((1 - u_first) * std::abs(s[i]) + u_first * std::abs(e[i]));
+      const double sb = rounding * ((1 - u_last) * std::abs(s[i]) + u_last * std::abs(e[i]));
+      const bool positive = a - sa > 0 && b - sb > 0, negative = a + sa < 0 && b + sb < 0;
+      g[i] = positive || negative ? std::min(std::abs(a) - sa, std::abs(b) - sb) / lipschitz : 0.0;
     }
     return g;
   });
-  L.d_s = d_s(L.X);
-  L.d_t = d_t(L.X);
+  L.d_s = rounded_distance(d_s, L.X, d_s(L.X), rounding);
+  L.d_t = rounded_distance(d_t, L.X, d_t(L.X), rounding);
   L.delaunay = delaunay_3d(L.X);
   L.K = sorted_tets(L.delaunay.tets);
   return L;
@@ -334,12 +341,12 @@ KeyBuildStats key_build_stats(const KeyLayer& k) {
 class SharedLattice {
  public:
   SharedLattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
-                double u_last)
-      : box_(box), h_mid_(h_mid), d_s_(d_s), d_t_(d_t), u_first_(u_first), u_last_(u_last) {}
+                double u_last, double rounding)
+      : box_(box), h_mid_(h_mid), d_s_(d_s), d_t_(d_t), u_first_(u_first), u_last_(u_last), rounding_(rounding) {}
   const Lattice& get() {
     std::call_once(once_, [&] {
       const auto t = Clock::now();
-      L_ = middle_lattice(box_, h_mid_, d_s_, d_t_, u_first_, u_last_);
+      L_ = middle_lattice(box_, h_mid_, d_s_, d_t_, u_first_, u_last_, rounding_);
       seconds_ = seconds_since(t);
     });
     return L_;
@@ -350,7 +357,7 @@ class SharedLattice {
   const Box& box_;
   double h_mid_;
   const SignedDistance &d_s_, &d_t_;
-  double u_first_, u_last_;
+  double u_first_, u_last_, rounding_;
   std::once_flag once_;
   Lattice L_;
   double seconds_ = 0;
@@ -462,7 +469,7 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   // Each key's layer and its end of the 4D triangulation on a thread of its own (the two keys' layers
   // often cost very different times), and the middle layers on a third, cut first.
   const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
-  SharedLattice lattice(box, h_mid, d_s, d_t, u[1], u[o.layers]);
+  SharedLattice lattice(box, h_mid, d_s, d_t, u[1], u[o.layers], o.crease_rounding);
   const EndSetting at{box, h_mid, time_scale, o, u, lattice};
   IsoManifoldBuilder level_set;
   auto middle = std::async(std::launch::async, middle_layers, std::ref(lattice), std::cref(u), t0, t1, std::cref(o), h_mid,
@@ -623,6 +630,7 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   if (o.layers < 1 || !(o.spacing > 0)) throw Error("transition: needs at least one layer and a positive spacing");
   if (!(o.max_turn_per_layer > 0)) throw Error("transition: the turn per layer must be positive");
   if (!(o.transient_life >= 0)) throw Error("transition: the transients' life must be 0 or more");
+  if (!(o.crease_rounding >= 0 && o.crease_rounding < 1)) throw Error("transition: the crease rounding must be in [0, 1)");
   TransitionStats st;
   const TriMesh source = compacted(source_in), target = compacted(target_in);
   if (const auto bad = transition_pair_problem(source, target, o.pairs))

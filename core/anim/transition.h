@@ -12,7 +12,11 @@
 // - The warp (space_warp.h; TransitionOptions::pairs): W with W(x0_i) = A(x1_i) for each picked pair,
 //   W_u(x) = x + u (W(x) - x). Without pairs W is the identity.
 // - The field, in S's frame: the reference target T^ has T's triangles and vertices W^-1(A(v)), and
-//   F(r, u) = (1 - u) d_S(r) + u d_T^(r), d the signed distance (negative inside).
+//   F(r, u) = (1 - u) s_S(r) + u s_T^(r), d the signed distance (negative inside) and s(r) the mean
+//   of d at the six points r +- c |d(r)| e_x, e_y, e_z (TransitionOptions::crease_rounding c;
+//   rounded_distance.h): s vanishes exactly where d does and has its sign, but the creases d has
+//   on the key's medial axis are rounded. (The keys' own layers carry d itself: at u = 0 and 1
+//   the zero set is the key either way.)
 // - The in-between at u is P_u(W_u({r : F(r, u) = 0})). A picked pair's point travels along
 //   P_u(x0 + u (A(x1) - x0)): x0 is on S and (nearly) on T^, so F(x0, u) is about 0 throughout.
 //
@@ -90,10 +94,15 @@ struct TransitionOptions {
   // 4), each cutting its arcs by chords (bench_transition: a box turned a quarter).
   double max_turn_per_layer = 15;
   // Rounds of smoothing the middle layers' zero set (level_set_relax.h); 0 for none.
-  int relax_rounds = 2;
+  int relax_rounds = 1;
   // Topology the lattice reads for less than this part of the transition (a gap closing through
   // bridges and pockets) happens at once, where it starts (layer_transients.h); 0 keeps it.
   double transient_life = 0.08;
+  // The keys' distances are averaged over spheres of this radius times the distance before they are
+  // blended (rounded_distance.h; above: "The field"): the blend's creases on the keys' medial axes,
+  // which show as notches and knife-edged rims in the in-betweens, are rounded. 0 blends the signed
+  // distances themselves; less than 1.
+  double crease_rounding = 0.5;
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
   Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
@@ -101,7 +110,7 @@ struct TransitionOptions {
   bool operator==(const TransitionOptions& o) const {
     return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds &&
            align == o.align && max_turn_per_layer == o.max_turn_per_layer && relax_rounds == o.relax_rounds &&
-           transient_life == o.transient_life &&
+           transient_life == o.transient_life && crease_rounding == o.crease_rounding &&
            pairs.rows() == o.pairs.rows() &&
            pairs.cols() == o.pairs.cols() && pairs == o.pairs;
   }
