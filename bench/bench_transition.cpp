@@ -3,7 +3,8 @@
 // Pairs of about 5K vertices each; prints each stage, then the cost of slicing the result next to
 // slicing a prism manifold of the same size in tetrahedra (the same CPU slicer). Each pair is built
 // without alignment (as before issue 30) and with it (the default: placement, warp, more layers for a
-// turn). Then a box turned a quarter (issue 30): the slice against the rigidly turned box, over 4, 8
+// turn); aligned, also with the plain signed distances and two relax rounds (the field before
+// TransitionOptions::crease_rounding), timed in the same process. Then a box turned a quarter (issue 30): the slice against the rigidly turned box, over 4, 8
 // and 12 layers.
 #include <array>
 #include <chrono>
@@ -51,6 +52,19 @@ void run(const char* name, const TriMesh& a, const TriMesh& b, bool align) {
               st.target.points, st.simplices, st.source.steiner + st.target.steiner, st.source.flipped + st.target.flipped,
               st.source.missing + st.target.missing, st.source.chords + st.target.chords,
               st.source.plane_fixes + st.target.plane_fixes, st.tets, st.source.tied + st.target.tied);
+  if (align) {
+    // Baseline in the same process: the field before rounded distances (plain signed distances,
+    // two relax rounds).
+    TransitionStats plain;
+    TransitionOptions p = o;
+    p.crease_rounding = 0;
+    p.relax_rounds = 2;
+    build_transition(a, 0, b, 1, p, &plain);
+    std::printf("%-28s plain distances, two relax rounds: total %.2f s (field %.2f, relax %.2f), %d points in the middle; "
+                "rounded / plain %.2f\n",
+                "", plain.total_seconds, plain.field_seconds, plain.relax_seconds, plain.middle_points,
+                st.total_seconds / plain.total_seconds);
+  }
   // Baseline in the same process: a prism manifold of the first key over enough layers to hold about
   // as many tetrahedra, sliced by the same slicer.
   const int layers = std::max(2, static_cast<int>(std::lround(st.tets / (3.0 * a.F.rows()))) + 1);
