@@ -169,9 +169,8 @@ void print_field_euler(const TriMesh& a, const TriMesh& b) {
   for (int i = 0, r = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
       for (int k = 0; k < n[2]; ++k) G.row(r++) = lo + Eigen::RowVector3d(i, j, k) * h;
-  const SignedDistance distance_s(a.V, a.F), distance_t(bV, b.F);
-  const Eigen::VectorXd d_s = rounded_distance(distance_s, G, distance_s(G), options.crease_rounding);
-  const Eigen::VectorXd d_t = rounded_distance(distance_t, G, distance_t(G), options.crease_rounding);
+  const Eigen::VectorXd d_s = rounded_distance(SignedDistance(a.V, a.F), G, options.crease_rounding);
+  const Eigen::VectorXd d_t = rounded_distance(SignedDistance(bV, b.F), G, options.crease_rounding);
   std::printf("  the documented field's zero set, grid %.4g:     ", h);
   for (int i = 0; i <= 20; ++i) std::printf(" %d", dfm::test::euler_characteristic(zero_set_triangles(n, d_s, d_t, i / 20.0)));
   std::printf("\n");

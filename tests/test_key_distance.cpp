@@ -121,7 +121,7 @@ TEST_CASE("rounded distance: the box's distance averaged over the octahedron at 
   const TriMesh box = unit_box();
   const SignedDistance d(box.V, box.F);
   const Eigen::MatrixXd P = box_probes(400);
-  const Eigen::VectorXd dp = d(P), s = rounded_distance(d, P, dp, 0.5);
+  const Eigen::VectorXd dp = d(P), s = rounded_distance(d, P, 0.5);
   for (int i = 0; i < P.rows(); ++i) {
     const Eigen::Vector3d p = P.row(i).transpose();
     const double r = 0.5 * std::abs(box_distance(p));
@@ -134,17 +134,17 @@ TEST_CASE("rounded distance: the box's distance averaged over the octahedron at 
   }
   // The centre's crease (six faces nearest at once) is rounded: d = -1 there, s = -1/2.
   const Eigen::MatrixXd centre = Eigen::RowVector3d::Zero();
-  CHECK(rounded_distance(d, centre, d(centre), 0.5)[0] == Approx(-0.5).margin(1e-12));
+  CHECK(rounded_distance(d, centre, 0.5)[0] == Approx(-0.5).margin(1e-12));
   // Where d is linear (near the middle of a face, inside and out) the rule returns d.
   Eigen::MatrixXd faces(2, 3);
   faces << 0.1, -0.05, 1.3, 0.05, 0.1, 0.7;
   const Eigen::VectorXd df = d(faces);
-  CHECK(rounded_distance(d, faces, df, 0.5).isApprox(df, 1e-12));
+  CHECK(rounded_distance(d, faces, 0.5).isApprox(df, 1e-12));
   // No rounding is d itself; on the surface the value is 0.
-  CHECK(rounded_distance(d, P, dp, 0.0) == dp);
+  CHECK(rounded_distance(d, P, 0.0) == dp);
   Eigen::MatrixXd on_face(1, 3);
   on_face << 1, 0.2, -0.3;
-  CHECK(std::abs(rounded_distance(d, on_face, d(on_face), 0.5)[0]) < 1e-12);
-  CHECK_THROWS_WITH(rounded_distance(d, P, dp, 1.0), Catch::Contains("[0, 1)"));
-  CHECK_THROWS_WITH(rounded_distance(d, P, dp.head(3), 0.5), Catch::Contains("one distance per point"));
+  CHECK(std::abs(rounded_distance(d, on_face, 0.5)[0]) < 1e-12);
+  CHECK_THROWS_WITH(rounded_distance(d, P, 1.0), Catch::Contains("[0, 1)"));
+  CHECK_THROWS_WITH(rounded_distance(d, P.leftCols(2), 0.5), Catch::Contains("#P x 3"));
 }

@@ -6,11 +6,10 @@
 
 namespace dfm {
 
-Eigen::VectorXd rounded_distance(const SignedDistance& d, const Eigen::MatrixXd& P, const Eigen::VectorXd& d_at_points,
-                                 double r) {
+Eigen::VectorXd rounded_distance(const SignedDistance& d, const Eigen::MatrixXd& P, double r) {
   if (!(r >= 0 && r < 1)) throw Error("rounded distance: the radius factor must be in [0, 1)");
-  if (P.cols() != 3 || d_at_points.size() != P.rows())
-    throw Error("rounded distance: needs #P x 3 points and one distance per point");
+  if (P.cols() != 3) throw Error("rounded distance: needs #P x 3 points");
+  const Eigen::VectorXd d_at_points = d(P);
   if (r == 0) return d_at_points;
   // The octahedron's vertices about each point: Q's rows 6 i .. 6 i + 5 for P's row i.
   const Eigen::Index n = P.rows();

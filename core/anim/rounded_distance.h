@@ -13,9 +13,9 @@ namespace dfm {
 
 // The sphere average by the octahedron rule: the mean of d at x +- r |d(x)| along the x, y and z axes
 // (exact for polynomials of degree 3; Lebedev's 14-point rule, exact to degree 5, costs twice the
-// queries and measured no closer to its own blend's zero set in test_transition_quality). d_at_points: d(P), #P.
-// Lipschitz constant at most 1 + r. Throws dfm::Error unless 0 <= r < 1 and the sizes agree.
-Eigen::VectorXd rounded_distance(const SignedDistance& d, const Eigen::MatrixXd& P, const Eigen::VectorXd& d_at_points,
-                                 double r);
+// queries and measured no closer to its own blend's zero set in test_transition_quality), one
+// value per row of P (#P x 3). Lipschitz constant at most 1 + r. Throws dfm::Error unless 0 <= r < 1
+// and P has 3 columns.
+Eigen::VectorXd rounded_distance(const SignedDistance& d, const Eigen::MatrixXd& P, double r);
 
 }  // namespace dfm

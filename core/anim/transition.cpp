@@ -250,8 +250,8 @@ Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, 
     }
     return g;
   });
-  L.d_s = rounded_distance(d_s, L.X, d_s(L.X), rounding);
-  L.d_t = rounded_distance(d_t, L.X, d_t(L.X), rounding);
+  L.d_s = rounded_distance(d_s, L.X, rounding);
+  L.d_t = rounded_distance(d_t, L.X, rounding);
   L.delaunay = delaunay_3d(L.X);
   L.K = sorted_tets(L.delaunay.tets);
   return L;

@@ -98,10 +98,10 @@ struct TransitionOptions {
   // Topology the lattice reads for less than this part of the transition (a gap closing through
   // bridges and pockets) happens at once, where it starts (layer_transients.h); 0 keeps it.
   double transient_life = 0.08;
-  // The keys' distances are averaged over spheres of this radius times the distance before they are
-  // blended (rounded_distance.h; above: "The field"): the blend's creases on the keys' medial axes,
-  // which show as notches and knife-edged rims in the in-betweens, are rounded. 0 blends the signed
-  // distances themselves; less than 1.
+  // The keys' distances are averaged over the six points this many times the distance away along the
+  // axes before they are blended (rounded_distance.h; above: "The field"): the blend's creases on the
+  // keys' medial axes, which show as notches and knife-edged rims in the in-betweens, are rounded. 0
+  // blends the signed distances themselves; less than 1.
   double crease_rounding = 0.5;
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
