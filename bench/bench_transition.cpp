@@ -4,7 +4,8 @@
 // slicing a prism manifold of the same size in tetrahedra (the same CPU slicer). Each pair is built
 // without alignment (as before issue 30) and with it (the default: placement, warp, more layers for a
 // turn); aligned, also with the plain signed distances and two relax rounds (the field before
-// TransitionOptions::crease_rounding), timed in the same process. Then a box turned a quarter (issue 30): the slice against the rigidly turned box, over 4, 8
+// TransitionOptions::crease_rounding) and without refitting the lattice's values
+// (TransitionOptions::fit_crossings), timed in the same process. Then a box turned a quarter (issue 30): the slice against the rigidly turned box, over 4, 8
 // and 12 layers.
 #include <array>
 #include <chrono>
@@ -64,6 +65,13 @@ void run(const char* name, const TriMesh& a, const TriMesh& b, bool align) {
                 "rounded / plain %.2f\n",
                 "", plain.total_seconds, plain.field_seconds, plain.relax_seconds, plain.middle_points,
                 st.total_seconds / plain.total_seconds);
+    // And without refitting the lattice's values to the field's crossings (crossing_fit.h).
+    TransitionStats unfitted;
+    TransitionOptions q = o;
+    q.fit_crossings = false;
+    build_transition(a, 0, b, 1, q, &unfitted);
+    std::printf("%-28s values not refitted: total %.2f s (field %.2f); fitted / not %.2f\n", "", unfitted.total_seconds,
+                unfitted.field_seconds, st.total_seconds / unfitted.total_seconds);
   }
   // Baseline in the same process: a prism manifold of the first key over enough layers to hold about
   // as many tetrahedra, sliced by the same slicer.

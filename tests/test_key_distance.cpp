@@ -75,6 +75,24 @@ double box_distance(const Eigen::Vector3d& p) {
   return q.max(0.0).matrix().norm() + std::min(q.maxCoeff(), 0.0);
 }
 
+// The octahedron average of the box's closed-form distance (rounded_distance.h's rule, c = r).
+double box_rounded(const Eigen::Vector3d& p, double r) {
+  const double s = r * std::abs(box_distance(p));
+  double mean = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {-1.0, 1.0}) mean += box_distance(p + side * s * Eigen::Vector3d::Unit(axis)) / 6;
+  return mean;
+}
+
+// g's central differences at p with step e.
+template <class Function>
+Eigen::Vector3d central_difference(const Function& g, const Eigen::Vector3d& p, double e) {
+  Eigen::Vector3d out;
+  for (int k = 0; k < 3; ++k)
+    out[k] = (g(Eigen::Vector3d(p + e * Eigen::Vector3d::Unit(k))) - g(Eigen::Vector3d(p - e * Eigen::Vector3d::Unit(k)))) / (2 * e);
+  return out;
+}
+
 // Random points in [-2.5, 2.5]^3.
 Eigen::MatrixXd box_probes(int n) {
   std::mt19937 rng(3);
@@ -124,12 +142,8 @@ TEST_CASE("rounded distance: the box's distance averaged over the octahedron at 
   const Eigen::VectorXd dp = d(P), s = rounded_distance(d, P, 0.5);
   for (int i = 0; i < P.rows(); ++i) {
     const Eigen::Vector3d p = P.row(i).transpose();
-    const double r = 0.5 * std::abs(box_distance(p));
-    double mean = 0;
-    for (int axis = 0; axis < 3; ++axis)
-      for (double side : {-1.0, 1.0}) mean += box_distance(p + side * r * Eigen::Vector3d::Unit(axis)) / 6;
     INFO("point " << p.transpose());
-    CHECK(s[i] == Approx(mean).margin(1e-9));
+    CHECK(s[i] == Approx(box_rounded(p, 0.5)).margin(1e-9));
     CHECK((s[i] < 0) == (dp[i] < 0));  // the octahedron stays on the point's side
   }
   // The centre's crease (six faces nearest at once) is rounded: d = -1 there, s = -1/2.
@@ -147,4 +161,41 @@ TEST_CASE("rounded distance: the box's distance averaged over the octahedron at 
   CHECK(std::abs(rounded_distance(d, on_face, 0.5)[0]) < 1e-12);
   CHECK_THROWS_WITH(rounded_distance(d, P, 1.0), Catch::Contains("[0, 1)"));
   CHECK_THROWS_WITH(rounded_distance(d, P.leftCols(2), 0.5), Catch::Contains("#P x 3"));
+}
+
+TEST_CASE("key distance and rounded distance: gradients match the box's closed forms' differences", "[transition]") {
+  const TriMesh box = unit_box();
+  const SignedDistance d(box.V, box.F);
+  const Eigen::MatrixXd P = box_probes(400);
+  Eigen::MatrixXd gd, gs;
+  d(P, &gd);
+  rounded_distance(d, P, 0.5, &gs);
+  int smooth_d = 0, smooth_s = 0;
+  for (int i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector3d p = P.row(i).transpose();
+    INFO("point " << p.transpose());
+    auto plain = [](const Eigen::Vector3d& x) { return box_distance(x); };
+    auto rounded = [](const Eigen::Vector3d& x) { return box_rounded(x, 0.5); };
+    // Compared where the closed form is smooth: two step sizes agree (no crease within reach).
+    const Eigen::Vector3d a = central_difference(plain, p, 1e-5), b = central_difference(plain, p, 1e-6);
+    if ((a - b).norm() < 1e-6) {
+      ++smooth_d;
+      CHECK((gd.row(i).transpose() - b).norm() < 1e-6);
+    }
+    const Eigen::Vector3d c = central_difference(rounded, p, 1e-5), e = central_difference(rounded, p, 1e-6);
+    if ((c - e).norm() < 1e-6) {
+      ++smooth_s;
+      CHECK((gs.row(i).transpose() - e).norm() < 1e-6);
+    }
+  }
+  CHECK(smooth_d > 300);
+  CHECK(smooth_s > 300);
+  // No rounding: the gradient is d's. On a face the gradient is its outward normal.
+  Eigen::MatrixXd g0;
+  rounded_distance(d, P, 0.0, &g0);
+  CHECK(g0 == gd);
+  Eigen::MatrixXd on_face(1, 3), gf;
+  on_face << 1, 0.2, -0.3;
+  d(on_face, &gf);
+  CHECK(gf.row(0).isApprox(Eigen::RowVector3d(1, 0, 0), 1e-12));
 }

@@ -148,16 +148,16 @@ std::vector<Eigen::Vector3d> sphere_directions(int n) {
 }
 
 // An upper bound on x's distance to the zero set, up to `reach`: the smaller of the crossing along
-// +-g (zero_along) and the smallest radius of reach / 8, reach / 4, ..., reach at which one of the
+// +-g (zero_along) and the smallest radius of reach / 16, 2 reach / 16, ..., reach at which one of the
 // directions meets the other sign (F is continuous, so the zero set cuts that radius). Where F's
 // gradient nearly vanishes the zero set's nearest point need not lie along it.
 double zero_near(const PlacedMorph& m, const Eigen::Vector3d& x, const Eigen::Vector3d& g, double u, double reach) {
   static const std::vector<Eigen::Vector3d> dirs = sphere_directions(64);
   const double along = zero_along(m, x, g, u, reach);
   const bool neg = m.field(x, u) < 0;
-  for (double r = reach / 8; r <= reach && r < along; r *= 2)
+  for (int k = 1; k <= 16 && k * reach / 16 < along; ++k)
     for (const Eigen::Vector3d& d : dirs)
-      if ((m.field(Eigen::Vector3d(x + r * d), u) < 0) != neg) return r;
+      if ((m.field(Eigen::Vector3d(x + k * reach / 16 * d), u) < 0) != neg) return k * reach / 16;
   return along;
 }
 
@@ -279,12 +279,13 @@ void check_in_betweens(const TriMesh& S, const TriMesh& T, const TransitionOptio
     CHECK(enclosed_volume(s.V, s.F) > 0);
     CHECK(got.p90 <= bound.p90);
     CHECK(got.p99 <= bound.p99);
-    // The acceptance asks the largest within 0.5% of the diagonal; where the keys' rounded distances'
-    // gradients nearly cancel (thin parts about to vanish, a hole about to open) the lattice's
-    // piecewise linear blend still differs from the blend by a fraction of a lattice spacing: at most 5
-    // of 300 samples per slice read up to 1.5 times the bound. Nearly all are held to it.
-    CHECK(fid.at(a, 97) <= 1.000001 * 0.005 * diag);
-    CHECK(fid.at(b, 97) <= 1.000001 * 0.005 * diag);
+    // The acceptance asks the largest within 0.5% of the diagonal. With the lattice's values refitted
+    // to F's own crossings (crossing_fit.h) 2 of these 5,400 samples still read over it, by at most
+    // twice: a bunny ear thinner than a lattice spacing, cut through at t = 0.25, and the teddy's
+    // neck at t = 0.5, where the gap closing between head and shoulders is merged early
+    // (layer_transients.h). At most 2 of 300 per slice may; the WARN reports them.
+    CHECK(fid.at(a, 99) <= 1.000001 * 0.005 * diag);
+    CHECK(fid.at(b, 99) <= 1.000001 * 0.005 * diag);
     if (!(b.back() <= 0.005 * diag && a.back() <= 1.000001 * 0.005 * diag))
       WARN(name << " at t = " << t << ": largest distances " << a.back() / diag << ", " << b.back() / diag
                 << " diagonals; samples over 0.5% of the diagonal " << Fidelity::over(a, 1.000001 * 0.005 * diag) << " and "

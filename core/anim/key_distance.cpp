@@ -100,8 +100,9 @@ SignedDistance::~SignedDistance() = default;
 SignedDistance::SignedDistance(SignedDistance&&) noexcept = default;
 SignedDistance& SignedDistance::operator=(SignedDistance&&) noexcept = default;
 
-Eigen::VectorXd SignedDistance::operator()(const Eigen::MatrixXd& P) const {
+Eigen::VectorXd SignedDistance::operator()(const Eigen::MatrixXd& P, Eigen::MatrixXd* gradient) const {
   Eigen::VectorXd d(P.rows());
+  if (gradient) gradient->resize(P.rows(), 3);
   std::vector<char> unsure(P.rows(), 0);
   parallel_for(static_cast<int>(P.rows()), 0, [&](int i) {
     const K::Point_3 q(P(i, 0), P(i, 1), P(i, 2));
@@ -111,6 +112,7 @@ Eigen::VectorXd SignedDistance::operator()(const Eigen::MatrixXd& P) const {
     const Eigen::Vector3d n = impl_->pseudo_normal(static_cast<int>(id - impl_->triangles.cbegin()), y);
     const double side = (x - y).dot(n);
     d[i] = side < 0 ? -r : r;
+    if (gradient) gradient->row(i) = (r > 0 ? Eigen::Vector3d((x - y) / r) : n.normalized()).transpose();
     // Near the surface, or nearly along it, the nearest feature may be misread: the winding number decides.
     unsure[i] = !(std::abs(side) > 0.1 * r * n.norm()) || !n.allFinite();
   });
@@ -123,6 +125,9 @@ Eigen::VectorXd SignedDistance::operator()(const Eigen::MatrixXd& P) const {
     const Eigen::VectorXd w = winding_numbers(impl_->winding, Q);
     for (size_t k = 0; k < ask.size(); ++k) d[ask[k]] = w[static_cast<Eigen::Index>(k)] > 0.5 ? -std::abs(d[ask[k]]) : std::abs(d[ask[k]]);
   }
+  if (gradient)
+    for (Eigen::Index i = 0; i < P.rows(); ++i)
+      if (d[i] < 0) gradient->row(i) *= -1;
   return d;
 }
 

@@ -21,8 +21,10 @@ class SignedDistance {
   SignedDistance(SignedDistance&&) noexcept;
   SignedDistance& operator=(SignedDistance&&) noexcept;
 
-  // One value per row of P (#P x 3), computed in parallel.
-  Eigen::VectorXd operator()(const Eigen::MatrixXd& P) const;
+  // One value per row of P (#P x 3), computed in parallel. With `gradient`, also d's gradient there
+  // (#P x 3): the unit vector from the nearest surface point, times d's sign (on the surface, the
+  // pseudo-normal's direction).
+  Eigen::VectorXd operator()(const Eigen::MatrixXd& P, Eigen::MatrixXd* gradient = nullptr) const;
 
  private:
   struct Impl;

@@ -18,6 +18,7 @@
 
 #include "core/anim/conforming_surface.h"
 #include "core/anim/conforming_tetgen.h"
+#include "core/anim/crossing_fit.h"
 #include "core/anim/delaunay_4d.h"
 #include "core/anim/face_protection.h"
 #include "core/anim/iso_manifold.h"
@@ -213,6 +214,7 @@ struct FieldPoints {
 struct Lattice {
   Eigen::MatrixXd X;
   Eigen::VectorXd d_s, d_t;  // rounded
+  Eigen::MatrixXd g_s, g_t;  // their gradients
   Tetrahedralization delaunay;  // of X
   MatrixX4iRow K;               // its tetrahedra, each sorted ascending, the list sorted
 };
@@ -250,19 +252,21 @@ Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, 
     }
     return g;
   });
-  L.d_s = rounded_distance(d_s, L.X, rounding);
-  L.d_t = rounded_distance(d_t, L.X, rounding);
+  L.d_s = rounded_distance(d_s, L.X, rounding, &L.g_s);
+  L.d_t = rounded_distance(d_t, L.X, rounding, &L.g_t);
   L.delaunay = delaunay_3d(L.X);
   L.K = sorted_tets(L.delaunay.tets);
   return L;
 }
 
 // The middle layers' points.
-FieldPoints layer_points(const Lattice& L, const std::vector<double>& u, double h_mid) {
+FieldPoints layer_points(const Lattice& L, const std::vector<double>& u, double h_mid, bool fit) {
   FieldPoints p;
   p.lattice_size = static_cast<int>(L.X.rows());
+  const std::vector<std::array<int, 2>> edges = fit ? tet_edges(L.K) : std::vector<std::array<int, 2>>{};
   for (size_t k = 1; k + 1 < u.size(); ++k) {
-    const Eigen::VectorXd f = (1 - u[k]) * L.d_s + u[k] * L.d_t;
+    Eigen::VectorXd f = (1 - u[k]) * L.d_s + u[k] * L.d_t;
+    if (fit) f = fit_crossings(L.X, edges, f, (1 - u[k]) * L.g_s + u[k] * L.g_t);
     p.layer_begin.push_back(static_cast<int>(p.points.size()));
     p.add(L.X, u[k], &f, kAway * h_mid, -kMinValue * h_mid);
   }
@@ -429,7 +433,7 @@ Middle middle_layers(SharedLattice& lattice, const std::vector<double>& u, doubl
   Middle m;
   const Lattice& L = lattice.get();
   auto t = Clock::now();
-  m.p = layer_points(L, u, h_mid);
+  m.p = layer_points(L, u, h_mid, o.fit_crossings);
   m.field_seconds = lattice.seconds() + seconds_since(t);
   t = Clock::now();
   FieldPoints& p = m.p;

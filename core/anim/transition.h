@@ -28,7 +28,12 @@
 // while it is filled). Between the keys sit `layers` middle layers at u_k = (k - 1/2) / layers, all
 // holding one point set: a body-centred cubic lattice (cube edge the finer key's spacing) wherever
 // some middle layer's zero set may pass, coarser jittered points elsewhere, each carrying F(x, u_k)
-// exactly (F is linear in u at a fixed point).
+// refitted (crossing_fit.h): where F changes sign along a lattice edge, the cubic matching F and its
+// gradient at both ends (the rounded distances' gradients, rounded_distance.h) gives the crossing,
+// and each point's value moves half way to the one that would put its edges' linear crossings
+// there. Linear interpolation of F itself cuts the zero set's curves by chords, a fraction of a
+// spacing where a part thins away (the bunny's ears); the refit keeps every simplex's piece flat,
+// so the slices' normals stay those of a piecewise linear field (test_transition_quality).
 //
 // Where the blend is nearly flat, as when the air gap between two parts closes, the lattice reads
 // handles that live a layer interval or two (bridges here and there, the pockets between them filling
@@ -103,6 +108,9 @@ struct TransitionOptions {
   // keys' medial axes, which show as notches and knife-edged rims in the in-betweens, are rounded. 0
   // blends the signed distances themselves; less than 1.
   double crease_rounding = 0.5;
+  // The middle lattice's values refitted to F's own crossings of its edges (above; crossing_fit.h);
+  // false: each point carries F itself.
+  bool fit_crossings = true;
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
   Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
@@ -111,6 +119,7 @@ struct TransitionOptions {
     return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds &&
            align == o.align && max_turn_per_layer == o.max_turn_per_layer && relax_rounds == o.relax_rounds &&
            transient_life == o.transient_life && crease_rounding == o.crease_rounding &&
+           fit_crossings == o.fit_crossings &&
            pairs.rows() == o.pairs.rows() &&
            pairs.cols() == o.pairs.cols() && pairs == o.pairs;
   }

@@ -12,6 +12,8 @@ dfm_test(test_transition_quality SOURCES test_transition_quality.cpp LIBS dfm_an
 target_compile_definitions(test_transition_quality PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 # The keys' signed distance (key_distance.h).
 dfm_test(test_key_distance SOURCES test_key_distance.cpp LIBS dfm_anim)
+# A lattice's values refitted to the field's own crossings (crossing_fit.h).
+dfm_test(test_crossing_fit SOURCES test_crossing_fit.cpp LIBS dfm_anim)
 # Short-lived topology between a transition's middle layers, merged (layer_transients.h).
 dfm_test(test_layer_transients SOURCES test_layer_transients.cpp LIBS dfm_anim)
 # Smoothing a transition's level set without changing its connectivity (level_set_relax.h).
