@@ -9,12 +9,9 @@ namespace dfm {
 Eigen::VectorXd rounded_distance(const SignedDistance& d, const Eigen::MatrixXd& P, double r, Eigen::MatrixXd* gradient) {
   if (!(r >= 0 && r < 1)) throw Error("rounded distance: the radius factor must be in [0, 1)");
   if (P.cols() != 3) throw Error("rounded distance: needs #P x 3 points");
+  if (r == 0) return d(P, gradient);
   Eigen::MatrixXd g_at_points;
   const Eigen::VectorXd d_at_points = d(P, gradient ? &g_at_points : nullptr);
-  if (r == 0) {
-    if (gradient) *gradient = g_at_points;
-    return d_at_points;
-  }
   // The octahedron's vertices about each point: Q's rows 6 i .. 6 i + 5 for P's row i.
   const Eigen::Index n = P.rows();
   Eigen::MatrixXd Q(6 * n, 3);
