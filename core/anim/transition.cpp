@@ -554,13 +554,16 @@ double bounding_diagonal(const Eigen::MatrixXd& V) { return (V.colwise().maxCoef
 // Picked points farther than this from their key, in its bounding-box diagonals, are refused.
 constexpr double kPairReach = 0.02;
 
+// Steps of the picked pairs' warp (space_warp.h: WarpPath).
+constexpr int kWarpSteps = 8;
+
 // Puts the aligned (and warped) morph's vertices where they belong (transition.h, "The placement"):
 // a vertex at time t goes through the warp and the placement interpolated at its own u. The source
 // key's plane stays as it is; in the target key's plane each vertex of the reference target
 // (`reference`, the morph's input) becomes the target's own vertex, bit for bit, and any other
 // point on it (a surface Steiner point) the point of the target's triangle with its barycentric
 // coordinates, so that the slice there is the target.
-void place(AnimationManifold& M, double t0, double t1, const KeyPlacement& p, const SpaceWarp& w,
+void place(AnimationManifold& M, double t0, double t1, const KeyPlacement& p, const WarpPath& w,
            const TriMesh& reference, const TriMesh& target) {
   const double T1 = t0 + 1.0 * (t1 - t0);
   struct Bits {
@@ -644,20 +647,17 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   auto t = Clock::now();
   KeyPlacement p;
   if (o.align) p = key_placement(solid_moments(source.V, source.F), solid_moments(target.V, target.F));
-  const SpaceWarp w = fit_space_warp(o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3)));
+  const WarpPath w = fit_warp_path(o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3)), kWarpSteps);
   TriMesh reference{to_source_frame(p, target.V), target.F, {}};
   for (int v = 0; v < reference.V.rows() && !w.identity(); ++v) reference.V.row(v) = unwarp(w, reference.V.row(v));
   if (!w.identity()) {
-    // W_u must not turn space inside out where the morph is: det(I + u dD/dx) > 0 on both keys.
+    // W_u must not turn space inside out where the morph is: on both keys' paths.
     for (const Eigen::MatrixXd* X : std::initializer_list<const Eigen::MatrixXd*>{&source.V, &reference.V})
-      for (Eigen::Index v = 0; v < X->rows(); ++v) {
-        const Eigen::Matrix3d J = w.displacement_jacobian(X->row(v));
-        for (double u : {0.25, 0.5, 0.75, 1.0})
-          if (!((Eigen::Matrix3d::Identity() + u * J).determinant() > 0))
-            throw Error("the picked pairs fold space near (" + std::to_string((*X)(v, 0)) + " " +
-                        std::to_string((*X)(v, 1)) + " " + std::to_string((*X)(v, 2)) + ") at u = " + std::to_string(u) +
-                        ": pin more of the shape, or move the pairs less");
-      }
+      for (Eigen::Index v = 0; v < X->rows(); ++v)
+        if (const auto u = fold_time(w, X->row(v)))
+          throw Error("the picked pairs fold space near (" + std::to_string((*X)(v, 0)) + " " +
+                      std::to_string((*X)(v, 1)) + " " + std::to_string((*X)(v, 2)) + ") at u = " + std::to_string(*u) +
+                      ": pin more of the shape, or move the pairs less");
     check_transition_key(reference, "the target key warped by the picked pairs");
   }
   TransitionOptions layered = o;

@@ -10,7 +10,11 @@
 //   angle about its axis (Alexa 4.1.1), interpolates it: P_0 = identity, P_1 = A's inverse.
 //   Without alignment A and P_u are the identity.
 // - The warp (space_warp.h; TransitionOptions::pairs): W with W(x0_i) = A(x1_i) for each picked pair,
-//   W_u(x) = x + u (W(x) - x). Without pairs W is the identity.
+//   taken in 8 steps (WarpPath): step k the warp through the pairs from x0_i + (k - 1)/8 (A(x1_i) -
+//   x0_i) to x0_i + k/8 (A(x1_i) - x0_i), W_u the first floor(8u) steps and the next one's share of
+//   the rest (x + s D_k(x), s = 8u - k). Each picked point travels its straight path; far-moved pairs
+//   that one warp would fold space with (the teddy's hands and feet sent round a ring) stay
+//   invertible. Without pairs W is the identity.
 // - The field, in S's frame: the reference target T^ has T's triangles and vertices W^-1(A(v)), and
 //   F(r, u) = (1 - u) s_S(r) + u s_T^(r), d the signed distance (negative inside) and s(r) the mean
 //   of d at the six points r +- c |d(r)| e_x, e_y, e_z (TransitionOptions::crease_rounding c;

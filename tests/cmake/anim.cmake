@@ -7,6 +7,7 @@ dfm_test(test_transition SOURCES test_transition.cpp LIBS dfm_anim dfm_mesh TIME
 dfm_test(test_arap_interpolation SOURCES test_arap_interpolation.cpp LIBS dfm_anim)
 # Transitions that travel, turn and meet by picked pairs (issue 30; key_alignment.h, space_warp.h).
 dfm_test(test_transition_align SOURCES test_transition_align.cpp LIBS dfm_anim dfm_mesh TIMEOUT 900)
+target_compile_definitions(test_transition_align PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 # In-betweens against the documented morph: smoothness, fidelity, topology (issue 30; [heavy]: release).
 dfm_test(test_transition_quality SOURCES test_transition_quality.cpp LIBS dfm_anim dfm_mesh TIMEOUT 900)
 target_compile_definitions(test_transition_quality PRIVATE DFM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
