@@ -159,7 +159,8 @@ void turn(double q, double turn_degrees, double max_turn) {
 
 // Issue 30: the teddy (assets/default.obj) to assets/key-torus.obj with five picked pairs (hands and
 // feet to the ring's diagonals, head to its top; docs/transition_pairs_demo.txt), against the same
-// keys without pairs in the same process: the warp's cost (align and place) with its eight steps.
+// keys with the picked pairs alone and without pairs in the same process: the warp's cost (align and
+// place) with its eight steps and the closest-point pairs, and the in-between's volume at t = 0.5.
 void picked_pairs() {
   const std::string dir = DFM_SOURCE_DIR;
   const TriMesh teddy = read_surface(dir + "/assets/default.obj"), ring = read_surface(dir + "/assets/key-torus.obj");
@@ -170,15 +171,26 @@ void picked_pairs() {
       0.23826135347593744, 1.289253208047552, 0.013253281806088448, 0, 0.95, 0,      //
       0.237840569022293, -1.238521524130062, 0.08905058984878422, c, -c, 0,          //
       -0.24126803967534724, -1.238687533855284, 0.04842943221220615, -c, -c, 0;
-  TransitionStats with, without;
+  TransitionStats with, alone, without;
   TransitionOptions o;
   build_transition(teddy, 0, ring, 1, o, &without);
   o.pairs = pairs;
+  o.elastic_samples = 0;
+  const AnimationManifold A = build_transition(teddy, 0, ring, 1, o, &alone);
+  o.elastic_samples = TransitionOptions{}.elastic_samples;
   const AnimationManifold M = build_transition(teddy, 0, ring, 1, o, &with);
-  std::printf("teddy to ring, 5 pairs: total %.2f s, align and place %.2f s (%d vertices placed); without pairs %.2f s, "
-              "%.2f s; slice at 0.5: %d triangles\n",
-              with.total_seconds, with.align_seconds, M.num_vertices(), without.total_seconds, without.align_seconds,
-              static_cast<int>(slice_manifold(M, SliceAxis::T, 0.5).mesh.F.rows()));
+  auto volume = [](const AnimationManifold& m) {
+    const TriMesh s = slice_manifold(m, SliceAxis::T, 0.5).mesh;
+    return enclosed_volume(s.V, s.F);
+  };
+  std::printf("teddy to ring, 5 pairs and %d closest-point pairs: total %.2f s, align and place %.2f s (%d vertices placed), "
+              "slice at 0.5: %d triangles, volume %.3f\n",
+              with.elastic_pairs, with.total_seconds, with.align_seconds, M.num_vertices(),
+              static_cast<int>(slice_manifold(M, SliceAxis::T, 0.5).mesh.F.rows()), volume(M));
+  std::printf("%-28s picked pairs alone: total %.2f s, align and place %.2f s, volume at 0.5 %.3f; no pairs: total %.2f s, "
+              "align and place %.2f s; keys' volumes %.3f, %.3f\n",
+              "", alone.total_seconds, alone.align_seconds, volume(A), without.total_seconds, without.align_seconds,
+              enclosed_volume(teddy.V, teddy.F), enclosed_volume(ring.V, ring.F));
 }
 
 }  // namespace

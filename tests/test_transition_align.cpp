@@ -13,7 +13,9 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include "core/anim/elastic_pairs.h"
 #include "core/anim/key_alignment.h"
+#include "core/anim/key_distance.h"
 #include "core/anim/manifold_sequence.h"
 #include "core/anim/slice.h"
 #include "core/anim/space_warp.h"
@@ -573,6 +575,46 @@ TEST_CASE("transition pairs: bumps that move along the top and bottom follow the
   }
 }
 
+TEST_CASE("elastic pairs: closest points that carry the target onto the source, on both keys, never folding",
+          "[align]") {
+  // The unit sphere and an ellipsoid (1.5, 1, 0.7) about the same centre, one picked pair at +x.
+  const TriMesh S = dfm::test::icosphere(Eigen::Vector3d::Zero(), 1, 3);
+  TriMesh T = dfm::test::icosphere(Eigen::Vector3d::Zero(), 1, 2);
+  T.V = T.V * Eigen::Vector3d(1.5, 1, 0.7).asDiagonal();
+  Eigen::MatrixXd picked(1, 6);
+  picked << 1, 0, 0, 1.5, 0, 0;
+  const Eigen::MatrixXd extra = elastic_pairs(S, T, picked);
+  REQUIRE(extra.rows() >= 8);
+  // Each pair's first point on the source's triangles, its second on the target's (brute force).
+  for (Eigen::Index i = 0; i < extra.rows(); ++i) {
+    INFO("pair " << extra.row(i));
+    CHECK(distance_to(S, extra.row(i).head<3>().transpose()) < 1e-9);
+    CHECK(distance_to(T, extra.row(i).tail<3>().transpose()) < 1e-9);
+  }
+  // The target carried back by the warp lies closer to the sphere than with the picked pair alone.
+  auto farthest_from_sphere = [&](const Eigen::MatrixXd& pairs) {
+    const WarpPath w = fit_warp_path(pairs.leftCols(3), pairs.rightCols(3), 8);
+    double worst = 0;
+    for (Eigen::Index v = 0; v < T.V.rows(); ++v) {
+      const Eigen::RowVector3d x = unwarp(w, T.V.row(v));
+      worst = std::max(worst, std::abs(x.norm() - 1));
+      CHECK_FALSE(fold_time(w, x).has_value());
+    }
+    return worst;
+  };
+  Eigen::MatrixXd all(1 + extra.rows(), 6);
+  all << picked, extra;
+  const double alone = farthest_from_sphere(picked), with = farthest_from_sphere(all);
+  INFO("farthest carried target vertex from the sphere: " << with << " with the closest-point pairs, " << alone << " without");
+  CHECK(alone > 0.25);
+  CHECK(with < 0.5 * alone);
+  // Picked pairs that fold space leave nothing to add.
+  Eigen::MatrixXd swap(2, 6);
+  swap << 1, 0, 0, -1.5, 0, 0, -1, 0, 0, 1.5, 0, 0;
+  CHECK(elastic_pairs(S, T, swap).rows() == 0);
+  CHECK_THROWS_WITH(elastic_pairs(S, T, Eigen::MatrixXd(1, 3)), Catch::Contains("6 columns"));
+}
+
 // [heavy]: release only (about 5 s there).
 TEST_CASE("transition pairs: the teddy's hands, feet and head sent round a ring, in one piece", "[transition][align][heavy]") {
   // The default scene's teddy to assets/key-torus.obj, its hands and feet picked to the ring's four
@@ -609,12 +651,27 @@ TEST_CASE("transition pairs: the teddy's hands, feet and head sent round a ring,
   INFO("one warp's smallest det(dW_u/dx) on the keys: " << worst);
   CHECK(worst <= 0);
 
-  TransitionOptions o;
-  o.pairs = pairs;
-  TransitionStats st;
-  const AnimationManifold M = build_transition(S, 0, T, 1, o, &st);
-  INFO(st.total_seconds << " s");
+  TransitionOptions o, alone;
+  o.pairs = alone.pairs = pairs;
+  alone.elastic_samples = 0;
+  TransitionStats st, sa;
+  const AnimationManifold M = build_transition(S, 0, T, 1, o, &st), picked_only = build_transition(S, 0, T, 1, alone, &sa);
+  INFO(st.total_seconds << " s, " << st.elastic_pairs << " elastic pairs; picked pairs alone " << sa.total_seconds << " s");
+  CHECK(sa.elastic_pairs == 0);
+  CHECK(st.elastic_pairs > 0);
   validate_manifold(M, "teddy pairs");
+  const double V0 = enclosed_volume(S.V, S.F), V1 = enclosed_volume(T.V, T.F);
+  {
+    // Picked alone, the belly and the ring's sides drop out at t = 0.5 (the keys overlap at the limbs
+    // only): 75% of the smaller key's volume is left, in two parts joined by a strand. With the
+    // closest-point pairs the keys meet along the body: 89%, one figure.
+    const TriMesh a = slice_manifold(M, SliceAxis::T, 0.5).mesh, b = slice_manifold(picked_only, SliceAxis::T, 0.5).mesh;
+    const double va = enclosed_volume(a.V, a.F), vb = enclosed_volume(b.V, b.F);
+    INFO("t = 0.5: volume " << va << " with the closest-point pairs, " << vb << " with the picked pairs alone (keys " << V0
+                            << ", " << V1 << ")");
+    CHECK(va >= 0.85 * std::min(V0, V1));
+    CHECK(va >= 1.1 * vb);
+  }
   const double diag = (S.V.colwise().maxCoeff().cwiseMax(T.V.colwise().maxCoeff()) -
                        S.V.colwise().minCoeff().cwiseMin(T.V.colwise().minCoeff())).norm();
   for (double t : {0.25, 0.5, 0.75}) {

@@ -47,7 +47,7 @@ const char* kUsage =
     "  (0-based, default 0); blank lines and # comments are skipped. Each point must lie on its key (within 2%\n"
     "  of its bounding-box diagonal); neighbours of one connectivity take no pairs.\n"
     "  --stats prints the build (prism / transition slabs, Steiner points, the last transition's turn and\n"
-    "  scale, seconds per stage: align, conform, field, delaunay, extract and its relax, total), the tetrahedron count and the slice's triangles, vertices,\n"
+    "  scale, the closest-point pairs the warp also went through, seconds per stage: align, conform, field, delaunay, extract and its relax, total), the tetrahedron count and the slice's triangles, vertices,\n"
     "  closedness, volume.";
 
 void print_stats(const dfm::AnimationManifold& M, const dfm::ManifoldSlice& s, dfm::SliceAxis axis, double at) {
@@ -71,7 +71,7 @@ void print_sequence_stats(const dfm::SequenceStats& s) {
   const dfm::TransitionStats& t = s.transitions;
   std::cout << "prism slabs: " << s.prism_slabs << "\ntransition slabs: " << s.transition_slabs
             << "\nsteiner points: " << t.source.steiner + t.target.steiner << "\nturn degrees: " << t.turn_degrees
-            << "\nscale: " << t.scale << "\nalign seconds: " << t.align_seconds << "\nconform seconds: " << t.conform_seconds
+            << "\nscale: " << t.scale << "\nelastic pairs: " << t.elastic_pairs << "\nalign seconds: " << t.align_seconds << "\nconform seconds: " << t.conform_seconds
             << "\nfield seconds: " << t.field_seconds << "\ndelaunay seconds: " << t.delaunay_seconds
             << "\nextract seconds: " << t.extract_seconds << "\nrelax seconds: " << t.relax_seconds
             << "\ntransition seconds: " << t.total_seconds

@@ -6,6 +6,7 @@
 #include <future>
 #include <cmath>
 #include <memory>
+#include <tuple>
 #include <mutex>
 #include <unordered_map>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "core/anim/conforming_surface.h"
 #include "core/anim/conforming_tetgen.h"
 #include "core/anim/crossing_fit.h"
+#include "core/anim/elastic_pairs.h"
 #include "core/anim/delaunay_4d.h"
 #include "core/anim/face_protection.h"
 #include "core/anim/iso_manifold.h"
@@ -144,6 +146,7 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   transients += o.transients;
   simplices += o.simplices;
   tets += o.tets;
+  elastic_pairs += o.elastic_pairs;
   conform_seconds += o.conform_seconds;
   field_seconds += o.field_seconds;
   delaunay_seconds += o.delaunay_seconds;
@@ -557,6 +560,26 @@ constexpr double kPairReach = 0.02;
 // Steps of the picked pairs' warp (space_warp.h: WarpPath).
 constexpr int kWarpSteps = 8;
 
+// The warp through `pairs` (#pairs x 6, both points in the source's frame) and the reference target
+// T^ = W^-1(A(T)) (transition.h). Throws dfm::Error when W folds space on either key.
+std::pair<WarpPath, TriMesh> warped_reference(const TriMesh& source, const TriMesh& target, const KeyPlacement& p,
+                                              const Eigen::MatrixXd& pairs) {
+  const WarpPath w = fit_warp_path(pairs.leftCols(3), pairs.rightCols(3), kWarpSteps);
+  TriMesh reference{to_source_frame(p, target.V), target.F, {}};
+  for (int v = 0; v < reference.V.rows() && !w.identity(); ++v) reference.V.row(v) = unwarp(w, reference.V.row(v));
+  if (!w.identity()) {
+    // W_u must not turn space inside out where the morph is: on both keys' paths.
+    for (const Eigen::MatrixXd* X : std::initializer_list<const Eigen::MatrixXd*>{&source.V, &reference.V})
+      for (Eigen::Index v = 0; v < X->rows(); ++v)
+        if (const auto u = fold_time(w, X->row(v)))
+          throw Error("the picked pairs fold space near (" + std::to_string((*X)(v, 0)) + " " +
+                      std::to_string((*X)(v, 1)) + " " + std::to_string((*X)(v, 2)) + ") at u = " + std::to_string(*u) +
+                      ": pin more of the shape, or move the pairs less");
+    check_transition_key(reference, "the target key warped by the picked pairs");
+  }
+  return {w, reference};
+}
+
 // Puts the aligned (and warped) morph's vertices where they belong (transition.h, "The placement"):
 // a vertex at time t goes through the warp and the placement interpolated at its own u. The source
 // key's plane stays as it is; in the target key's plane each vertex of the reference target
@@ -638,6 +661,7 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   if (!(o.max_turn_per_layer > 0)) throw Error("transition: the turn per layer must be positive");
   if (!(o.transient_life >= 0)) throw Error("transition: the transients' life must be 0 or more");
   if (!(o.crease_rounding >= 0 && o.crease_rounding < 1)) throw Error("transition: the crease rounding must be in [0, 1)");
+  if (o.elastic_samples < 0) throw Error("transition: the elastic samples must be 0 or more");
   TransitionStats st;
   const TriMesh source = compacted(source_in), target = compacted(target_in);
   if (const auto bad = transition_pair_problem(source, target, o.pairs))
@@ -647,19 +671,28 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   auto t = Clock::now();
   KeyPlacement p;
   if (o.align) p = key_placement(solid_moments(source.V, source.F), solid_moments(target.V, target.F));
-  const WarpPath w = fit_warp_path(o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3)), kWarpSteps);
-  TriMesh reference{to_source_frame(p, target.V), target.F, {}};
-  for (int v = 0; v < reference.V.rows() && !w.identity(); ++v) reference.V.row(v) = unwarp(w, reference.V.row(v));
-  if (!w.identity()) {
-    // W_u must not turn space inside out where the morph is: on both keys' paths.
-    for (const Eigen::MatrixXd* X : std::initializer_list<const Eigen::MatrixXd*>{&source.V, &reference.V})
-      for (Eigen::Index v = 0; v < X->rows(); ++v)
-        if (const auto u = fold_time(w, X->row(v)))
-          throw Error("the picked pairs fold space near (" + std::to_string((*X)(v, 0)) + " " +
-                      std::to_string((*X)(v, 1)) + " " + std::to_string((*X)(v, 2)) + ") at u = " + std::to_string(*u) +
-                      ": pin more of the shape, or move the pairs less");
-    check_transition_key(reference, "the target key warped by the picked pairs");
+  Eigen::MatrixXd picked(o.pairs.rows(), 6);
+  if (o.pairs.rows() > 0) picked << o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3));
+  Eigen::MatrixXd elastic(0, 6);
+  if (o.pairs.rows() > 0 && o.elastic_samples > 0) {
+    ElasticPairOptions eo;
+    eo.samples = o.elastic_samples;
+    eo.steps = kWarpSteps;
+    elastic = elastic_pairs(source, TriMesh{to_source_frame(p, target.V), target.F, {}}, picked, eo);
   }
+  WarpPath w;
+  TriMesh reference;
+  try {
+    Eigen::MatrixXd all(picked.rows() + elastic.rows(), 6);
+    all << picked, elastic;
+    std::tie(w, reference) = warped_reference(source, target, p, all);
+  } catch (const Error&) {
+    if (elastic.rows() == 0) throw;
+    // Not expected (elastic_pairs keeps only rounds that stay invertible); the picked pairs decide.
+    elastic.resize(0, 6);
+    std::tie(w, reference) = warped_reference(source, target, p, picked);
+  }
+  st.elastic_pairs = static_cast<int>(elastic.rows());
   TransitionOptions layered = o;
   const double turn = Eigen::AngleAxisd(p.R).angle() * 180 / M_PI;
   // In fours: layer k of K sits at (k - 1/2) / K, which then never falls on t = 1/4, 1/2 or 3/4 (a

@@ -14,7 +14,11 @@
 //   x0_i) to x0_i + k/8 (A(x1_i) - x0_i), W_u the first floor(8u) steps and the next one's share of
 //   the rest (x + s D_k(x), s = 8u - k). Each picked point travels its straight path; far-moved pairs
 //   that one warp would fold space with (the teddy's hands and feet sent round a ring) stay
-//   invertible. Without pairs W is the identity.
+//   invertible. With picked pairs, W also goes through pairs found as closest points
+//   (elastic_pairs.h; TransitionOptions::elastic_samples): the rest of the keys then meet too,
+//   where the picked pairs alone leave most of them apart and the blend drops them. Those pairs
+//   are reported (TransitionStats::elastic_pairs) and W is defined by all of them. Without pairs W
+//   is the identity.
 // - The field, in S's frame: the reference target T^ has T's triangles and vertices W^-1(A(v)), and
 //   F(r, u) = (1 - u) s_S(r) + u s_T^(r), d the signed distance (negative inside) and s(r) the mean
 //   of d at the six points r +- c |d(r)| e_x, e_y, e_z (TransitionOptions::crease_rounding c;
@@ -118,12 +122,15 @@ struct TransitionOptions {
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
   Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
+  // With picked pairs: points on each key per round of the closest-point pairs added to them
+  // (elastic_pairs.h; above: "The warp"); 0 warps by the picked pairs alone.
+  int elastic_samples = 16;
 
   bool operator==(const TransitionOptions& o) const {
     return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds &&
            align == o.align && max_turn_per_layer == o.max_turn_per_layer && relax_rounds == o.relax_rounds &&
            transient_life == o.transient_life && crease_rounding == o.crease_rounding &&
-           fit_crossings == o.fit_crossings &&
+           fit_crossings == o.fit_crossings && elastic_samples == o.elastic_samples &&
            pairs.rows() == o.pairs.rows() &&
            pairs.cols() == o.pairs.cols() && pairs == o.pairs;
   }
@@ -150,6 +157,7 @@ struct TransitionStats {
   int simplices = 0;                             // 4-simplices of the Delaunay triangulation
   int tets = 0;                                  // of the resulting manifold
   double turn_degrees = 0, scale = 1;           // the placement's (the last transition's in a sum)
+  int elastic_pairs = 0;                         // closest-point pairs the warp also goes through
   double align_seconds = 0;                      // moments, warp, and placing the manifold's vertices
   // Each key's conforming, filling and 4D Delaunay end run on a thread of their own and the middle
   // layers on a third (field: the lattice and its values; extract includes cutting the middle while the

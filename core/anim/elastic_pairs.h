@@ -1,0 +1,31 @@
+#pragma once
+// Alignment by deformation for picked pairs (Southern 2008, 10.1.3; issue 30): the pairs' warp
+// (space_warp.h) moves only what the artist picked, so between keys of different shape the rest
+// seldom overlaps, and the blend of their distances drops what does not (a teddy sent round a
+// ring by its hands, feet and head parts at the belly). Extra pairs close the gap the way
+// iterative closest points does, with the pairs' warp as the deformation: points spread over each
+// key, each paired with the nearest point of the other (the target as the current warp carries it
+// into the source's frame), so that the warp carries the keys' surfaces onto each other and the
+// blend handles only what they cannot share (a hole, a handle).
+#include <Eigen/Core>
+
+#include "core/mesh/mesh.h"
+
+namespace dfm {
+
+struct ElasticPairOptions {
+  int samples = 16;  // points on each key per round
+  int rounds = 2;
+  int steps = 8;     // of the warp path (space_warp.h)
+};
+
+// Pairs (#pairs x 6: x0 y0 z0 on `source`, x1 y1 z1 on `target`, both in the source's frame) to add
+// to the picked ones (`picked`, the same layout) so that the warp through all of them carries the
+// target onto the source where they can meet. Samples are farthest points, about diag / sqrt(samples)
+// apart (diag: the source's bounding-box diagonal), none within half that of a picked point or of
+// each other. A round whose warp would fold space on either key, or fail to invert, is dropped: the
+// result is the last round that did not (none: 0 rows). Throws dfm::Error on a bad size or option.
+Eigen::MatrixXd elastic_pairs(const TriMesh& source, const TriMesh& target, const Eigen::MatrixXd& picked,
+                              const ElasticPairOptions& options = {});
+
+}  // namespace dfm
