@@ -583,7 +583,7 @@ TEST_CASE("elastic pairs: closest points that carry the target onto the source, 
   T.V = T.V * Eigen::Vector3d(1.5, 1, 0.7).asDiagonal();
   Eigen::MatrixXd picked(1, 6);
   picked << 1, 0, 0, 1.5, 0, 0;
-  const Eigen::MatrixXd extra = elastic_pairs(S, T, picked);
+  const Eigen::MatrixXd extra = elastic_pairs(S, T, picked).pairs;
   REQUIRE(extra.rows() >= 8);
   // Each pair's first point on the source's triangles, its second on the target's (brute force).
   for (Eigen::Index i = 0; i < extra.rows(); ++i) {
@@ -611,7 +611,7 @@ TEST_CASE("elastic pairs: closest points that carry the target onto the source, 
   // Picked pairs that fold space leave nothing to add.
   Eigen::MatrixXd swap(2, 6);
   swap << 1, 0, 0, -1.5, 0, 0, -1, 0, 0, 1.5, 0, 0;
-  CHECK(elastic_pairs(S, T, swap).rows() == 0);
+  CHECK(elastic_pairs(S, T, swap).pairs.rows() == 0);
   CHECK_THROWS_WITH(elastic_pairs(S, T, Eigen::MatrixXd(1, 3)), Catch::Contains("6 columns"));
 }
 

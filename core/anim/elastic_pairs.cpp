@@ -30,10 +30,9 @@ std::vector<int> farthest_samples(const Eigen::MatrixXd& X, const Eigen::MatrixX
   return out;
 }
 
-// The nearest points of a surface to the rows of P, and the same points of `image`, a surface of the
-// same triangles (by their barycentric coordinates).
-Eigen::MatrixXd nearest_on(const TriMesh& surface, const Eigen::MatrixXd& image, const Eigen::MatrixXd& P, double reach) {
-  const SurfaceTree tree(surface.V, surface.F, reach);
+// The nearest points of `tree`'s surface to the rows of P, as the same points of `image`, a surface
+// of the same triangles (by their barycentric coordinates).
+Eigen::MatrixXd nearest_on(const SurfaceTree& tree, const Eigen::MatrixXd& image, const Eigen::MatrixXd& P) {
   Eigen::MatrixXd out(P.rows(), 3);
   for (Eigen::Index i = 0; i < P.rows(); ++i) {
     const SurfaceSample s = tree.closest(P.row(i).transpose());
@@ -44,36 +43,31 @@ Eigen::MatrixXd nearest_on(const TriMesh& surface, const Eigen::MatrixXd& image,
   return out;
 }
 
-bool folds(const WarpPath& w, const Eigen::MatrixXd& X) {
-  for (Eigen::Index v = 0; v < X.rows(); ++v)
-    if (fold_time(w, X.row(v))) return true;
-  return false;
-}
-
-// The warp through `pairs` and the target carried back by it (its vertices W^-1(v)). Throws
-// dfm::Error when a step cannot be fitted or inverted.
-WarpPath carry_back(const Eigen::MatrixXd& pairs, const TriMesh& target, int steps, TriMesh& carried) {
-  WarpPath w = fit_warp_path(pairs.leftCols(3), pairs.rightCols(3), steps);
-  carried = target;
-  for (Eigen::Index v = 0; v < carried.V.rows(); ++v) carried.V.row(v) = unwarp(w, target.V.row(v));
-  return w;
+// The warp through `pairs` and the target's vertices it carries back. Throws dfm::Error when a step
+// cannot be fitted or inverted.
+ElasticFit carry_back(const Eigen::MatrixXd& pairs, const TriMesh& target, int steps) {
+  ElasticFit f;
+  f.warp = fit_warp_path(pairs.leftCols(3), pairs.rightCols(3), steps);
+  f.carried = unwarp_rows(f.warp, target.V);
+  return f;
 }
 
 // One round's pairs: the carried target's samples paired with their nearest source points, then the
 // source's samples with their nearest carried-target points (as the same points of the target
 // itself), none within `gap` of a picked point or of each other.
-Eigen::MatrixXd closest_point_pairs(const TriMesh& source, const TriMesh& target, const TriMesh& carried,
-                                    const Eigen::MatrixXd& picked, int samples, double gap, double reach) {
-  const std::vector<int> ts = farthest_samples(carried.V, picked.leftCols(3), samples, gap);
+Eigen::MatrixXd closest_point_pairs(const TriMesh& source, const SurfaceTree& source_tree, const TriMesh& target,
+                                    const Eigen::MatrixXd& carried, const Eigen::MatrixXd& picked, int samples, double gap,
+                                    double reach) {
+  const std::vector<int> ts = farthest_samples(carried, picked.leftCols(3), samples, gap);
   Eigen::MatrixXd from_t(ts.size(), 3), to_t(ts.size(), 3);
-  for (size_t i = 0; i < ts.size(); ++i) from_t.row(i) = carried.V.row(ts[i]), to_t.row(i) = target.V.row(ts[i]);
-  from_t = nearest_on(source, source.V, from_t, reach);
+  for (size_t i = 0; i < ts.size(); ++i) from_t.row(i) = carried.row(ts[i]), to_t.row(i) = target.V.row(ts[i]);
+  from_t = nearest_on(source_tree, source.V, from_t);
   Eigen::MatrixXd taken(picked.rows() + from_t.rows(), 3);
   taken << picked.leftCols(3), from_t;
   const std::vector<int> ss = farthest_samples(source.V, taken, samples, gap);
   Eigen::MatrixXd from_s(ss.size(), 3);
   for (size_t i = 0; i < ss.size(); ++i) from_s.row(i) = source.V.row(ss[i]);
-  const Eigen::MatrixXd to_s = nearest_on(carried, target.V, from_s, reach);
+  const Eigen::MatrixXd to_s = nearest_on(SurfaceTree(carried, target.F, reach), target.V, from_s);
   Eigen::MatrixXd out(from_t.rows() + from_s.rows(), 6);
   out << from_t, to_t, from_s, to_s;
   return out;
@@ -87,28 +81,32 @@ Eigen::MatrixXd stacked(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
 
 }  // namespace
 
-Eigen::MatrixXd elastic_pairs(const TriMesh& source, const TriMesh& target, const Eigen::MatrixXd& picked,
-                              const ElasticPairOptions& o) {
+ElasticFit elastic_pairs(const TriMesh& source, const TriMesh& target, const Eigen::MatrixXd& picked,
+                         const ElasticPairOptions& o) {
   if (picked.cols() != 6) throw Error("elastic pairs: picked pairs need 6 columns");
   if (o.samples < 1 || o.rounds < 0) throw Error("elastic pairs: needs at least one sample and no negative rounds");
   const double diag = (source.V.colwise().maxCoeff() - source.V.colwise().minCoeff()).norm();
   // n samples spread over a key lie about diag / sqrt(n) apart; none nearer than half that.
   const double gap = 0.5 * diag / std::sqrt(static_cast<double>(o.samples));
-  Eigen::MatrixXd result(0, 6);
+  const SurfaceTree source_tree(source.V, source.F, 2 * diag);
+  ElasticFit kept;
+  Eigen::MatrixXd carried;  // by the warp through the picked pairs and the kept ones
   for (int round = 0; round < o.rounds; ++round) {
     try {
-      TriMesh carried, back;
-      carry_back(stacked(picked, result), target, o.steps, carried);
-      const Eigen::MatrixXd next = closest_point_pairs(source, target, carried, picked, o.samples, gap, 2 * diag);
+      if (round == 0) carried = carry_back(picked, target, o.steps).carried;
+      const Eigen::MatrixXd next =
+          closest_point_pairs(source, source_tree, target, carried, picked, o.samples, gap, 2 * diag);
       // Kept only if the warp through them stays invertible on both keys.
-      const WarpPath candidate = carry_back(stacked(picked, next), target, o.steps, back);
-      if (folds(candidate, source.V) || folds(candidate, back.V)) break;
-      result = next;
+      ElasticFit candidate = carry_back(stacked(picked, next), target, o.steps);
+      if (first_fold(candidate.warp, source.V) || first_fold(candidate.warp, candidate.carried)) break;
+      candidate.pairs = next;
+      carried = candidate.carried;
+      kept = std::move(candidate);
     } catch (const Error&) {
       break;
     }
   }
-  return result;
+  return kept;
 }
 
 }  // namespace dfm

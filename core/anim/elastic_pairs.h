@@ -9,6 +9,7 @@
 // blend handles only what they cannot share (a hole, a handle).
 #include <Eigen/Core>
 
+#include "core/anim/space_warp.h"
 #include "core/mesh/mesh.h"
 
 namespace dfm {
@@ -25,7 +26,12 @@ struct ElasticPairOptions {
 // apart (diag: the source's bounding-box diagonal), none within half that of a picked point or of
 // each other. A round whose warp would fold space on either key, or fail to invert, is dropped: the
 // result is the last round that did not (none: 0 rows). Throws dfm::Error on a bad size or option.
-Eigen::MatrixXd elastic_pairs(const TriMesh& source, const TriMesh& target, const Eigen::MatrixXd& picked,
-                              const ElasticPairOptions& options = {});
+struct ElasticFit {
+  Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
+  WarpPath warp;            // through the picked pairs and `pairs` (with pairs only)
+  Eigen::MatrixXd carried;  // the target's vertices W^-1(v) (with pairs only)
+};
+ElasticFit elastic_pairs(const TriMesh& source, const TriMesh& target, const Eigen::MatrixXd& picked,
+                         const ElasticPairOptions& options = {});
 
 }  // namespace dfm

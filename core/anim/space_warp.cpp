@@ -136,6 +136,18 @@ Eigen::RowVector3d unwarp(const WarpPath& w, const Eigen::RowVector3d& y) {
   return x;
 }
 
+Eigen::MatrixXd unwarp_rows(const WarpPath& w, const Eigen::MatrixXd& Y) {
+  Eigen::MatrixXd X = Y;
+  for (Eigen::Index v = 0; v < X.rows() && !w.identity(); ++v) X.row(v) = unwarp(w, Eigen::RowVector3d(Y.row(v)));
+  return X;
+}
+
+std::optional<PathFold> first_fold(const WarpPath& w, const Eigen::MatrixXd& X) {
+  for (Eigen::Index v = 0; v < X.rows() && !w.identity(); ++v)
+    if (const auto u = fold_time(w, X.row(v))) return PathFold{v, *u};
+  return std::nullopt;
+}
+
 std::optional<double> fold_time(const WarpPath& w, const Eigen::RowVector3d& x) {
   const int n = static_cast<int>(w.steps.size());
   Eigen::RowVector3d y = x;

@@ -62,8 +62,18 @@ Eigen::RowVector3d warp(const WarpPath& w, const Eigen::RowVector3d& x, double u
 // The x with W(x) = y, the steps undone in reverse order. Throws as unwarp does.
 Eigen::RowVector3d unwarp(const WarpPath& w, const Eigen::RowVector3d& y);
 
+// unwarp of each row of Y (#Y x 3). Throws as unwarp does.
+Eigen::MatrixXd unwarp_rows(const WarpPath& w, const Eigen::MatrixXd& Y);
+
 // The smallest u in {1/4, 1/2, ...} of each step (at the step's quarters) where W_u turns space
 // inside out at x's path (det of the step's map at most 0), or none.
 std::optional<double> fold_time(const WarpPath& w, const Eigen::RowVector3d& x);
+
+// The first row of X (#X x 3) whose path folds (fold_time) and when, or none.
+struct PathFold {
+  Eigen::Index row = -1;
+  double u = 0;
+};
+std::optional<PathFold> first_fold(const WarpPath& w, const Eigen::MatrixXd& X);
 
 }  // namespace dfm

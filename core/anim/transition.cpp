@@ -6,7 +6,6 @@
 #include <future>
 #include <cmath>
 #include <memory>
-#include <tuple>
 #include <mutex>
 #include <unordered_map>
 #include <vector>
@@ -560,24 +559,20 @@ constexpr double kPairReach = 0.02;
 // Steps of the picked pairs' warp (space_warp.h: WarpPath).
 constexpr int kWarpSteps = 8;
 
-// The warp through `pairs` (#pairs x 6, both points in the source's frame) and the reference target
-// T^ = W^-1(A(T)) (transition.h). Throws dfm::Error when W folds space on either key.
-std::pair<WarpPath, TriMesh> warped_reference(const TriMesh& source, const TriMesh& target, const KeyPlacement& p,
-                                              const Eigen::MatrixXd& pairs) {
-  const WarpPath w = fit_warp_path(pairs.leftCols(3), pairs.rightCols(3), kWarpSteps);
-  TriMesh reference{to_source_frame(p, target.V), target.F, {}};
-  for (int v = 0; v < reference.V.rows() && !w.identity(); ++v) reference.V.row(v) = unwarp(w, reference.V.row(v));
-  if (!w.identity()) {
-    // W_u must not turn space inside out where the morph is: on both keys' paths.
-    for (const Eigen::MatrixXd* X : std::initializer_list<const Eigen::MatrixXd*>{&source.V, &reference.V})
-      for (Eigen::Index v = 0; v < X->rows(); ++v)
-        if (const auto u = fold_time(w, X->row(v)))
-          throw Error("the picked pairs fold space near (" + std::to_string((*X)(v, 0)) + " " +
-                      std::to_string((*X)(v, 1)) + " " + std::to_string((*X)(v, 2)) + ") at u = " + std::to_string(*u) +
-                      ": pin more of the shape, or move the pairs less");
-    check_transition_key(reference, "the target key warped by the picked pairs");
-  }
-  return {w, reference};
+// The reference target T^ = W^-1(A(T)) (transition.h) with the vertices `carried` (W^-1 of the
+// target's in the source's frame). Throws dfm::Error when W folds space on either key or T^ is not a
+// valid key.
+TriMesh checked_reference(const TriMesh& source, const TriMesh& target, const WarpPath& w, const Eigen::MatrixXd& carried) {
+  TriMesh reference{carried, target.F, {}};
+  if (w.identity()) return reference;
+  // W_u must not turn space inside out where the morph is: on both keys' paths.
+  for (const Eigen::MatrixXd* X : std::initializer_list<const Eigen::MatrixXd*>{&source.V, &reference.V})
+    if (const auto f = first_fold(w, *X))
+      throw Error("the picked pairs fold space near (" + std::to_string((*X)(f->row, 0)) + " " +
+                  std::to_string((*X)(f->row, 1)) + " " + std::to_string((*X)(f->row, 2)) + ") at u = " +
+                  std::to_string(f->u) + ": pin more of the shape, or move the pairs less");
+  check_transition_key(reference, "the target key warped by the picked pairs");
+  return reference;
 }
 
 // Puts the aligned (and warped) morph's vertices where they belong (transition.h, "The placement"):
@@ -673,26 +668,29 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   if (o.align) p = key_placement(solid_moments(source.V, source.F), solid_moments(target.V, target.F));
   Eigen::MatrixXd picked(o.pairs.rows(), 6);
   if (o.pairs.rows() > 0) picked << o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3));
-  Eigen::MatrixXd elastic(0, 6);
+  const TriMesh framed{to_source_frame(p, target.V), target.F, {}};
+  ElasticFit fit;
   if (o.pairs.rows() > 0 && o.elastic_samples > 0) {
     ElasticPairOptions eo;
     eo.samples = o.elastic_samples;
     eo.steps = kWarpSteps;
-    elastic = elastic_pairs(source, TriMesh{to_source_frame(p, target.V), target.F, {}}, picked, eo);
+    fit = elastic_pairs(source, framed, picked, eo);
   }
   WarpPath w;
   TriMesh reference;
-  try {
-    Eigen::MatrixXd all(picked.rows() + elastic.rows(), 6);
-    all << picked, elastic;
-    std::tie(w, reference) = warped_reference(source, target, p, all);
-  } catch (const Error&) {
-    if (elastic.rows() == 0) throw;
-    // Not expected (elastic_pairs keeps only rounds that stay invertible); the picked pairs decide.
-    elastic.resize(0, 6);
-    std::tie(w, reference) = warped_reference(source, target, p, picked);
+  if (fit.pairs.rows() > 0) {
+    try {
+      reference = checked_reference(source, target, fit.warp, fit.carried);
+      w = std::move(fit.warp);
+    } catch (const Error&) {
+      fit.pairs.resize(0, 6);  // a warped target that is not a valid key: the picked pairs decide
+    }
   }
-  st.elastic_pairs = static_cast<int>(elastic.rows());
+  if (fit.pairs.rows() == 0) {
+    w = fit_warp_path(picked.leftCols(3), picked.rightCols(3), kWarpSteps);
+    reference = checked_reference(source, target, w, unwarp_rows(w, framed.V));
+  }
+  st.elastic_pairs = static_cast<int>(fit.pairs.rows());
   TransitionOptions layered = o;
   const double turn = Eigen::AngleAxisd(p.R).angle() * 180 / M_PI;
   // In fours: layer k of K sits at (k - 1/2) / K, which then never falls on t = 1/4, 1/2 or 3/4 (a
