@@ -6,7 +6,10 @@
 // iterative closest points does, with the pairs' warp as the deformation: points spread over each
 // key, each paired with the nearest point of the other (the target as the current warp carries it
 // into the source's frame), so that the warp carries the keys' surfaces onto each other and the
-// blend handles only what they cannot share (a hole, a handle).
+// blend handles only what they cannot share (a hole, a handle). Southern 10.1.3 keeps alignment
+// rigid because a key deformed before the morph and joined by linear paths self-intersects; here
+// the deformation is not applied to a key but to the morph (transition.h: the in-between is
+// P_u(W_u(zero set))), and a round is kept only while W_u stays invertible along both keys' paths.
 #include <Eigen/Core>
 
 #include "core/anim/space_warp.h"
