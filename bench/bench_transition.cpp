@@ -5,7 +5,8 @@
 // without alignment (as before issue 30) and with it (the default: placement, warp, more layers for a
 // turn); aligned, also with the plain signed distances and two relax rounds (the field before
 // TransitionOptions::crease_rounding) and without refitting the lattice's values
-// (TransitionOptions::fit_crossings), timed in the same process. Then a box turned a quarter (issue 30): the slice against the rigidly turned box, over 4, 8
+// (TransitionOptions::fit_crossings) or refining the lattice (TransitionOptions::refine_tolerance),
+// timed in the same process. Then a box turned a quarter (issue 30): the slice against the rigidly turned box, over 4, 8
 // and 12 layers. Then five picked pairs on the teddy and the ring, with and without.
 #include <array>
 #include <chrono>
@@ -72,6 +73,17 @@ void run(const char* name, const TriMesh& a, const TriMesh& b, bool align) {
     build_transition(a, 0, b, 1, q, &unfitted);
     std::printf("%-28s values not refitted: total %.2f s (field %.2f); fitted / not %.2f\n", "", unfitted.total_seconds,
                 unfitted.field_seconds, st.total_seconds / unfitted.total_seconds);
+    // And one lattice spacing everywhere (lattice_refinement.h).
+    TransitionStats unrefined;
+    TransitionOptions r = o;
+    r.refine_tolerance = 0;
+    const AnimationManifold U = build_transition(a, 0, b, 1, r, &unrefined);
+    std::printf("%-28s lattice not refined: total %.2f s (field %.2f, extract %.2f), %d middle points, %d tets; refined "
+                "(%d points added) / not %.2f, slice at t = 0.5 %d / %d triangles\n",
+                "", unrefined.total_seconds, unrefined.field_seconds, unrefined.extract_seconds, unrefined.middle_points,
+                unrefined.tets, st.refined_points, st.total_seconds / unrefined.total_seconds,
+                static_cast<int>(slice_manifold(M, SliceAxis::T, 0.5).mesh.F.rows()),
+                static_cast<int>(slice_manifold(U, SliceAxis::T, 0.5).mesh.F.rows()));
   }
   // Baseline in the same process: a prism manifold of the first key over enough layers to hold about
   // as many tetrahedra, sliced by the same slicer.

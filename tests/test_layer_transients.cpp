@@ -137,3 +137,14 @@ TEST_CASE("layer transients: a handle that lives on, or changes too far apart, s
     for (size_t l = 0; l < r.u.size(); ++l) CHECK(r.values[l] == before[l]);
   }
 }
+
+TEST_CASE("layer transients: the points whose crossings make a short-lived event", "[transition]") {
+  Ring r(0.37);
+  LayerTransientOptions o;
+  o.radius = 2.5;
+  o.max_life = 0.2;
+  // The handle appears where the gap joins and goes where the centre, the middle's last point, does.
+  CHECK(layer_transient_points(r.X, r.K, r.u, r.values, o) == std::vector<int>{r.gap, r.centre});
+  o.max_life = 0.05;  // it lives 0.06: not short-lived
+  CHECK(layer_transient_points(r.X, r.K, r.u, r.values, o).empty());
+}

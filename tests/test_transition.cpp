@@ -694,6 +694,11 @@ TEST_CASE("transition keys: hostile input names the key and the problem", "[tran
   CHECK_THROWS_WITH(build_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1), 0,
                                      dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), 1, o),
                     Catch::Contains("transients' life"));
+  o.transient_life = 0;
+  o.refine_tolerance = std::nan("");
+  CHECK_THROWS_WITH(build_transition(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1), 0,
+                                     dfm::test::torus(Eigen::Vector3d::Zero(), 0.32, 0.14, 24, 8), 1, o),
+                    Catch::Contains("refinement tolerance"));
   for (double rounding : {-0.1, 1.0}) {
     TransitionOptions r;
     r.crease_rounding = rounding;

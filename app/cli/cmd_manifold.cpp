@@ -71,7 +71,8 @@ void print_sequence_stats(const dfm::SequenceStats& s) {
   const dfm::TransitionStats& t = s.transitions;
   std::cout << "prism slabs: " << s.prism_slabs << "\ntransition slabs: " << s.transition_slabs
             << "\nsteiner points: " << t.source.steiner + t.target.steiner << "\nturn degrees: " << t.turn_degrees
-            << "\nscale: " << t.scale << "\nelastic pairs: " << t.elastic_pairs << "\nalign seconds: " << t.align_seconds << "\nconform seconds: " << t.conform_seconds
+            << "\nscale: " << t.scale << "\nelastic pairs: " << t.elastic_pairs << "\nmiddle points: " << t.middle_points
+            << " (refined: " << t.refined_points << ")\nshort-lived events merged: " << t.transients << "\nalign seconds: " << t.align_seconds << "\nconform seconds: " << t.conform_seconds
             << "\nfield seconds: " << t.field_seconds << "\ndelaunay seconds: " << t.delaunay_seconds
             << "\nextract seconds: " << t.extract_seconds << "\nrelax seconds: " << t.relax_seconds
             << "\ntransition seconds: " << t.total_seconds

@@ -120,17 +120,45 @@ std::vector<std::vector<int>> events_of(const Eigen::MatrixXd& X, const std::vec
   return events;
 }
 
+// The sweep's crossings, its topology changes and the short-lived events among them.
+struct Sweep {
+  std::vector<Crossing> cross;
+  std::vector<Change> changes;
+  std::vector<std::vector<int>> events;  // indices into changes
+};
+
+Sweep sweep(const Eigen::MatrixXd& X, const MatrixX4iRow& K, const std::vector<double>& u,
+            const std::vector<Eigen::VectorXd>& values, const LayerTransientOptions& o) {
+  Sweep s;
+  if (values.size() < 2 || o.max_life <= 0 || o.radius <= 0) return s;
+  s.cross = crossings(u, values);
+  s.changes = sweep_changes(K, X.rows(), s.cross, values.front());
+  s.events = events_of(X, s.changes, short_lived(X, s.changes, o), o.radius);
+  return s;
+}
+
 }  // namespace
+
+std::vector<int> layer_transient_points(const Eigen::MatrixXd& X, const MatrixX4iRow& K, const std::vector<double>& u,
+                                        const std::vector<Eigen::VectorXd>& values, const LayerTransientOptions& o) {
+  const Sweep s = sweep(X, K, u, values, o);
+  std::vector<int> points;
+  for (const std::vector<int>& event : s.events)
+    for (int c : event) points.push_back(s.changes[c].point);
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  return points;
+}
 
 LayerTransientStats merge_layer_transients(const Eigen::MatrixXd& X, const MatrixX4iRow& K, const std::vector<double>& u,
                                            std::vector<Eigen::VectorXd>& values, double away,
                                            const LayerTransientOptions& o) {
   LayerTransientStats st;
-  if (values.size() < 2 || o.max_life <= 0 || o.radius <= 0) return st;
-  const std::vector<Crossing> cross = crossings(u, values);
-  const std::vector<Change> changes = sweep_changes(K, X.rows(), cross, values.front());
+  const Sweep s = sweep(X, K, u, values, o);
+  const std::vector<Crossing>& cross = s.cross;
+  const std::vector<Change>& changes = s.changes;
   const double r2 = o.radius * o.radius;
-  for (const std::vector<int>& event : events_of(X, changes, short_lived(X, changes, o), o.radius)) {
+  for (const std::vector<int>& event : s.events) {
     double start = changes[event.front()].time, end = start;
     for (int c : event) start = std::min(start, changes[c].time), end = std::max(end, changes[c].time);
     ++st.events;

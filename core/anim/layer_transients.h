@@ -40,6 +40,11 @@ struct LayerTransientStats {
 // the last before its event's start to the first after its end become +-rate * (u[k] - start), kept
 // `away` from zero as the transition clamps (transition_points.h); its other layers keep theirs,
 // which have the same signs.
+// The points (rows of X) whose crossings change the topology in the events merge_layer_transients
+// would merge, ascending, each once.
+std::vector<int> layer_transient_points(const Eigen::MatrixXd& X, const MatrixX4iRow& K, const std::vector<double>& u,
+                                        const std::vector<Eigen::VectorXd>& values, const LayerTransientOptions& o);
+
 LayerTransientStats merge_layer_transients(const Eigen::MatrixXd& X, const MatrixX4iRow& K, const std::vector<double>& u,
                                            std::vector<Eigen::VectorXd>& values, double away,
                                            const LayerTransientOptions& o);

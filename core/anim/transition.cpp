@@ -30,6 +30,7 @@
 #include "core/anim/layer_extrusion.h"
 #include "core/anim/layer_pair_delaunay.h"
 #include "core/anim/layer_transients.h"
+#include "core/anim/lattice_refinement.h"
 #include "core/anim/level_set_relax.h"
 #include "core/anim/rounded_distance.h"
 #include "core/anim/space_warp.h"
@@ -140,6 +141,7 @@ TransitionStats& TransitionStats::operator+=(const TransitionStats& o) {
   source += o.source;
   target += o.target;
   middle_points += o.middle_points;
+  refined_points += o.refined_points;
   sealed += o.sealed;
   relaxed += o.relaxed;
   transients += o.transients;
@@ -235,8 +237,9 @@ MatrixX4iRow sorted_tets(const Eigen::MatrixXi& T) {
   return K;
 }
 
-Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
-                       double u_last, double rounding) {
+Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t,
+                       const std::vector<double>& u_middle, double rounding) {
+  const double u_first = u_middle.front(), u_last = u_middle.back();
   Lattice L;
   // A lower bound on the smallest |blend| over [u_first, u_last] (0 where it may change sign; it is
   // linear in u): a rounded distance is within rounding |d| of d. Divided by its Lipschitz constant,
@@ -302,25 +305,93 @@ void renumber(MatrixX5iRow& S, int split, int a, int b) {
     for (int c = 0; c < 5; ++c) S(s, c) += S(s, c) < split ? a : b - split;
 }
 
-// Merges the middle layers' short-lived topology (layer_transients.h) into events at their start, on
-// K (lattice numbers); returns how many.
-int merge_transients(FieldPoints& p, const MatrixX4iRow& K, const TransitionOptions& o, double h_mid) {
-  const int layers = static_cast<int>(p.layer_begin.size()), n = p.lattice_size;
-  Eigen::MatrixXd X(n, 3);
-  for (int i = 0; i < n; ++i) X.row(i) = p.points[p.layer_begin.front() + i].head<3>();
+// The middle layers' values as layer_transients.h takes them: the lattice points, each layer's
+// time and values.
+struct LayerValues {
+  Eigen::MatrixXd X;
   std::vector<double> u;
-  std::vector<Eigen::VectorXd> v(layers, Eigen::VectorXd(n));
+  std::vector<Eigen::VectorXd> v;
+};
+
+LayerValues layer_values(const FieldPoints& p) {
+  const int layers = static_cast<int>(p.layer_begin.size()), n = p.lattice_size;
+  LayerValues l;
+  l.X.resize(n, 3);
+  for (int i = 0; i < n; ++i) l.X.row(i) = p.points[p.layer_begin.front() + i].head<3>();
+  l.v.assign(layers, Eigen::VectorXd(n));
   for (int k = 0; k < layers; ++k) {
-    u.push_back(p.points[p.layer_begin[k]][3]);
-    for (int i = 0; i < n; ++i) v[k][i] = p.values[p.layer_begin[k] + i];
+    l.u.push_back(p.points[p.layer_begin[k]][3]);
+    for (int i = 0; i < n; ++i) l.v[k][i] = p.values[p.layer_begin[k] + i];
   }
+  return l;
+}
+
+LayerTransientOptions transient_options(const TransitionOptions& o, double h_mid) {
   LayerTransientOptions lo;
   lo.radius = 2 * h_mid;
   lo.max_life = o.transient_life;
-  const LayerTransientStats st = merge_layer_transients(X, K, u, v, kAway * h_mid, lo);
-  for (int k = 0; k < layers; ++k)
-    for (int i = 0; i < n; ++i) p.values[p.layer_begin[k] + i] = v[k][i];
+  return lo;
+}
+
+// How far around a bulging edge's midpoint the lattice is refined, in spacings.
+constexpr double kRefineReach = 0.5;
+
+// Merges the middle layers' short-lived topology (layer_transients.h) into events at their start, on
+// K (lattice numbers); returns how many.
+int merge_transients(FieldPoints& p, const MatrixX4iRow& K, const TransitionOptions& o, double h_mid) {
+  LayerValues l = layer_values(p);
+  const LayerTransientStats st = merge_layer_transients(l.X, K, l.u, l.v, kAway * h_mid, transient_options(o, h_mid));
+  for (size_t k = 0; k < l.v.size(); ++k)
+    for (int i = 0; i < p.lattice_size; ++i) p.values[p.layer_begin[k] + i] = l.v[k][i];
   return st.events;
+}
+
+// The rows of `centres` farther than `reach` from every point of L listed in `points`.
+Eigen::MatrixXd away_from(const Eigen::MatrixXd& centres, const Lattice& L, const std::vector<int>& points, double reach) {
+  Eigen::MatrixXd kept(centres.rows(), 3);
+  Eigen::Index n = 0;
+  for (Eigen::Index r = 0; r < centres.rows(); ++r)
+    if (std::none_of(points.begin(), points.end(), [&](int p) { return (centres.row(r) - L.X.row(p)).squaredNorm() < reach * reach; }))
+      kept.row(n++) = centres.row(r);
+  return kept.topRows(n);
+}
+
+// Adds the points P to L with their rounded distances and gradients, and tetrahedralizes it again.
+void add_lattice_points(Lattice& L, const Eigen::MatrixXd& P, const SignedDistance& d_s, const SignedDistance& d_t,
+                        double rounding) {
+  Eigen::MatrixXd g_s, g_t;
+  const Eigen::VectorXd e_s = rounded_distance(d_s, P, rounding, &g_s), e_t = rounded_distance(d_t, P, rounding, &g_t);
+  const Eigen::Index n = L.X.rows(), m = P.rows();
+  auto append = [&](auto& to, const auto& rows) {
+    to.conservativeResize(n + m, to.cols());
+    to.bottomRows(m) = rows;
+  };
+  append(L.X, P);
+  append(L.g_s, g_s);
+  append(L.g_t, g_t);
+  append(L.d_s, e_s);
+  append(L.d_t, e_t);
+  L.delaunay = delaunay_3d(L.X);
+  L.K = sorted_tets(L.delaunay.tets);
+}
+
+// Refines L where the blend bulges off its chords near its zero set (lattice_refinement.h), away
+// from the short-lived events merge_transients would merge: a finer lattice there reads a gap
+// closing through more, earlier bridges, and the merge would move the event's start. Returns the
+// points added.
+int refine_lattice(Lattice& L, const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t,
+                   const std::vector<double>& u, const TransitionOptions& o) {
+  if (!(o.refine_tolerance > 0)) return 0;
+  Eigen::MatrixXd mid = bulging_edge_midpoints(L.X, tet_edges(L.K), L.d_s, L.d_t, L.g_s, L.g_t,
+                                               std::vector<double>(u.begin() + 1, u.end() - 1), h_mid, o.refine_tolerance);
+  if (o.transient_life > 0 && mid.rows() > 0) {
+    const LayerValues l = layer_values(layer_points(L, u, h_mid, o.fit_crossings));
+    const LayerTransientOptions t = transient_options(o, h_mid);
+    mid = away_from(mid, L, layer_transient_points(l.X, L.K, l.u, l.v, t), 2 * t.radius + kRefineReach * h_mid);
+  }
+  const Eigen::MatrixXd extra = finer_lattice_points(lattice_origin(box, h_mid), h_mid, mid, kRefineReach * h_mid);
+  if (extra.rows() > 0) add_lattice_points(L, extra, d_s, d_t, o.crease_rounding);
+  return static_cast<int>(extra.rows());
 }
 
 IsoField iso_field(const FieldPoints& p, double t0, double t1) {
@@ -346,27 +417,32 @@ KeyBuildStats key_build_stats(const KeyLayer& k) {
 // The middle lattice, built once by whichever thread asks first.
 class SharedLattice {
  public:
-  SharedLattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
-                double u_last, double rounding)
-      : box_(box), h_mid_(h_mid), d_s_(d_s), d_t_(d_t), u_first_(u_first), u_last_(u_last), rounding_(rounding) {}
+  // u: the layers' local times, the keys' included.
+  SharedLattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t,
+                const std::vector<double>& u, const TransitionOptions& o)
+      : box_(box), h_mid_(h_mid), d_s_(d_s), d_t_(d_t), u_(u), o_(o) {}
   const Lattice& get() {
     std::call_once(once_, [&] {
       const auto t = Clock::now();
-      L_ = middle_lattice(box_, h_mid_, d_s_, d_t_, u_first_, u_last_, rounding_);
+      L_ = middle_lattice(box_, h_mid_, d_s_, d_t_, std::vector<double>(u_.begin() + 1, u_.end() - 1), o_.crease_rounding);
+      refined_ = refine_lattice(L_, box_, h_mid_, d_s_, d_t_, u_, o_);
       seconds_ = seconds_since(t);
     });
     return L_;
   }
   double seconds() const { return seconds_; }
+  int refined() const { return refined_; }
 
  private:
   const Box& box_;
   double h_mid_;
   const SignedDistance &d_s_, &d_t_;
-  double u_first_, u_last_, rounding_;
+  const std::vector<double>& u_;
+  const TransitionOptions& o_;
   std::once_flag once_;
   Lattice L_;
   double seconds_ = 0;
+  int refined_ = 0;
 };
 
 // What both keys' ends share.
@@ -475,7 +551,7 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   // Each key's layer and its end of the 4D triangulation on a thread of its own (the two keys' layers
   // often cost very different times), and the middle layers on a third, cut first.
   const SignedDistance d_s(source.V, source.F), d_t(target.V, target.F);
-  SharedLattice lattice(box, h_mid, d_s, d_t, u[1], u[o.layers], o.crease_rounding);
+  SharedLattice lattice(box, h_mid, d_s, d_t, u, o);
   const EndSetting at{box, h_mid, time_scale, o, u, lattice};
   IsoManifoldBuilder level_set;
   auto middle = std::async(std::launch::async, middle_layers, std::ref(lattice), std::cref(u), t0, t1, std::cref(o), h_mid,
@@ -540,6 +616,7 @@ AnimationManifold morph(const TriMesh& source, double t0, const TriMesh& target,
   st.target.tied = T.tied;
   st.source.points = p.source_end - p.source_begin;
   st.middle_points = p.lattice_size;
+  st.refined_points = lattice.refined();
   st.target.points = static_cast<int>(p.points.size()) - p.target_begin;
   st.source.plane_fixes = plane_s.bridges + plane_s.carved;
   st.target.plane_fixes = plane_t.bridges + plane_t.carved;
@@ -655,6 +732,7 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
   if (o.layers < 1 || !(o.spacing > 0)) throw Error("transition: needs at least one layer and a positive spacing");
   if (!(o.max_turn_per_layer > 0)) throw Error("transition: the turn per layer must be positive");
   if (!(o.transient_life >= 0)) throw Error("transition: the transients' life must be 0 or more");
+  if (!(o.refine_tolerance >= 0)) throw Error("transition: the refinement tolerance must be 0 or more");
   if (!(o.crease_rounding >= 0 && o.crease_rounding < 1)) throw Error("transition: the crease rounding must be in [0, 1)");
   if (o.elastic_samples < 0) throw Error("transition: the elastic samples must be 0 or more");
   TransitionStats st;

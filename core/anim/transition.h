@@ -41,13 +41,19 @@
 // and each point's value moves half way to the one that would put its edges' linear crossings
 // there. Linear interpolation of F itself cuts the zero set's curves by chords, a fraction of a
 // spacing where a part thins away (the bunny's ears); the refit keeps every simplex's piece flat,
-// so the slices' normals stay those of a piecewise linear field (test_transition_quality).
+// so the slices' normals stay those of a piecewise linear field (test_transition_quality). Where a
+// part is thinner than a spacing, F dips between two lattice points of one sign; near the lattice
+// edges along which F's cubic (its values and gradients at the ends) leaves the chord by more than
+// TransitionOptions::refine_tolerance spacings close to F's zero set, the lattice is refined to half
+// its cube edge (lattice_refinement.h).
 //
-// Where the blend is nearly flat, as when the air gap between two parts closes, the lattice reads
-// handles that live a layer interval or two (bridges here and there, the pockets between them filling
-// a moment later). Those short-lived events are merged before the 4D build (layer_transients.h;
-// TransitionOptions::transient_life): the lattice points crossing near them during one move their
-// crossing to its start, so the gap closes at once instead of showing slits for a while.
+// Where the blend is nearly flat, as when the air gap between two parts closes, the field's zero set
+// changes topology through bridges here and there and pockets filling a moment later: the slices
+// show slits for a short while, as F does. TransitionOptions::transient_life can merge such
+// short-lived events before the 4D build (layer_transients.h): the lattice points crossing near them
+// during one move their crossing to its start, so the gap closes at once, and the slices then leave
+// F's zero set there by up to the gap's width (off by default; the lattice is then not refined near
+// them, where a finer lattice reads the gap closing earlier and the merge would move more).
 //
 // The 4D triangulation: each key and its nearest middle layer are joined by one 4D Delaunay
 // triangulation (Theorem 5.2.1: the key's tetrahedra and the layer's, the lattice's well-shaped
@@ -109,8 +115,9 @@ struct TransitionOptions {
   // Rounds of smoothing the middle layers' zero set (level_set_relax.h); 0 for none.
   int relax_rounds = 1;
   // Topology the lattice reads for less than this part of the transition (a gap closing through
-  // bridges and pockets) happens at once, where it starts (layer_transients.h); 0 keeps it.
-  double transient_life = 0.08;
+  // bridges and pockets) happens at once, where it starts (layer_transients.h; 0.08 merges the
+  // teddy's neck closing at t = 0.47 to 0.50 in the default scene); 0 keeps F's own.
+  double transient_life = 0;
   // The keys' distances are averaged over the six points this many times the distance away along the
   // axes before they are blended (rounded_distance.h; above: "The field"): the blend's creases on the
   // keys' medial axes, which show as notches and knife-edged rims in the in-betweens, are rounded. 0
@@ -119,6 +126,10 @@ struct TransitionOptions {
   // The middle lattice's values refitted to F's own crossings of its edges (above; crossing_fit.h);
   // false: each point carries F itself.
   bool fit_crossings = true;
+  // Where the blend bulges off the lattice's chords near its zero set by more than this many lattice
+  // spacings (a part thinner than a spacing shrinking away), the lattice is refined to half its
+  // spacing (lattice_refinement.h); 0: one spacing everywhere.
+  double refine_tolerance = 0.1;
   // Picked pairs, one a row: x0 y0 z0 (a point on the source key) x1 y1 z1 (its partner on the
   // target); #pairs x 6, or none.
   Eigen::MatrixXd pairs = Eigen::MatrixXd(0, 6);
@@ -130,7 +141,8 @@ struct TransitionOptions {
     return layers == o.layers && spacing == o.spacing && max_conform_rounds == o.max_conform_rounds &&
            align == o.align && max_turn_per_layer == o.max_turn_per_layer && relax_rounds == o.relax_rounds &&
            transient_life == o.transient_life && crease_rounding == o.crease_rounding &&
-           fit_crossings == o.fit_crossings && elastic_samples == o.elastic_samples &&
+           fit_crossings == o.fit_crossings && refine_tolerance == o.refine_tolerance &&
+           elastic_samples == o.elastic_samples &&
            pairs.rows() == o.pairs.rows() &&
            pairs.cols() == o.pairs.cols() && pairs == o.pairs;
   }
@@ -151,6 +163,7 @@ struct KeyBuildStats {
 struct TransitionStats {
   KeyBuildStats source, target;
   int middle_points = 0;                         // in the layers between
+  int refined_points = 0;                        // of them, added where the lattice is refined
   int sealed = 0;                                // folds at the keys' times replaced (key_time_seal.h)
   int relaxed = 0;                               // vertex moves of the smoothing (level_set_relax.h)
   int transients = 0;                            // short-lived events merged (layer_transients.h)

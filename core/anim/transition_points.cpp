@@ -89,12 +89,14 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> band_points(const Box& box, double h
 
 }  // namespace
 
+// Shifted by a different amount along each axis, too little to matter to the field: a lattice with
+// the keys' symmetries (a box with equal sides) would tie exactly in their 4D Delaunay
+// triangulation (layer_pair_delaunay.h).
+Eigen::RowVector3d lattice_origin(const Box& box, double a) { return box.lo - a * Eigen::RowVector3d(1.37e-6, 2.91e-6, 4.13e-6); }
+
 Eigen::MatrixXd lattice_band_points(const Box& box, double a, double band, const PointField& g) {
   const double H = 2 * a;
-  // Shifted by a different amount along each axis, too little to matter to the field: a lattice with
-  // the keys' symmetries (a box with equal sides) would tie exactly in their 4D Delaunay
-  // triangulation (layer_pair_delaunay.h).
-  const Eigen::RowVector3d lo = box.lo - a * Eigen::RowVector3d(1.37e-6, 2.91e-6, 4.13e-6);
+  const Eigen::RowVector3d lo = lattice_origin(box, a);
   const Eigen::Array3i n = (((box.hi - lo) / H).array().ceil().cast<int>() + 1).transpose();
   if (static_cast<double>(n.prod()) > 4e6) throw Error("transition: the point spacing is too fine for the keys' size");
   Eigen::MatrixXd C(n.prod(), 3);

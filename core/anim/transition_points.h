@@ -35,6 +35,9 @@ double clamp_away_from_zero(double v, double eps);
 // find the cells the band may reach.
 Eigen::MatrixXd lattice_band_points(const Box& box, double a, double band, const PointField& g);
 
+// The origin of lattice_band_points' lattice: a cube corner.
+Eigen::RowVector3d lattice_origin(const Box& box, double a);
+
 // One key's points at its time: the conforming surface (anchored, just inside), its fill near the
 // surface at the key's own spacing and farther out at the middle spacing, and the centroids that
 // keep concavities from being bridged.

@@ -21,3 +21,5 @@ dfm_test(test_layer_transients SOURCES test_layer_transients.cpp LIBS dfm_anim)
 dfm_test(test_transition_relax SOURCES test_transition_relax.cpp LIBS dfm_anim dfm_mesh)
 # The 4D Delaunay triangulation of two layers from their 3D ones, against CGAL's dD (layer_pair_delaunay.h).
 dfm_test(test_layer_pair_delaunay SOURCES test_layer_pair_delaunay.cpp LIBS dfm_anim)
+# Refining a transition's middle lattice where the blend bulges off its chords (lattice_refinement.h).
+dfm_test(test_lattice_refinement SOURCES test_lattice_refinement.cpp LIBS dfm_anim)
