@@ -11,6 +11,7 @@
 
 #include "app/editor/view_model.h"
 #include "core/scene/document.h"
+#include "core/scene/key_pairs.h"
 #include "tests/key_mesh_test_meshes.h"
 #include "tests/volume_test_meshes.h"
 
@@ -194,4 +195,31 @@ TEST_CASE("view model: opening a format the editor cannot read lists the ones it
   register_scene_importer("xyzscene", [](const std::string&, std::string&) { return SceneData{}; });
   CHECK(unopenable_reason("character.xyzscene").empty());
   CHECK(unopenable_reason("noext").find("no file extension") != std::string::npos);
+}
+
+TEST_CASE("view model: picked pairs are numbered beside both of their points", "[editor][view_model]") {
+  Document doc;
+  doc.key_mesh(test::icosphere(Vector3d::Zero(), 0.45, 2), "sphere.obj", 0);
+  doc.key_mesh(test::torus(Vector3d::Zero(), 0.32, 0.12, 24, 12), "torus.obj", 1);
+  CHECK(pair_labels(doc, view::Camera{}).empty());
+  add_key_pair(doc, 0, (Eigen::Matrix<double, 1, 6>() << 0.45, 0, 0, 0.44, 0, 0).finished());
+  add_key_pair(doc, 0, (Eigen::Matrix<double, 1, 6>() << 0, 0.45, 0, 0, 0.44, 0).finished());
+  // Orthographic, looking down -z at the origin: a point (x, y, 0) is at pixel
+  // (W / 2 + x H / (2 h), H / 2 - y H / (2 h)), h = distance tan(fov / 2) the half height shown.
+  view::Camera cam;
+  cam.orthographic = true;
+  cam.width = 800, cam.height = 600;
+  const double h = cam.distance * std::tan(cam.fov_y_deg * M_PI / 360), k = cam.height / (2 * h);
+  const std::vector<ViewportLabel> labels = pair_labels(doc, cam, 6);
+  REQUIRE(labels.size() == 4);
+  const double want[4][2] = {{400 + 0.45 * k, 300}, {400 + 0.44 * k, 300}, {400, 300 - 0.45 * k}, {400, 300 - 0.44 * k}};
+  for (int i = 0; i < 4; ++i) {
+    CHECK(labels[i].text == (i < 2 ? "1" : "2"));
+    CHECK(labels[i].x == Approx(want[i][0] + 6).margin(1e-6));
+    CHECK(labels[i].y == Approx(want[i][1] - 6).margin(1e-6));
+  }
+  // Behind the eye (at z = -2, looking down -z at a target at z = -5): no labels.
+  cam.orthographic = false;
+  cam.target = Vector3d(0, 0, -5);
+  CHECK(pair_labels(doc, cam).empty());
 }

@@ -528,6 +528,9 @@ void Editor::draw_viewport_hud() {
     dl->AddText(font, size, ImVec2(lo.x + 10, at_y), color, text.c_str(), nullptr, wrap);
     return ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap).y;
   };
+  // The picked pairs' numbers beside their points (scene_overlays.cpp draws the points).
+  for (const ViewportLabel& l : pair_labels(doc_, cam_))
+    dl->AddText(font, size, ImVec2(lo.x + float(l.x), lo.y + float(l.y) - size), IM_COL32(240, 226, 190, 255), l.text.c_str());
   y += line(y, IM_COL32(200, 204, 212, 220), hud_text()) + 4;
   if (!view_->last_error().empty()) y += line(y, IM_COL32(255, 150, 110, 255), view_->last_error()) + 4;
   // A transition builds on a worker: say so (the pose or rest shows until it lands).

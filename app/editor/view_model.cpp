@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "core/util/atomic_file.h"
 #include "core/rig/handle_constraint.h"
 #include "core/rig/rig.h"
+#include "core/scene/key_pairs.h"
 #include "core/scene/scene_import.h"
 
 namespace dfm::editor {
@@ -100,6 +102,19 @@ int interval_at(const Document& doc, double t) {
 
 bool key_is_rigged(const Document& doc, int k) {
   return !doc.keys()[k].is_mesh() || same_triangles(doc.keys()[k].mesh, doc.surface());
+}
+
+std::vector<ViewportLabel> pair_labels(const Document& doc, const view::Camera& cam, double offset) {
+  std::vector<ViewportLabel> out;
+  if (doc.keys().size() < 2) return out;
+  const Eigen::MatrixXd& P = doc.keys()[pair_interval(doc, doc.time())].pairs_to_next;
+  for (Eigen::Index r = 0; r < P.rows(); ++r)
+    for (int end = 0; end < 2; ++end) {
+      const Eigen::Vector3d px = view::project_to_pixel(cam, P.row(r).segment<3>(3 * end).transpose());
+      if (!(std::abs(px.z()) <= 1)) continue;
+      out.push_back({std::to_string(r + 1), px.x() + offset, px.y() - offset});
+    }
+  return out;
 }
 
 float rig_overlay_opacity(const Document& doc, double t) {

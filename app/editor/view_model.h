@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "core/scene/document.h"
+#include "core/view/camera.h"
 
 namespace dfm::editor {
 
@@ -57,6 +58,16 @@ bool key_is_rigged(const Document& doc, int k);
 float rig_overlay_opacity(const Document& doc, double t);
 // Below this opacity the overlays are not drawn at all, and the handles cannot be picked.
 constexpr float kMinOverlayOpacity = 0.02f;
+
+// Text at a point of the viewport (pixels from its top left, as view::project_to_pixel gives them).
+struct ViewportLabel {
+  std::string text;
+  double x = 0, y = 0;
+};
+// The numbers of the picked pairs of the interval at the document's time (pair_interval), from 1 as
+// the Pair tool's count reads: each beside both of its points, `offset` pixels to their upper right;
+// none for a point outside the camera's depth range.
+std::vector<ViewportLabel> pair_labels(const Document& doc, const view::Camera& cam, double offset = 6);
 
 // The outliner's row for handle h: its number (what scripts take), its name and, when FAST is on and
 // `with_state`, its state, e.g. "5  l_upper_arm  [pinned]" (a narrow outliner marks the state on the
