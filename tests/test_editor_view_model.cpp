@@ -197,11 +197,12 @@ TEST_CASE("view model: opening a format the editor cannot read lists the ones it
   CHECK(unopenable_reason("noext").find("no file extension") != std::string::npos);
 }
 
-TEST_CASE("view model: picked pairs are numbered beside both of their points", "[editor][view_model]") {
+TEST_CASE("view model: picked pairs are numbered beside both of their points and where they are now",
+          "[editor][view_model]") {
   Document doc;
   doc.key_mesh(test::icosphere(Vector3d::Zero(), 0.45, 2), "sphere.obj", 0);
   doc.key_mesh(test::torus(Vector3d::Zero(), 0.32, 0.12, 24, 12), "torus.obj", 1);
-  CHECK(pair_labels(doc, view::Camera{}).empty());
+  CHECK(pair_labels(doc, view::Camera{}, nullptr).empty());
   add_key_pair(doc, 0, (Eigen::Matrix<double, 1, 6>() << 0.45, 0, 0, 0.44, 0, 0).finished());
   add_key_pair(doc, 0, (Eigen::Matrix<double, 1, 6>() << 0, 0.45, 0, 0, 0.44, 0).finished());
   // Orthographic, looking down -z at the origin: a point (x, y, 0) is at pixel
@@ -210,7 +211,7 @@ TEST_CASE("view model: picked pairs are numbered beside both of their points", "
   cam.orthographic = true;
   cam.width = 800, cam.height = 600;
   const double h = cam.distance * std::tan(cam.fov_y_deg * M_PI / 360), k = cam.height / (2 * h);
-  const std::vector<ViewportLabel> labels = pair_labels(doc, cam, 6);
+  const std::vector<ViewportLabel> labels = pair_labels(doc, cam, nullptr, 6);
   REQUIRE(labels.size() == 4);
   const double want[4][2] = {{400 + 0.45 * k, 300}, {400 + 0.44 * k, 300}, {400, 300 - 0.45 * k}, {400, 300 - 0.44 * k}};
   for (int i = 0; i < 4; ++i) {
@@ -218,8 +219,23 @@ TEST_CASE("view model: picked pairs are numbered beside both of their points", "
     CHECK(labels[i].x == Approx(want[i][0] + 6).margin(1e-6));
     CHECK(labels[i].y == Approx(want[i][1] - 6).margin(1e-6));
   }
+  // At t = 0 nobody travels yet; inside the interval, with a placement, where each pair is now: a
+  // placement that only moves (by (1, 0, 0)) takes each pair along its chord, at t = 0.5
+  // x0 + 0.5 ((x1 - (1, 0, 0)) - x0) + 0.5 (1, 0, 0), the midpoint (test_transition_align turns).
+  KeyPlacement moved;
+  moved.c1 = Vector3d(1, 0, 0);
+  CHECK(pair_labels(doc, cam, &moved, 6).size() == 4);
+  doc.set_time(0.5);
+  const std::vector<ViewportLabel> travelling = pair_labels(doc, cam, &moved, 6);
+  REQUIRE(travelling.size() == 6);
+  CHECK(travelling[2].text == "1");
+  CHECK(travelling[2].x == Approx(400 + 0.445 * k + 6).margin(1e-6));
+  CHECK(travelling[2].y == Approx(300 - 6).margin(1e-6));
+  CHECK(travelling[5].text == "2");
+  CHECK(travelling[5].x == Approx(400 + 6).margin(1e-6));
+  CHECK(travelling[5].y == Approx(300 - 0.445 * k - 6).margin(1e-6));
   // Behind the eye (at z = -2, looking down -z at a target at z = -5): no labels.
   cam.orthographic = false;
   cam.target = Vector3d(0, 0, -5);
-  CHECK(pair_labels(doc, cam).empty());
+  CHECK(pair_labels(doc, cam, &moved).empty());
 }

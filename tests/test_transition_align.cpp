@@ -257,6 +257,39 @@ TEST_CASE("placement: identity at 0, the key's at 1, a half turn is a half turn"
   }
 }
 
+TEST_CASE("pair position: a picked pair travels from its point to its partner, turning with the placement", "[align]") {
+  // Key 1 is key 0 turned a quarter about z through the origin: a point at (1, 0, 0) paired with
+  // its image (0, 1, 0) goes round the arc, at u (cos(90 u), sin(90 u), 0), not along the chord.
+  KeyPlacement p;
+  p.R = rodrigues(Eigen::Vector3d(0, 0, 1), 90);
+  const Eigen::Matrix<double, 1, 6> pair = (Eigen::Matrix<double, 1, 6>() << 1, 0, 0, 0, 1, 0).finished();
+  for (double u : {0.0, 0.25, 0.5, 1.0}) {
+    const double a = M_PI / 2 * u;
+    CHECK((pair_position(p, pair, u) - Eigen::RowVector3d(std::cos(a), std::sin(a), 0)).norm() < 1e-12);
+  }
+  // A partner off the image: the frame point moves straight from x0 to A(x1), then is placed. With
+  // scale 2 about c0 = (1, 1, 0) and no turn, A(x1) = c0 + (x1 - c1) / 2.
+  p = KeyPlacement{};
+  p.c0 = Eigen::Vector3d(1, 1, 0);
+  p.c1 = Eigen::Vector3d(1, 1, 4);
+  p.scale = 2;
+  const Eigen::Matrix<double, 1, 6> off = (Eigen::Matrix<double, 1, 6>() << 2, 1, 0, 1, 1, 6).finished();
+  const Eigen::RowVector3d x0(2, 1, 0), a1 = Eigen::RowVector3d(1, 1, 0) + (Eigen::RowVector3d(1, 1, 6) - Eigen::RowVector3d(1, 1, 4)) / 2;
+  for (double u : {0.0, 0.3, 1.0}) {
+    const Eigen::RowVector3d y = x0 + u * (a1 - x0), c0(1, 1, 0), c1(1, 1, 4);
+    const Eigen::RowVector3d want = c0 + u * (c1 - c0) + ((1 - u) + u * 2) * (y - c0);
+    CHECK((pair_position(p, off, u) - want).norm() < 1e-12);
+  }
+  CHECK((pair_position(p, off, 1) - Eigen::RowVector3d(1, 1, 6)).norm() < 1e-12);
+  // The transition's own placement: none without alignment.
+  TransitionOptions o;
+  o.align = false;
+  const KeyPlacement none = transition_placement(dfm::test::icosphere(Eigen::Vector3d::Zero(), 0.5, 1),
+                                                 dfm::test::icosphere(Eigen::Vector3d(3, 0, 0), 0.3, 1), o);
+  CHECK(none.c1 == Eigen::Vector3d::Zero());
+  CHECK(none.scale == 1);
+}
+
 TEST_CASE("space warp: through its pairs, affine maps exactly, its inverse, its derivative", "[align]") {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> r(-1, 1);

@@ -529,7 +529,7 @@ void Editor::draw_viewport_hud() {
     return ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap).y;
   };
   // The picked pairs' numbers beside their points (scene_overlays.cpp draws the points).
-  for (const ViewportLabel& l : pair_labels(doc_, cam_))
+  for (const ViewportLabel& l : pair_labels(doc_, cam_, view_->pair_placement(doc_)))
     dl->AddText(font, size, ImVec2(lo.x + float(l.x), lo.y + float(l.y) - size), IM_COL32(240, 226, 190, 255), l.text.c_str());
   y += line(y, IM_COL32(200, 204, 212, 220), hud_text()) + 4;
   if (!view_->last_error().empty()) y += line(y, IM_COL32(255, 150, 110, 255), view_->last_error()) + 4;

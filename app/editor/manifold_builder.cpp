@@ -11,6 +11,7 @@
 
 #include "core/anim/manifold_normals.h"
 #include "core/anim/manifold_sequence.h"
+#include "core/anim/transition.h"
 #include "core/scene/key_surfaces.h"
 #include "core/util/error.h"
 #include "core/util/hash.h"
@@ -122,6 +123,10 @@ void ManifoldBuilder::start(const Document& doc) {
     return;
   }
   KeyTrack track = doc.has_mesh_keys() ? KeyTrack{} : pose_key_track(doc);
+  placements_.clear();
+  for (size_t i = 0; i + 1 < keys.size(); ++i)
+    if (!same_connectivity(keys[i], keys[i + 1]))
+      placements_.emplace_back(keys[i].time, transition_placement(TriMesh{keys[i].V, keys[i].F, {}}, TriMesh{keys[i + 1].V, keys[i + 1].F, {}}));
   if (!needs_transition(keys)) {
     // The prism build only: milliseconds, as before mesh keys existed.
     try {
@@ -158,6 +163,12 @@ void ManifoldBuilder::start(const Document& doc) {
     raw->done.store(true, std::memory_order_release);
   });
   job_ = std::move(j);
+}
+
+const KeyPlacement* ManifoldBuilder::transition_placement_from(double t0) const {
+  for (const auto& [time, p] : placements_)
+    if (time == t0) return &p;
+  return nullptr;
 }
 
 bool ManifoldBuilder::update(const Document& doc) {

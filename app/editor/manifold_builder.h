@@ -10,7 +10,10 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "core/anim/key_alignment.h"
 #include "core/anim/keyframes.h"
 #include "core/anim/manifold.h"
 #include "core/scene/document.h"
@@ -51,6 +54,9 @@ class ManifoldBuilder {
   // The pose keys the manifold was built from when every key is a pose key (the handles follow the
   // animation); empty with mesh keys.
   const KeyTrack& track() const { return track_; }
+  // The placement of the transition from the key at time t0 to the next (transition_placement of the
+  // key surfaces the manifold is built from), null where no transition starts at t0.
+  const KeyPlacement* transition_placement_from(double t0) const;
   // A background build is running, or its result waits for update() to collect it.
   bool busy() const { return job_ != nullptr; }
   // "building animation manifold: transition, slab 1 of 2, 3.4 s" while busy(), else "".
@@ -65,6 +71,7 @@ class ManifoldBuilder {
   bool replay(const Document& doc);  // the edits onto base_ -> manifold_; true when manifold_ is new
 
   std::shared_ptr<Job> job_;
+  std::vector<std::pair<double, KeyPlacement>> placements_;  // per transition: its first key's time
   std::shared_ptr<const AnimationManifold> manifold_ = std::make_shared<const AnimationManifold>();
   std::shared_ptr<const AnimationManifold> base_;  // as built from the keys, before the edits
   std::shared_ptr<const Eigen::MatrixXd> base_normals_, normals_;

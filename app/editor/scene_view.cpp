@@ -1,5 +1,7 @@
 #include "app/editor/scene_view.h"
 
+#include "core/scene/key_pairs.h"
+
 #include "core/util/hash.h"
 
 #include <algorithm>
@@ -414,6 +416,10 @@ double SceneView::interval_build_ms() const { return deformer_->interval_build_m
 int SceneView::vertex_time_count() const { return static_cast<int>(deformer_->interval_policy.times().size()); }
 
 bool SceneView::manifold_building() const { return deformer_->builder.busy(); }
+const KeyPlacement* SceneView::pair_placement(const Document& doc) const {
+  if (doc.keys().size() < 2) return nullptr;
+  return deformer_->builder.transition_placement_from(doc.keys()[pair_interval(doc, doc.time())].time);
+}
 std::string SceneView::manifold_progress() const { return deformer_->builder.progress_text(); }
 
 Eigen::AlignedBox3d SceneView::framing_bounds() const {

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/anim/key_alignment.h"
 #include "core/anim/slice.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
@@ -90,6 +91,10 @@ class SceneView {
   float overlay_opacity() const { return overlay_opacity_; }
   // The animation manifold is building on its worker thread (a transition), and what it is doing.
   bool manifold_building() const;
+  // The placement of the transition whose interval holds the document's time (the picked pairs'
+  // paths go by it: pair_position), null where that interval is no transition or has not been
+  // prepared.
+  const KeyPlacement* pair_placement(const Document& doc) const;
   std::string manifold_progress() const;
 
  private:

@@ -8,6 +8,7 @@
 #include "core/util/atomic_file.h"
 #include "core/rig/handle_constraint.h"
 #include "core/rig/rig.h"
+#include "core/anim/transition.h"
 #include "core/scene/key_pairs.h"
 #include "core/scene/scene_import.h"
 
@@ -104,16 +105,23 @@ bool key_is_rigged(const Document& doc, int k) {
   return !doc.keys()[k].is_mesh() || same_triangles(doc.keys()[k].mesh, doc.surface());
 }
 
-std::vector<ViewportLabel> pair_labels(const Document& doc, const view::Camera& cam, double offset) {
+std::vector<ViewportLabel> pair_labels(const Document& doc, const view::Camera& cam, const KeyPlacement* placement,
+                                       double offset) {
   std::vector<ViewportLabel> out;
   if (doc.keys().size() < 2) return out;
-  const Eigen::MatrixXd& P = doc.keys()[pair_interval(doc, doc.time())].pairs_to_next;
-  for (Eigen::Index r = 0; r < P.rows(); ++r)
-    for (int end = 0; end < 2; ++end) {
-      const Eigen::Vector3d px = view::project_to_pixel(cam, P.row(r).segment<3>(3 * end).transpose());
-      if (!(std::abs(px.z()) <= 1)) continue;
-      out.push_back({std::to_string(r + 1), px.x() + offset, px.y() - offset});
-    }
+  const int k = pair_interval(doc, doc.time());
+  const SceneKey &a = doc.keys()[k], &b = doc.keys()[k + 1];
+  const double u = (doc.time() - a.time) / (b.time - a.time);
+  auto label = [&](const Eigen::Vector3d& x, const std::string& text) {
+    const Eigen::Vector3d px = view::project_to_pixel(cam, x);
+    if (std::abs(px.z()) <= 1) out.push_back({text, px.x() + offset, px.y() - offset});
+  };
+  for (Eigen::Index r = 0; r < a.pairs_to_next.rows(); ++r) {
+    const std::string n = std::to_string(r + 1);
+    label(a.pairs_to_next.row(r).head<3>().transpose(), n);
+    label(a.pairs_to_next.row(r).tail<3>().transpose(), n);
+    if (placement && u > 0 && u < 1) label(pair_position(*placement, a.pairs_to_next.row(r), u).transpose(), n);
+  }
   return out;
 }
 

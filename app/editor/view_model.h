@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "core/anim/key_alignment.h"
 #include "core/scene/document.h"
 #include "core/view/camera.h"
 
@@ -65,9 +66,11 @@ struct ViewportLabel {
   double x = 0, y = 0;
 };
 // The numbers of the picked pairs of the interval at the document's time (pair_interval), from 1 as
-// the Pair tool's count reads: each beside both of its points, `offset` pixels to their upper right;
-// none for a point outside the camera's depth range.
-std::vector<ViewportLabel> pair_labels(const Document& doc, const view::Camera& cam, double offset = 6);
+// the Pair tool's count reads: each beside both of its points, and, inside the interval with the
+// transition's `placement` (null: none), beside where the pair is now (pair_position), `offset`
+// pixels to their upper right; none for a point outside the camera's depth range.
+std::vector<ViewportLabel> pair_labels(const Document& doc, const view::Camera& cam, const KeyPlacement* placement,
+                                       double offset = 6);
 
 // The outliner's row for handle h: its number (what scripts take), its name and, when FAST is on and
 // `with_state`, its state, e.g. "5  l_upper_arm  [pinned]" (a narrow outliner marks the state on the

@@ -724,6 +724,16 @@ std::optional<PairProblem> transition_pair_problem(const TriMesh& source, const 
   return std::nullopt;
 }
 
+KeyPlacement transition_placement(const TriMesh& source, const TriMesh& target, const TransitionOptions& o) {
+  if (!o.align) return {};
+  return key_placement(solid_moments(source.V, source.F), solid_moments(target.V, target.F));
+}
+
+Eigen::RowVector3d pair_position(const KeyPlacement& p, const Eigen::Matrix<double, 1, 6>& pair, double u) {
+  const Eigen::RowVector3d x0 = pair.head<3>(), x1 = to_source_frame(p, pair.tail<3>());
+  return placed_at(p, u, x0 + u * (x1 - x0));
+}
+
 AnimationManifold build_transition(const TriMesh& source_in, double t0, const TriMesh& target_in, double t1,
                                    const TransitionOptions& o, TransitionStats* stats) {
   const auto start = Clock::now();
@@ -742,8 +752,7 @@ AnimationManifold build_transition(const TriMesh& source_in, double t0, const Tr
 
   // The placement (key_alignment.h) and the warp (space_warp.h), both in the source's frame.
   auto t = Clock::now();
-  KeyPlacement p;
-  if (o.align) p = key_placement(solid_moments(source.V, source.F), solid_moments(target.V, target.F));
+  const KeyPlacement p = transition_placement(source, target, o);
   Eigen::MatrixXd picked(o.pairs.rows(), 6);
   if (o.pairs.rows() > 0) picked << o.pairs.leftCols(3), to_source_frame(p, o.pairs.rightCols(3));
   const TriMesh framed{to_source_frame(p, target.V), target.F, {}};

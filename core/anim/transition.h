@@ -91,6 +91,7 @@
 
 #include <Eigen/Core>
 
+#include "core/anim/key_alignment.h"
 #include "core/anim/manifold.h"
 #include "core/mesh/mesh.h"
 
@@ -197,6 +198,14 @@ struct PairProblem {
 };
 std::optional<PairProblem> transition_pair_problem(const TriMesh& source, const TriMesh& target,
                                                    const Eigen::MatrixXd& pairs);
+
+// The placement a transition between these keys removes and puts back (above: "The placement"):
+// key_placement of their solid moments, the identity without TransitionOptions::align.
+KeyPlacement transition_placement(const TriMesh& source, const TriMesh& target, const TransitionOptions& options = {});
+
+// Where a picked pair (x0 y0 z0 on the source, x1 y1 z1 on the target) is at u in [0, 1] (above: "The
+// in-between"): P_u(x0 + u (A(x1) - x0)), x0 at 0 and x1 at 1.
+Eigen::RowVector3d pair_position(const KeyPlacement& placement, const Eigen::Matrix<double, 1, 6>& pair, double u);
 
 // The transition manifold between `source` at time t0 and `target` at time t1 (t0 < t1), in one slab
 // per layer interval. Its slice at t0 is the source surface (with its surface Steiner points), at t1
