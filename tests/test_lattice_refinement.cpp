@@ -107,4 +107,5 @@ TEST_CASE("bulging edges: a slab thinner than an edge, hidden between its ends, 
   }
   CHECK_THROWS_WITH(bulging_edge_midpoints(X, edges, d_s.head(3), d_t, g_s, g_t, {0.0}, a, 0.1),
                     Catch::Contains("disagree in size"));
+  CHECK_THROWS_WITH(bulging_edge_midpoints(X, {{0, 4}}, d_s, d_t, g_s, g_t, {0.0}, a, 0.1), Catch::Contains("out of range"));
 }

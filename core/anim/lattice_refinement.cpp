@@ -20,9 +20,8 @@ double zero_set_bulge(double fa, double fb, double da, double db) {
   const double D = fb - fa;
   double m = 0;
   for (double s : {0.25, 0.5, 0.75}) {
-    const double chord = fa + s * D, bulge = std::abs(s * (1 - s) * ((da - D) * (1 - s) + (D - db) * s));
-    const double p = chord + s * (1 - s) * ((da - D) * (1 - s) + (D - db) * s);
-    if ((p < 0) != (chord < 0) || std::min(std::abs(p), std::abs(chord)) <= bulge) m = std::max(m, bulge);
+    const double chord = fa + s * D, off = s * (1 - s) * ((da - D) * (1 - s) + (D - db) * s), p = chord + off;
+    if ((p < 0) != (chord < 0) || std::min(std::abs(p), std::abs(chord)) <= std::abs(off)) m = std::max(m, std::abs(off));
   }
   return m;
 }
@@ -37,10 +36,11 @@ Eigen::MatrixXd bulging_edge_midpoints(const Eigen::MatrixXd& X, const std::vect
   if (X.cols() != 3 || d_s.size() != n || d_t.size() != n || g_s.rows() != n || g_t.rows() != n || g_s.cols() != 3 ||
       g_t.cols() != 3)
     throw Error("bulging_edge_midpoints: points, values and gradients disagree in size");
+  for (const std::array<int, 2>& e : edges)
+    if (std::min(e[0], e[1]) < 0 || std::max(e[0], e[1]) >= n) throw Error("bulging_edge_midpoints: an edge's point index is out of range");
   std::vector<char> flagged(edges.size(), 0);
   parallel_for(static_cast<int>(edges.size()), 0, [&](int k) {
     const int i = edges[k][0], j = edges[k][1];
-    if (i < 0 || j < 0 || i >= n || j >= n) return;
     const Eigen::RowVector3d e = X.row(j) - X.row(i);
     for (double w : u) {
       const double fi = (1 - w) * d_s[i] + w * d_t[i], fj = (1 - w) * d_s[j] + w * d_t[j];

@@ -7,6 +7,7 @@
 // field bulges away from its chord, the coarse lattice is refined by the body-centred cubic lattice
 // of half its cube edge, which holds every coarse point, so the Delaunay tetrahedra stay the two
 // lattices' own away from the seam between them.
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,7 +18,8 @@ namespace dfm {
 // at one of the times u, bulges away from its chord by more than tolerance * a in distance: the
 // cubic Hermite of the ends' values and gradients (F's gradient likewise from g_s, g_t, #X x 3)
 // against the linear, divided by |grad F|. Only edges within one edge length of F's zero set (by
-// the ends' values and gradients) count. Throws dfm::Error when the sizes disagree.
+// the ends' values and gradients) count. Throws dfm::Error when the sizes disagree or an index is out
+// of range.
 Eigen::MatrixXd bulging_edge_midpoints(const Eigen::MatrixXd& X, const std::vector<std::array<int, 2>>& edges,
                                        const Eigen::VectorXd& d_s, const Eigen::VectorXd& d_t, const Eigen::MatrixXd& g_s,
                                        const Eigen::MatrixXd& g_t, const std::vector<double>& u, double a,
