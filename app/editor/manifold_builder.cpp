@@ -127,7 +127,7 @@ void ManifoldBuilder::start(const Document& doc) {
   for (size_t i = 0; i + 1 < keys.size(); ++i)
     if (!same_connectivity(keys[i], keys[i + 1]))
       placements_.emplace_back(keys[i].time, transition_placement(TriMesh{keys[i].V, keys[i].F, {}}, TriMesh{keys[i + 1].V, keys[i + 1].F, {}}));
-  if (!needs_transition(keys)) {
+  if (placements_.empty()) {  // no transition (needs_transition's rule, read off the loop above)
     // The prism build only: milliseconds, as before mesh keys existed.
     try {
       base_ = std::make_shared<const AnimationManifold>(build_manifold_sequence(keys));

@@ -6,7 +6,6 @@
 
 #include "app/editor/scene_view.h"
 #include "app/editor/view_model.h"
-#include "core/anim/transition.h"
 #include "core/scene/key_pairs.h"
 #include "core/rig/forward_kinematics.h"
 #include "core/view/color.h"
@@ -169,25 +168,23 @@ std::vector<gl::OverlayVertex> fast_state_marks(const Document& doc, const Eigen
 
 // The picked pairs of the interval holding the current time (SceneKey::pairs_to_next): the point on
 // the first key in its colour, its partner on the next in the other's, joined by a thin line; inside
-// the interval, with the transition's placement, where each pair is now (pair_position) in white.
+// the interval, with the transition's placement, where each pair is now (pairs_now) in white.
 void draw_picked_pairs(gl::RenderBackend& gpu, const view::Camera& cam, const Document& doc, const KeyPlacement* placement) {
   const auto& keys = doc.keys();
   if (keys.size() < 2) return;
-  const int k = pair_interval(doc, doc.time());
-  if (keys[k].pairs_to_next.rows() == 0) return;
-  const Eigen::Vector4f from(1.0f, 0.62f, 0.2f, 1.0f), to(0.3f, 0.85f, 0.9f, 1.0f), now(1.0f, 1.0f, 1.0f, 1.0f);
+  const Eigen::MatrixXd& P = keys[pair_interval(doc, doc.time())].pairs_to_next;
+  if (P.rows() == 0) return;
+  const Eigen::Vector4f from(1.0f, 0.62f, 0.2f, 1.0f), to(0.3f, 0.85f, 0.9f, 1.0f), white(1.0f, 1.0f, 1.0f, 1.0f);
   std::vector<gl::OverlayVertex> lines, pts, current;
-  const Eigen::MatrixXd& P = keys[k].pairs_to_next;
-  const double u = (doc.time() - keys[k].time) / (keys[k + 1].time - keys[k].time);
   for (Eigen::Index r = 0; r < P.rows(); ++r) {
     const Eigen::Vector3d a = P.row(r).head<3>().transpose(), b = P.row(r).tail<3>().transpose();
     lines.push_back(gl::overlay_vertex(a, from));
     lines.push_back(gl::overlay_vertex(b, to));
     pts.push_back(gl::overlay_vertex(a, from));
     pts.push_back(gl::overlay_vertex(b, to));
-    if (placement && u > 0 && u < 1)
-      current.push_back(gl::overlay_vertex(pair_position(*placement, P.row(r), u).transpose(), now));
   }
+  const Eigen::MatrixXd now = pairs_now(doc, placement);
+  for (Eigen::Index r = 0; r < now.rows(); ++r) current.push_back(gl::overlay_vertex(now.row(r).transpose(), white));
   gpu.draw_lines(cam, lines, 2.0f, false);
   gpu.draw_points(cam, pts, 10.0f, false);
   if (!current.empty()) gpu.draw_points(cam, current, 8.0f, false);

@@ -105,22 +105,32 @@ bool key_is_rigged(const Document& doc, int k) {
   return !doc.keys()[k].is_mesh() || same_triangles(doc.keys()[k].mesh, doc.surface());
 }
 
+Eigen::MatrixXd pairs_now(const Document& doc, const KeyPlacement* placement) {
+  if (!placement || doc.keys().size() < 2) return Eigen::MatrixXd(0, 3);
+  const int k = pair_interval(doc, doc.time());
+  const SceneKey &a = doc.keys()[k], &b = doc.keys()[k + 1];
+  const double u = (doc.time() - a.time) / (b.time - a.time);
+  if (!(u > 0 && u < 1)) return Eigen::MatrixXd(0, 3);
+  Eigen::MatrixXd now(a.pairs_to_next.rows(), 3);
+  for (Eigen::Index r = 0; r < now.rows(); ++r) now.row(r) = pair_position(*placement, a.pairs_to_next.row(r), u);
+  return now;
+}
+
 std::vector<ViewportLabel> pair_labels(const Document& doc, const view::Camera& cam, const KeyPlacement* placement,
                                        double offset) {
   std::vector<ViewportLabel> out;
   if (doc.keys().size() < 2) return out;
-  const int k = pair_interval(doc, doc.time());
-  const SceneKey &a = doc.keys()[k], &b = doc.keys()[k + 1];
-  const double u = (doc.time() - a.time) / (b.time - a.time);
+  const Eigen::MatrixXd& P = doc.keys()[pair_interval(doc, doc.time())].pairs_to_next;
+  const Eigen::MatrixXd now = pairs_now(doc, placement);
   auto label = [&](const Eigen::Vector3d& x, const std::string& text) {
     const Eigen::Vector3d px = view::project_to_pixel(cam, x);
     if (std::abs(px.z()) <= 1) out.push_back({text, px.x() + offset, px.y() - offset});
   };
-  for (Eigen::Index r = 0; r < a.pairs_to_next.rows(); ++r) {
+  for (Eigen::Index r = 0; r < P.rows(); ++r) {
     const std::string n = std::to_string(r + 1);
-    label(a.pairs_to_next.row(r).head<3>().transpose(), n);
-    label(a.pairs_to_next.row(r).tail<3>().transpose(), n);
-    if (placement && u > 0 && u < 1) label(pair_position(*placement, a.pairs_to_next.row(r), u).transpose(), n);
+    label(P.row(r).head<3>().transpose(), n);
+    label(P.row(r).tail<3>().transpose(), n);
+    if (now.rows() > 0) label(now.row(r).transpose(), n);
   }
   return out;
 }

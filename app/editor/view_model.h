@@ -65,6 +65,9 @@ struct ViewportLabel {
   std::string text;
   double x = 0, y = 0;
 };
+// Where the picked pairs of the interval at the document's time are now (pair_position; #pairs x 3),
+// with the transition's `placement`; empty at or outside the interval's keys or without a placement.
+Eigen::MatrixXd pairs_now(const Document& doc, const KeyPlacement* placement);
 // The numbers of the picked pairs of the interval at the document's time (pair_interval), from 1 as
 // the Pair tool's count reads: each beside both of its points, and, inside the interval with the
 // transition's `placement` (null: none), beside where the pair is now (pair_position), `offset`

@@ -237,9 +237,8 @@ MatrixX4iRow sorted_tets(const Eigen::MatrixXi& T) {
   return K;
 }
 
-Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t,
-                       const std::vector<double>& u_middle, double rounding) {
-  const double u_first = u_middle.front(), u_last = u_middle.back();
+Lattice middle_lattice(const Box& box, double h_mid, const SignedDistance& d_s, const SignedDistance& d_t, double u_first,
+                       double u_last, double rounding) {
   Lattice L;
   // A lower bound on the smallest |blend| over [u_first, u_last] (0 where it may change sign; it is
   // linear in u): a rounded distance is within rounding |d| of d. Divided by its Lipschitz constant,
@@ -424,7 +423,7 @@ class SharedLattice {
   const Lattice& get() {
     std::call_once(once_, [&] {
       const auto t = Clock::now();
-      L_ = middle_lattice(box_, h_mid_, d_s_, d_t_, std::vector<double>(u_.begin() + 1, u_.end() - 1), o_.crease_rounding);
+      L_ = middle_lattice(box_, h_mid_, d_s_, d_t_, u_[1], u_[u_.size() - 2], o_.crease_rounding);
       refined_ = refine_lattice(L_, box_, h_mid_, d_s_, d_t_, u_, o_);
       seconds_ = seconds_since(t);
     });
